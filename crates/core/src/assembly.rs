@@ -1,0 +1,213 @@
+//! Global assembly: the sparsity pattern of a body (built once) and the stiffness values
+//! (assembled into it), plus consistent load vectors.
+//!
+//! DOF numbering: node `i` owns DOFs `2i` (u_x) and `2i + 1` (u_y). The stiffness matrix is stored
+//! in full (both triangles) compressed-column form. Values are assembled column by column in
+//! parallel: each node owns its two columns and gathers the contributions of the triangles around
+//! it, so no two threads ever write the same entry and the result does not depend on the number of
+//! threads.
+
+use faer::sparse::{SparseColMat, SymbolicSparseColMat};
+use rayon::prelude::*;
+
+use crate::element::{self, Affine, EDGE_GAUSS_3, TRIANGLE_DEGREE_5};
+use crate::mesh::{Edge, Mesh};
+
+/// Node-to-triangle incidence and node adjacency of a mesh.
+struct Adjacency {
+    /// For node i, the triangles `cell_ptr[i]..cell_ptr[i+1]` of `cells`.
+    cell_ptr: Vec<usize>,
+    cells: Vec<usize>,
+    /// Sorted neighbour nodes (including i itself), CSR.
+    nbr_ptr: Vec<usize>,
+    nbrs: Vec<usize>,
+}
+
+impl Adjacency {
+    fn new(mesh: &Mesh) -> Adjacency {
+        let n = mesh.num_nodes();
+        let npc = mesh.order().nodes_per_cell();
+        let mut count = vec![0usize; n + 1];
+        for &v in mesh.cells() {
+            count[v + 1] += 1;
+        }
+        for i in 0..n {
+            count[i + 1] += count[i];
+        }
+        let cell_ptr = count.clone();
+        let mut cells = vec![0; cell_ptr[n]];
+        let mut fill = count;
+        for (e, c) in mesh.cells().chunks(npc).enumerate() {
+            for &v in c {
+                cells[fill[v]] = e;
+                fill[v] += 1;
+            }
+        }
+        let lists: Vec<Vec<usize>> = (0..n)
+            .into_par_iter()
+            .map(|i| {
+                let mut l: Vec<usize> = cells[cell_ptr[i]..cell_ptr[i + 1]]
+                    .iter()
+                    .flat_map(|&e| mesh.cell(e).iter().copied())
+                    .collect();
+                l.sort_unstable();
+                l.dedup();
+                l
+            })
+            .collect();
+        let mut nbr_ptr = Vec::with_capacity(n + 1);
+        nbr_ptr.push(0);
+        for l in &lists {
+            nbr_ptr.push(nbr_ptr.last().copied().unwrap_or(0) + l.len());
+        }
+        let nbrs = lists.concat();
+        Adjacency {
+            cell_ptr,
+            cells,
+            nbr_ptr,
+            nbrs,
+        }
+    }
+
+    fn neighbours(&self, i: usize) -> &[usize] {
+        &self.nbrs[self.nbr_ptr[i]..self.nbr_ptr[i + 1]]
+    }
+}
+
+/// The fixed sparsity pattern of a body's stiffness matrix and the data needed to refill it.
+pub struct Pattern {
+    adjacency: Adjacency,
+    symbolic: SymbolicSparseColMat<usize>,
+}
+
+impl Pattern {
+    /// Builds the pattern of the `2n × 2n` stiffness matrix of `mesh`.
+    pub fn new(mesh: &Mesh) -> Pattern {
+        let adjacency = Adjacency::new(mesh);
+        let n = mesh.num_nodes();
+        let mut col_ptr = Vec::with_capacity(2 * n + 1);
+        col_ptr.push(0usize);
+        let mut row_idx = Vec::with_capacity(4 * adjacency.nbrs.len());
+        for i in 0..n {
+            for _ in 0..2 {
+                for &j in adjacency.neighbours(i) {
+                    row_idx.push(2 * j);
+                    row_idx.push(2 * j + 1);
+                }
+                col_ptr.push(row_idx.len());
+            }
+        }
+        // Safe by construction: rows sorted and unique within each column, all < 2n.
+        let symbolic = SymbolicSparseColMat::new_checked(2 * n, 2 * n, col_ptr, None, row_idx);
+        Pattern {
+            adjacency,
+            symbolic,
+        }
+    }
+
+    /// The symbolic structure.
+    pub fn symbolic(&self) -> &SymbolicSparseColMat<usize> {
+        &self.symbolic
+    }
+
+    /// Assembles the stiffness matrix with elasticity matrix `d` into this pattern.
+    pub fn stiffness(&self, mesh: &Mesh, d: &[[f64; 3]; 3]) -> SparseColMat<usize, f64> {
+        let order = mesh.order();
+        let n = mesh.num_nodes();
+        let adj = &self.adjacency;
+        let col_ptr = self.symbolic.col_ptr();
+        let mut values = vec![0.0; self.symbolic.row_idx().len()];
+        // Split the value array into the two columns of each node.
+        let mut chunks: Vec<&mut [f64]> = Vec::with_capacity(n);
+        let mut rest = values.as_mut_slice();
+        for i in 0..n {
+            let (head, tail) = rest.split_at_mut(col_ptr[2 * i + 2] - col_ptr[2 * i]);
+            chunks.push(head);
+            rest = tail;
+        }
+        chunks.into_par_iter().enumerate().for_each(|(i, cols)| {
+            let nbrs = adj.neighbours(i);
+            let half = cols.len() / 2;
+            for &e in &adj.cells[adj.cell_ptr[i]..adj.cell_ptr[i + 1]] {
+                let c = mesh.cell(e);
+                let geo = affine(mesh, c);
+                let ke = element::stiffness(order, &geo, d);
+                let Some(a) = c.iter().position(|&v| v == i) else {
+                    continue;
+                };
+                for (b, &j) in c.iter().enumerate() {
+                    let Ok(p) = nbrs.binary_search(&j) else {
+                        continue;
+                    };
+                    for ci in 0..2 {
+                        for cj in 0..2 {
+                            // Column 2i + ci, row 2j + cj.
+                            cols[ci * half + 2 * p + cj] += ke[2 * b + cj][2 * a + ci];
+                        }
+                    }
+                }
+            }
+        });
+        SparseColMat::new(self.symbolic.clone(), values)
+    }
+}
+
+/// Geometry of triangle `c` (its first three nodes are the vertices).
+pub fn affine(mesh: &Mesh, c: &[usize]) -> Affine {
+    let p = mesh.nodes();
+    Affine::new([p[c[0]], p[c[1]], p[c[2]]])
+}
+
+/// Adds the consistent nodal forces of a body force `f(x)` (force per unit area), integrated by a
+/// degree-5 rule.
+pub fn add_body_force(mesh: &Mesh, f: impl Fn([f64; 2]) -> [f64; 2], rhs: &mut [f64]) {
+    let order = mesh.order();
+    for e in 0..mesh.num_cells() {
+        let c = mesh.cell(e);
+        let geo = affine(mesh, c);
+        for (l, w) in TRIANGLE_DEGREE_5
+            .points
+            .iter()
+            .zip(TRIANGLE_DEGREE_5.weights)
+        {
+            let n = element::shape(order, *l);
+            let fx = f(geo.point(*l));
+            for (k, &v) in c.iter().enumerate() {
+                rhs[2 * v] += w * geo.area * n[k] * fx[0];
+                rhs[2 * v + 1] += w * geo.area * n[k] * fx[1];
+            }
+        }
+    }
+}
+
+/// Adds the consistent nodal forces of a traction on boundary edges. `traction(point, normal)`
+/// returns the force per unit length at a point of an edge with outward unit normal `normal`.
+pub fn add_edge_traction(
+    mesh: &Mesh,
+    edges: &[Edge],
+    traction: impl Fn([f64; 2], [f64; 2]) -> [f64; 2],
+    rhs: &mut [f64],
+) {
+    let order = mesh.order();
+    let p = mesh.nodes();
+    for edge in edges {
+        let (normal, len) = mesh.edge_normal(edge);
+        let (a, b) = (p[edge.a], p[edge.b]);
+        let ids: Vec<usize> = edge.nodes().collect();
+        for (t, w) in EDGE_GAUSS_3.0.iter().zip(EDGE_GAUSS_3.1) {
+            let x = [a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1])];
+            let tr = traction(x, normal);
+            let n = element::edge_shape(order, *t);
+            for (k, &v) in ids.iter().enumerate() {
+                rhs[2 * v] += w * len * n[k] * tr[0];
+                rhs[2 * v + 1] += w * len * n[k] * tr[1];
+            }
+        }
+    }
+}
+
+/// Adds a uniform normal pressure `p` on boundary edges (positive pushes into the body, i.e. the
+/// traction is `−p n`).
+pub fn add_pressure(mesh: &Mesh, edges: &[Edge], p: f64, rhs: &mut [f64]) {
+    add_edge_traction(mesh, edges, |_, n| [-p * n[0], -p * n[1]], rhs);
+}

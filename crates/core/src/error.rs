@@ -1,0 +1,195 @@
+//! Typed errors of the finite element core.
+
+use thiserror::Error;
+
+/// A mesh that cannot be used.
+#[derive(Debug, Error, Clone, PartialEq)]
+pub enum MeshError {
+    /// No nodes or no triangles.
+    #[error("the mesh is empty (no nodes or no triangles)")]
+    Empty,
+    /// Connectivity length is not a multiple of the nodes per triangle.
+    #[error(
+        "connectivity has {len} entries, not a multiple of {nodes_per_cell} nodes per triangle"
+    )]
+    BadConnectivity {
+        /// Length of the flat connectivity.
+        len: usize,
+        /// Nodes per triangle of the declared order.
+        nodes_per_cell: usize,
+    },
+    /// A node coordinate is NaN or infinite.
+    #[error("node {node} has a non-finite coordinate")]
+    NonFiniteNode {
+        /// Node index.
+        node: usize,
+    },
+    /// A triangle refers to a node that does not exist.
+    #[error("triangle {element} refers to node {node}, but the mesh has {count} nodes")]
+    NodeOutOfRange {
+        /// Triangle index.
+        element: usize,
+        /// Offending node index.
+        node: usize,
+        /// Number of nodes.
+        count: usize,
+    },
+    /// A node that no triangle uses (it would make the stiffness matrix singular).
+    #[error("node {node} is not used by any triangle")]
+    UnreferencedNode {
+        /// Node index.
+        node: usize,
+    },
+    /// Zero (or nearly zero) area.
+    #[error("triangle {element} is degenerate (zero area)")]
+    DegenerateElement {
+        /// Triangle index.
+        element: usize,
+    },
+    /// Clockwise vertex order.
+    #[error("triangle {element} is inverted (clockwise vertex order, negative area)")]
+    InvertedElement {
+        /// Triangle index.
+        element: usize,
+    },
+    /// A P2 mid-side node off its edge midpoint.
+    #[error("P2 triangle {element} has a mid-side node away from its edge midpoint (only straight-sided triangles are supported)")]
+    CurvedEdge {
+        /// Triangle index.
+        element: usize,
+    },
+    /// A named boundary edge that is not on the boundary of the mesh.
+    #[error("boundary '{boundary}': edge {a}-{b} is not a boundary edge of the mesh")]
+    NotABoundaryEdge {
+        /// Boundary name.
+        boundary: String,
+        /// First node.
+        a: usize,
+        /// Second node.
+        b: usize,
+    },
+    /// A boundary or node set name that does not exist.
+    #[error("no boundary named '{name}' (known: {})", known.join(", "))]
+    NoSuchBoundary {
+        /// Requested name.
+        name: String,
+        /// Names that exist.
+        known: Vec<String>,
+    },
+    /// A node set refers to a node that does not exist.
+    #[error("node set '{set}' refers to node {node}, which does not exist")]
+    NodeSetOutOfRange {
+        /// Set name.
+        set: String,
+        /// Offending node.
+        node: usize,
+    },
+    /// Bad parameters of the structured rectangle mesher.
+    #[error("rectangle mesh: {0}")]
+    BadRectangle(String),
+}
+
+/// A Gmsh file that cannot be read.
+#[derive(Debug, Error)]
+pub enum GmshError {
+    /// The file could not be read.
+    #[error("cannot read '{path}': {source}")]
+    Io {
+        /// File path.
+        path: String,
+        /// Underlying error.
+        source: std::io::Error,
+    },
+    /// Malformed content.
+    #[error("line {line}: {message}")]
+    Parse {
+        /// 1-based line number.
+        line: usize,
+        /// What is wrong.
+        message: String,
+    },
+    /// Valid Gmsh, but not something contactdd reads.
+    #[error("unsupported: {0}")]
+    Unsupported(String),
+    /// The resulting mesh is invalid.
+    #[error(transparent)]
+    Mesh(#[from] MeshError),
+}
+
+/// Bad material constants.
+#[derive(Debug, Error, Clone, PartialEq)]
+pub enum MaterialError {
+    /// E must be positive and finite.
+    #[error("Young's modulus must be positive and finite, got {0}")]
+    YoungModulus(f64),
+    /// ν must lie in (−1, 0.5).
+    #[error("Poisson's ratio must lie in (-1, 0.5), got {0}")]
+    PoissonRatio(f64),
+}
+
+/// Errors of assembling, constraining and factorising one body.
+#[derive(Debug, Error)]
+pub enum BodyError {
+    /// Mesh problem.
+    #[error(transparent)]
+    Mesh(#[from] MeshError),
+    /// Material problem.
+    #[error(transparent)]
+    Material(#[from] MaterialError),
+    /// The body can move without deformation: supports and contact springs leave rigid modes.
+    #[error("body '{body}' is not held: {modes} rigid-body mode(s) ({description}) are not removed by its supports{contact}; add a support or a contact zone")]
+    Floating {
+        /// Body name.
+        body: String,
+        /// Number of free rigid modes.
+        modes: usize,
+        /// Which modes (e.g. "translation in y").
+        description: String,
+        /// " or contact zones" if contact zones were taken into account.
+        contact: &'static str,
+    },
+    /// Cholesky failed although the body looked supported.
+    #[error("body '{body}': the stiffness matrix is not positive definite (Cholesky failed); check supports and material")]
+    NotPositiveDefinite {
+        /// Body name.
+        body: String,
+    },
+    /// A non-finite load or prescribed value.
+    #[error("body '{body}': {what} is not finite")]
+    NonFinite {
+        /// Body name.
+        body: String,
+        /// What is not finite.
+        what: String,
+    },
+    /// The sparse solver ran out of memory or index range.
+    #[error("body '{body}': sparse factorization failed: {message}")]
+    Factorization {
+        /// Body name.
+        body: String,
+        /// faer's message.
+        message: String,
+    },
+}
+
+/// A support that cannot be applied.
+#[derive(Debug, Error, Clone, PartialEq)]
+pub enum SupportError {
+    /// Unknown boundary.
+    #[error(transparent)]
+    Mesh(#[from] MeshError),
+    /// `normal` supports need a straight, axis-aligned boundary.
+    #[error("boundary '{boundary}': a 'normal' support needs a straight boundary parallel to the x or y axis")]
+    NotAxisAligned {
+        /// Boundary name.
+        boundary: String,
+    },
+    /// A non-finite prescribed value.
+    #[error("boundary '{boundary}': prescribed displacement {value} is not finite")]
+    NonFinite {
+        /// Boundary name.
+        boundary: String,
+        /// Value.
+        value: f64,
+    },
+}

@@ -1,0 +1,403 @@
+//! The factorised operator of one body: supports eliminated, sparse Cholesky (faer) with the
+//! symbolic analysis done once, numeric factorisation into kept buffers, in-place solves.
+//!
+//! Interface DOFs (the contact nodes' DOFs) can be ordered last. The trailing block `L₂₂` of the
+//! Cholesky factor `L` of `P A Pᵀ` is then the Cholesky factor of the Schur complement of `A` on the
+//! interface, `S = A₂₂ − A₂₁ A₁₁⁻¹ A₁₂ = L₂₂ L₂₂ᵀ`. This is what lets the domain decomposition
+//! iterate on contact quantities only: `(A⁻¹)₂₂ = S⁻¹`, read off the factor at no extra cost.
+//! The interior is ordered by approximate minimum degree (faer's AMD).
+
+use faer::dyn_stack::{MemBuffer, MemStack};
+use faer::linalg::cholesky::llt::factor::LltRegularization;
+use faer::sparse::linalg::amd;
+use faer::sparse::linalg::cholesky::{
+    factorize_symbolic_cholesky, supernodal::SupernodalLltRef, CholeskySymbolicParams, LltRef,
+    SymbolicCholesky, SymbolicCholeskyRaw, SymmetricOrdering,
+};
+use faer::sparse::linalg::SupernodalThreshold;
+use faer::sparse::{SparseColMat, SparseColMatRef, SymbolicSparseColMat};
+use faer::{Conj, Mat, MatMut, Par, Side};
+
+use crate::error::BodyError;
+use crate::supports::Constraints;
+
+const NONE: usize = usize::MAX;
+
+/// A body's stiffness with supports eliminated, factorised by sparse Cholesky.
+pub struct FactoredBody {
+    name: String,
+    k: SparseColMat<usize, f64>,
+    /// Reduced index of each DOF, or `NONE` if prescribed.
+    reduced: Vec<usize>,
+    /// Full DOF of each reduced index.
+    free: Vec<usize>,
+    /// Prescribed DOFs and values.
+    fixed: Vec<(usize, f64)>,
+    /// Lower triangle of the reduced matrix (reduced numbering).
+    lower: SymbolicSparseColMat<usize>,
+    /// For each lower entry, its index in `k`'s values.
+    gather: Vec<usize>,
+    values: Vec<f64>,
+    symbolic: SymbolicCholesky<usize>,
+    l_values: Vec<f64>,
+    /// Reduced indices of the interface DOFs, in the order given (prescribed ones dropped).
+    interface: Vec<usize>,
+    factored: bool,
+    par: Par,
+}
+
+impl FactoredBody {
+    /// Eliminates the prescribed DOFs from `k` and runs the symbolic analysis, ordering the free
+    /// DOFs among `interface_dofs` last (in the given order).
+    pub fn new(
+        name: &str,
+        k: SparseColMat<usize, f64>,
+        constraints: &Constraints,
+        interface_dofs: &[usize],
+    ) -> Result<FactoredBody, BodyError> {
+        let ndof = k.ncols();
+        let fail = |message: String| BodyError::Factorization {
+            body: name.to_string(),
+            message,
+        };
+        let mut reduced = vec![NONE; ndof];
+        let mut free = Vec::with_capacity(ndof);
+        let mut fixed = Vec::new();
+        for (dof, r) in reduced.iter_mut().enumerate() {
+            match constraints.get(dof) {
+                Some(v) => fixed.push((dof, v)),
+                None => {
+                    *r = free.len();
+                    free.push(dof);
+                }
+            }
+        }
+        let n = free.len();
+        if n == 0 {
+            return Err(fail(
+                "every DOF is prescribed; there is nothing to solve".into(),
+            ));
+        }
+        // Lower triangle of the reduced matrix, in reduced numbering (the map is monotone, so
+        // rows stay sorted).
+        let (col_ptr, row_idx) = (k.symbolic().col_ptr(), k.symbolic().row_idx());
+        let mut l_ptr = Vec::with_capacity(n + 1);
+        let mut l_rows = Vec::new();
+        let mut gather = Vec::new();
+        l_ptr.push(0);
+        for &j in &free {
+            for (p, &i) in row_idx
+                .iter()
+                .enumerate()
+                .take(col_ptr[j + 1])
+                .skip(col_ptr[j])
+            {
+                if i >= j && reduced[i] != NONE {
+                    l_rows.push(reduced[i]);
+                    gather.push(p);
+                }
+            }
+            l_ptr.push(l_rows.len());
+        }
+        let lower = SymbolicSparseColMat::new_checked(n, n, l_ptr, None, l_rows);
+
+        let interface: Vec<usize> = interface_dofs
+            .iter()
+            .filter_map(|&d| (reduced[d] != NONE).then_some(reduced[d]))
+            .collect();
+        let perm = last_ordering(&lower, &interface).map_err(|e| fail(format!("{e:?}")))?;
+        let inv = inverse(&perm);
+        let params = CholeskySymbolicParams {
+            // The Schur factor is read off supernodes; small bodies would otherwise go simplicial.
+            supernodal_flop_ratio_threshold: if interface.is_empty() {
+                SupernodalThreshold::AUTO
+            } else {
+                SupernodalThreshold::FORCE_SUPERNODAL
+            },
+            ..Default::default()
+        };
+        let symbolic = factorize_symbolic_cholesky(
+            lower.as_ref(),
+            Side::Lower,
+            SymmetricOrdering::Custom(faer::perm::PermRef::new_checked(&perm, &inv, n)),
+            params,
+        )
+        .map_err(|e| fail(format!("{e:?}")))?;
+        let l_values = vec![0.0; symbolic.len_val()];
+        let values = vec![0.0; gather.len()];
+        Ok(FactoredBody {
+            name: name.to_string(),
+            k,
+            reduced,
+            free,
+            fixed,
+            lower,
+            gather,
+            values,
+            symbolic,
+            l_values,
+            interface,
+            factored: false,
+            par: Par::Seq,
+        })
+    }
+
+    /// Sets faer's parallelism for factorisations and solves of this body.
+    pub fn set_parallelism(&mut self, par: Par) {
+        self.par = par;
+    }
+
+    /// The body name used in errors.
+    pub fn name(&self) -> &str {
+        &self.name
+    }
+
+    /// The full stiffness matrix (supports not eliminated).
+    pub fn stiffness(&self) -> &SparseColMat<usize, f64> {
+        &self.k
+    }
+
+    /// Number of DOFs (2 per node).
+    pub fn num_dofs(&self) -> usize {
+        self.reduced.len()
+    }
+
+    /// Number of free (unknown) DOFs.
+    pub fn num_free(&self) -> usize {
+        self.free.len()
+    }
+
+    /// True if DOF `dof` is prescribed.
+    pub fn is_fixed(&self, dof: usize) -> bool {
+        self.reduced[dof] == NONE
+    }
+
+    /// Numeric factorisation of `K + Σ additions` where `additions` are `(row, col, value)`
+    /// entries (full DOF numbering) inside the stiffness pattern, added symmetrically: an entry with
+    /// `row ≠ col` is added at both `(row, col)` and `(col, row)`.
+    pub fn factorize(&mut self, additions: &[(usize, usize, f64)]) -> Result<(), BodyError> {
+        let kv = self.k.val();
+        for (v, &p) in self.values.iter_mut().zip(&self.gather) {
+            *v = kv[p];
+        }
+        for &(i, j, a) in additions {
+            let (ri, rj) = (self.reduced[i], self.reduced[j]);
+            if ri == NONE || rj == NONE {
+                continue;
+            }
+            let (row, col) = (ri.max(rj), ri.min(rj));
+            let start = self.lower.col_ptr()[col];
+            let rows = &self.lower.row_idx()[start..self.lower.col_ptr()[col + 1]];
+            let Ok(p) = rows.binary_search(&row) else {
+                return Err(BodyError::Factorization {
+                    body: self.name.clone(),
+                    message: format!("entry ({i}, {j}) is outside the stiffness pattern"),
+                });
+            };
+            self.values[start + p] += a;
+        }
+        if let Some(i) = self.values.iter().position(|v| !v.is_finite()) {
+            return Err(BodyError::NonFinite {
+                body: self.name.clone(),
+                what: format!("stiffness entry {i}"),
+            });
+        }
+        let req = self
+            .symbolic
+            .factorize_numeric_llt_scratch::<f64>(self.par, Default::default());
+        let mut mem = MemBuffer::try_new(req).map_err(|_| BodyError::Factorization {
+            body: self.name.clone(),
+            message: "out of memory".into(),
+        })?;
+        self.factored = false;
+        let a = SparseColMatRef::new(self.lower.as_ref(), &self.values);
+        self.symbolic
+            .factorize_numeric_llt(
+                &mut self.l_values,
+                a,
+                Side::Lower,
+                LltRegularization::default(),
+                self.par,
+                MemStack::new(&mut mem),
+                Default::default(),
+            )
+            .map_err(|_| BodyError::NotPositiveDefinite {
+                body: self.name.clone(),
+            })?;
+        self.factored = true;
+        Ok(())
+    }
+
+    /// Solves `K u = f` with the prescribed values for `u` on supports; `f` has one entry per DOF
+    /// (entries on prescribed DOFs are ignored). Returns the full displacement vector.
+    pub fn solve(&self, f: &[f64]) -> Result<Vec<f64>, BodyError> {
+        let mut rhs: Vec<f64> = self.free.iter().map(|&d| f[d]).collect();
+        // Move the prescribed values to the right-hand side: f_f − K_fd u_d.
+        let (col_ptr, row_idx, kv) = (
+            self.k.symbolic().col_ptr(),
+            self.k.symbolic().row_idx(),
+            self.k.val(),
+        );
+        for &(d, value) in &self.fixed {
+            if value == 0.0 {
+                continue;
+            }
+            for p in col_ptr[d]..col_ptr[d + 1] {
+                let r = self.reduced[row_idx[p]];
+                if r != NONE {
+                    rhs[r] -= kv[p] * value;
+                }
+            }
+        }
+        self.solve_reduced_in_place(&mut rhs)?;
+        let mut u = vec![0.0; self.num_dofs()];
+        for (r, &d) in self.free.iter().enumerate() {
+            u[d] = rhs[r];
+        }
+        for &(d, value) in &self.fixed {
+            u[d] = value;
+        }
+        if u.iter().any(|v| !v.is_finite()) {
+            return Err(BodyError::NotPositiveDefinite {
+                body: self.name.clone(),
+            });
+        }
+        Ok(u)
+    }
+
+    /// Solves in place in the reduced (free DOF) numbering.
+    pub fn solve_reduced_in_place(&self, rhs: &mut [f64]) -> Result<(), BodyError> {
+        if !self.factored {
+            return Err(BodyError::Factorization {
+                body: self.name.clone(),
+                message: "solve called before a successful factorization".into(),
+            });
+        }
+        let n = rhs.len();
+        let req = self.symbolic.solve_in_place_scratch::<f64>(1, self.par);
+        let mut mem = MemBuffer::try_new(req).map_err(|_| BodyError::Factorization {
+            body: self.name.clone(),
+            message: "out of memory".into(),
+        })?;
+        let llt = LltRef::new(&self.symbolic, &self.l_values);
+        llt.solve_in_place_with_conj(
+            Conj::No,
+            MatMut::from_column_major_slice_mut(rhs, n, 1),
+            self.par,
+            MemStack::new(&mut mem),
+        );
+        Ok(())
+    }
+
+    /// For each DOF of `interface_dofs` (as given to [`FactoredBody::new`]), its index in the
+    /// Schur factor, or `None` if the DOF is prescribed.
+    pub fn interface_index(&self, interface_dofs: &[usize]) -> Vec<Option<usize>> {
+        let mut pos = std::collections::HashMap::new();
+        for (k, &r) in self.interface.iter().enumerate() {
+            pos.insert(r, k);
+        }
+        interface_dofs
+            .iter()
+            .map(|&d| {
+                let r = self.reduced[d];
+                (r != NONE).then(|| pos.get(&r).copied()).flatten()
+            })
+            .collect()
+    }
+
+    /// The dense lower Cholesky factor `L₂₂` of the Schur complement on the free interface DOFs
+    /// (ordered as [`FactoredBody::interface_index`] says).
+    pub fn interface_schur_factor(&self) -> Mat<f64> {
+        let m = self.interface.len();
+        let n = self.free.len();
+        let n0 = n - m;
+        let mut l22 = Mat::<f64>::zeros(m, m);
+        if m == 0 || !self.factored {
+            return l22;
+        }
+        let SymbolicCholeskyRaw::Supernodal(sym) = self.symbolic.raw() else {
+            return l22;
+        };
+        let llt = SupernodalLltRef::new(sym, &self.l_values);
+        for s in 0..sym.n_supernodes() {
+            let node = llt.supernode(s);
+            let start = node.start();
+            let val = node.val();
+            let ncols = val.ncols();
+            if start + ncols <= n0 {
+                continue;
+            }
+            let pattern = node.pattern();
+            for jj in 0..ncols {
+                let j = start + jj;
+                if j < n0 {
+                    continue;
+                }
+                for ii in jj..ncols {
+                    l22[(start + ii - n0, j - n0)] = val[(ii, jj)];
+                }
+                for (k, &r) in pattern.iter().enumerate() {
+                    if r >= n0 {
+                        l22[(r - n0, j - n0)] = val[(ncols + k, jj)];
+                    }
+                }
+            }
+        }
+        l22
+    }
+}
+
+/// AMD on the interior DOFs, then the interface DOFs in the given order.
+fn last_ordering(
+    lower: &SymbolicSparseColMat<usize>,
+    interface: &[usize],
+) -> Result<Vec<usize>, faer::sparse::FaerError> {
+    let n = lower.ncols();
+    let mut is_interface = vec![false; n];
+    for &r in interface {
+        is_interface[r] = true;
+    }
+    let interior: Vec<usize> = (0..n).filter(|&r| !is_interface[r]).collect();
+    let mut local = vec![NONE; n];
+    for (k, &r) in interior.iter().enumerate() {
+        local[r] = k;
+    }
+    // Lower pattern of the interior block (AMD wants the pattern of A + Aᵀ; one half is enough).
+    let mut ptr = vec![0usize];
+    let mut rows = Vec::new();
+    for &j in &interior {
+        let (s, e) = (lower.col_ptr()[j], lower.col_ptr()[j + 1]);
+        rows.extend(lower.row_idx()[s..e].iter().filter_map(|&i| {
+            let l = local[i];
+            (l != NONE).then_some(l)
+        }));
+        ptr.push(rows.len());
+    }
+    let ni = interior.len();
+    let mut order = Vec::with_capacity(n);
+    if ni > 0 {
+        let nnz = rows.len();
+        let pattern = SymbolicSparseColMat::new_checked(ni, ni, ptr, None, rows);
+        let (mut fwd, mut inv) = (vec![0usize; ni], vec![0usize; ni]);
+        let mut mem = MemBuffer::try_new(amd::order_maybe_unsorted_scratch::<usize>(ni, nnz))
+            .map_err(|_| faer::sparse::FaerError::OutOfMemory)?;
+        amd::order_maybe_unsorted(
+            &mut fwd,
+            &mut inv,
+            pattern.as_ref(),
+            amd::Control::default(),
+            MemStack::new(&mut mem),
+        )?;
+        order.extend(fwd.iter().map(|&k| interior[k]));
+    }
+    order.extend_from_slice(interface);
+    Ok(order)
+}
+
+fn inverse(perm: &[usize]) -> Vec<usize> {
+    let mut inv = vec![0; perm.len()];
+    for (i, &p) in perm.iter().enumerate() {
+        inv[p] = i;
+    }
+    inv
+}

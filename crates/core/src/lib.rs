@@ -1,0 +1,35 @@
+//! # contactdd-core
+//!
+//! The finite element core of contactdd: 2D linear elasticity on straight-sided P1/P2 triangles in
+//! plane strain or plane stress, assembled into a fixed sparsity pattern and solved by a sparse
+//! Cholesky factorisation (faer) per body.
+//!
+//! Modules follow the data flow: [`mesh`] (and [`rectangle`], [`gmsh`]) → [`element`] →
+//! [`material`] → [`assembly`] / [`loads`] → [`supports`] → [`factor`] → [`post`] / [`vtu`].
+//! [`body::ElasticBody::solve`] runs all stages in one call.
+//!
+//! The weak form per body is `a(u, v) = ∫ ε(v) : C : ε(u) dA = ∫ f·v dA + ∫_Γσ t·v ds`, with
+//! prescribed components of `u` eliminated from the system.
+
+pub mod assembly;
+pub mod body;
+pub mod element;
+pub mod error;
+pub mod factor;
+pub mod gmsh;
+pub mod loads;
+pub mod material;
+pub mod mesh;
+pub mod post;
+pub mod rectangle;
+pub mod supports;
+pub mod vtu;
+
+pub use body::{ElasticBody, LinearSolution};
+pub use error::{BodyError, GmshError, MaterialError, MeshError, SupportError};
+pub use factor::FactoredBody;
+pub use loads::Load;
+pub use material::{Material, Plane};
+pub use mesh::{Edge, Mesh, Order};
+pub use rectangle::{Diagonal, Rectangle};
+pub use supports::{Component, Constraints};

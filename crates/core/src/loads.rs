@@ -1,0 +1,43 @@
+//! Loads of one body: normal pressure and traction on named boundaries, and a body force.
+
+use crate::assembly::{add_body_force, add_edge_traction, add_pressure};
+use crate::error::MeshError;
+use crate::mesh::Mesh;
+
+/// One load.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Load {
+    /// Uniform normal pressure on a boundary, positive into the body (traction `−p n`).
+    Pressure {
+        /// Boundary name.
+        boundary: String,
+        /// Pressure (force per unit length in 2D).
+        value: f64,
+    },
+    /// Uniform traction vector on a boundary.
+    Traction {
+        /// Boundary name.
+        boundary: String,
+        /// Force per unit length.
+        value: [f64; 2],
+    },
+    /// Uniform body force per unit area (e.g. `ρ g`).
+    BodyForce([f64; 2]),
+}
+
+/// The consistent load vector (2 entries per node) of a set of loads.
+pub fn load_vector(mesh: &Mesh, loads: &[Load]) -> Result<Vec<f64>, MeshError> {
+    let mut f = vec![0.0; 2 * mesh.num_nodes()];
+    for load in loads {
+        match load {
+            Load::Pressure { boundary, value } => {
+                add_pressure(mesh, mesh.boundary(boundary)?, *value, &mut f)
+            }
+            Load::Traction { boundary, value } => {
+                add_edge_traction(mesh, mesh.boundary(boundary)?, |_, _| *value, &mut f)
+            }
+            Load::BodyForce(b) => add_body_force(mesh, |_| *b, &mut f),
+        }
+    }
+    Ok(f)
+}

@@ -1,0 +1,369 @@
+//! Triangular meshes: nodes, P1/P2 triangles, named boundary edge sets and node sets.
+//!
+//! A [`Mesh`] is always validated on construction: every triangle is counter-clockwise with a
+//! positive area, P2 mid-side nodes sit on their edge midpoints (straight-sided elements), every node
+//! is used by some triangle, and every boundary edge is an edge of exactly one triangle. Boundary
+//! edges are stored oriented so that the body lies on their left; the outward normal of an edge
+//! from `a` to `b` is therefore `(b - a)` rotated clockwise.
+
+use std::collections::{BTreeMap, HashMap};
+
+use crate::error::MeshError;
+
+/// Polynomial order of the Lagrange triangle.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, serde::Serialize, serde::Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Order {
+    /// Linear triangle, 3 vertex nodes.
+    P1,
+    /// Quadratic triangle, 3 vertex nodes then the mid-side nodes of edges (0,1), (1,2), (2,0).
+    P2,
+}
+
+impl Order {
+    /// Number of nodes of one triangle.
+    pub fn nodes_per_cell(self) -> usize {
+        match self {
+            Order::P1 => 3,
+            Order::P2 => 6,
+        }
+    }
+}
+
+/// A boundary edge. For P2 meshes `mid` is the mid-side node.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Edge {
+    /// First vertex (the body lies to the left of `a → b` once the mesh is validated).
+    pub a: usize,
+    /// Second vertex.
+    pub b: usize,
+    /// Mid-side node (P2 only).
+    pub mid: Option<usize>,
+}
+
+impl Edge {
+    /// A P1 edge.
+    pub fn new(a: usize, b: usize) -> Self {
+        Edge { a, b, mid: None }
+    }
+
+    /// The edge's nodes in the order `a, b, [mid]`.
+    pub fn nodes(&self) -> impl Iterator<Item = usize> + '_ {
+        [self.a, self.b].into_iter().chain(self.mid)
+    }
+}
+
+/// A validated triangular mesh of one body.
+#[derive(Clone, Debug)]
+pub struct Mesh {
+    nodes: Vec<[f64; 2]>,
+    order: Order,
+    cells: Vec<usize>,
+    boundaries: BTreeMap<String, Vec<Edge>>,
+    node_sets: BTreeMap<String, Vec<usize>>,
+}
+
+/// Local vertex pairs of a triangle's edges, and the local index of their mid-side node.
+pub const TRIANGLE_EDGES: [(usize, usize, usize); 3] = [(0, 1, 3), (1, 2, 4), (2, 0, 5)];
+
+impl Mesh {
+    /// Validates and builds a mesh. `cells` is flat, `order.nodes_per_cell()` node indices per
+    /// triangle. Boundary edges may be given in either direction; they are re-oriented so that the
+    /// body lies on their left, and for P2 the missing mid-side node is filled in.
+    pub fn new(
+        nodes: Vec<[f64; 2]>,
+        order: Order,
+        cells: Vec<usize>,
+        boundaries: BTreeMap<String, Vec<Edge>>,
+        node_sets: BTreeMap<String, Vec<usize>>,
+    ) -> Result<Mesh, MeshError> {
+        let npc = order.nodes_per_cell();
+        if nodes.is_empty() || cells.is_empty() {
+            return Err(MeshError::Empty);
+        }
+        if cells.len() % npc != 0 {
+            return Err(MeshError::BadConnectivity {
+                len: cells.len(),
+                nodes_per_cell: npc,
+            });
+        }
+        for (i, p) in nodes.iter().enumerate() {
+            if !(p[0].is_finite() && p[1].is_finite()) {
+                return Err(MeshError::NonFiniteNode { node: i });
+            }
+        }
+        let n = nodes.len();
+        let mut used = vec![false; n];
+        for (e, cell) in cells.chunks(npc).enumerate() {
+            for &v in cell {
+                if v >= n {
+                    return Err(MeshError::NodeOutOfRange {
+                        element: e,
+                        node: v,
+                        count: n,
+                    });
+                }
+                used[v] = true;
+            }
+        }
+        if let Some(node) = used.iter().position(|u| !u) {
+            return Err(MeshError::UnreferencedNode { node });
+        }
+        let mut mesh = Mesh {
+            nodes,
+            order,
+            cells,
+            boundaries: BTreeMap::new(),
+            node_sets,
+        };
+        mesh.check_cells()?;
+        for (name, set) in &mesh.node_sets {
+            if let Some(&node) = set.iter().find(|&&v| v >= n) {
+                return Err(MeshError::NodeSetOutOfRange {
+                    set: name.clone(),
+                    node,
+                });
+            }
+        }
+        mesh.boundaries = mesh.orient_boundaries(boundaries)?;
+        Ok(mesh)
+    }
+
+    fn check_cells(&self) -> Result<(), MeshError> {
+        let h = self.bounding_box_diameter();
+        for e in 0..self.num_cells() {
+            let c = self.cell(e);
+            let [p0, p1, p2] = [self.nodes[c[0]], self.nodes[c[1]], self.nodes[c[2]]];
+            let area2 = (p1[0] - p0[0]) * (p2[1] - p0[1]) - (p2[0] - p0[0]) * (p1[1] - p0[1]);
+            let longest = [dist(p0, p1), dist(p1, p2), dist(p2, p0)]
+                .into_iter()
+                .fold(0.0, f64::max);
+            // A triangle whose area is tiny relative to its longest edge squared is degenerate.
+            if area2.abs() <= 1e-12 * longest * longest || longest <= 1e-14 * h {
+                return Err(MeshError::DegenerateElement { element: e });
+            }
+            if area2 < 0.0 {
+                return Err(MeshError::InvertedElement { element: e });
+            }
+            if self.order == Order::P2 {
+                for &(i, j, m) in &TRIANGLE_EDGES {
+                    let (a, b, mid) = (self.nodes[c[i]], self.nodes[c[j]], self.nodes[c[m]]);
+                    let centre = [0.5 * (a[0] + b[0]), 0.5 * (a[1] + b[1])];
+                    if dist(centre, mid) > 1e-8 * dist(a, b) {
+                        return Err(MeshError::CurvedEdge { element: e });
+                    }
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// Maps every triangle edge to (element, local edge); boundary edges appear once.
+    fn edge_owners(&self) -> HashMap<(usize, usize), Vec<(usize, usize)>> {
+        let mut owners: HashMap<(usize, usize), Vec<(usize, usize)>> = HashMap::new();
+        for e in 0..self.num_cells() {
+            let c = self.cell(e);
+            for (k, &(i, j, _)) in TRIANGLE_EDGES.iter().enumerate() {
+                let key = (c[i].min(c[j]), c[i].max(c[j]));
+                owners.entry(key).or_default().push((e, k));
+            }
+        }
+        owners
+    }
+
+    fn orient_boundaries(
+        &self,
+        boundaries: BTreeMap<String, Vec<Edge>>,
+    ) -> Result<BTreeMap<String, Vec<Edge>>, MeshError> {
+        let owners = self.edge_owners();
+        let mut out = BTreeMap::new();
+        for (name, edges) in boundaries {
+            let mut oriented = Vec::with_capacity(edges.len());
+            for edge in edges {
+                let key = (edge.a.min(edge.b), edge.a.max(edge.b));
+                let owner = match owners.get(&key).map(Vec::as_slice) {
+                    Some([one]) => *one,
+                    _ => {
+                        return Err(MeshError::NotABoundaryEdge {
+                            boundary: name.clone(),
+                            a: edge.a,
+                            b: edge.b,
+                        })
+                    }
+                };
+                let (e, k) = owner;
+                let (i, j, m) = TRIANGLE_EDGES[k];
+                let c = self.cell(e);
+                let mid = match self.order {
+                    Order::P1 => None,
+                    Order::P2 => Some(c[m]),
+                };
+                oriented.push(Edge {
+                    a: c[i],
+                    b: c[j],
+                    mid,
+                });
+            }
+            out.insert(name, oriented);
+        }
+        Ok(out)
+    }
+
+    /// Node coordinates.
+    pub fn nodes(&self) -> &[[f64; 2]] {
+        &self.nodes
+    }
+
+    /// Number of nodes.
+    pub fn num_nodes(&self) -> usize {
+        self.nodes.len()
+    }
+
+    /// Element order.
+    pub fn order(&self) -> Order {
+        self.order
+    }
+
+    /// Number of triangles.
+    pub fn num_cells(&self) -> usize {
+        self.cells.len() / self.order.nodes_per_cell()
+    }
+
+    /// Node indices of triangle `e` (3 or 6).
+    pub fn cell(&self, e: usize) -> &[usize] {
+        let npc = self.order.nodes_per_cell();
+        &self.cells[e * npc..(e + 1) * npc]
+    }
+
+    /// Flat connectivity, `nodes_per_cell` indices per triangle.
+    pub fn cells(&self) -> &[usize] {
+        &self.cells
+    }
+
+    /// Named boundary edge sets.
+    pub fn boundaries(&self) -> &BTreeMap<String, Vec<Edge>> {
+        &self.boundaries
+    }
+
+    /// Named node sets (e.g. Gmsh physical points).
+    pub fn node_sets(&self) -> &BTreeMap<String, Vec<usize>> {
+        &self.node_sets
+    }
+
+    /// The edges of boundary `name`, or an error listing the names that exist.
+    pub fn boundary(&self, name: &str) -> Result<&[Edge], MeshError> {
+        self.boundaries
+            .get(name)
+            .map(Vec::as_slice)
+            .ok_or_else(|| MeshError::NoSuchBoundary {
+                name: name.to_string(),
+                known: self.boundaries.keys().cloned().collect(),
+            })
+    }
+
+    /// Sorted, deduplicated nodes of boundary `name` (or of node set `name`).
+    pub fn boundary_nodes(&self, name: &str) -> Result<Vec<usize>, MeshError> {
+        let mut nodes: Vec<usize> = match (self.boundaries.get(name), self.node_sets.get(name)) {
+            (Some(edges), _) => edges.iter().flat_map(|e| e.nodes()).collect(),
+            (None, Some(set)) => set.clone(),
+            (None, None) => {
+                return Err(MeshError::NoSuchBoundary {
+                    name: name.to_string(),
+                    known: self
+                        .boundaries
+                        .keys()
+                        .chain(self.node_sets.keys())
+                        .cloned()
+                        .collect(),
+                })
+            }
+        };
+        nodes.sort_unstable();
+        nodes.dedup();
+        Ok(nodes)
+    }
+
+    /// Length of the bounding box diagonal (a length scale for tolerances).
+    pub fn bounding_box_diameter(&self) -> f64 {
+        let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
+        for p in &self.nodes {
+            for d in 0..2 {
+                lo[d] = lo[d].min(p[d]);
+                hi[d] = hi[d].max(p[d]);
+            }
+        }
+        dist(lo, hi)
+    }
+
+    /// Turns a P1 mesh into the P2 mesh on the same triangles by adding one node per edge
+    /// (a P2 mesh is returned unchanged).
+    pub fn to_p2(&self) -> Mesh {
+        if self.order == Order::P2 {
+            return self.clone();
+        }
+        let mut nodes = self.nodes.clone();
+        let mut mid_of: HashMap<(usize, usize), usize> = HashMap::new();
+        let mut cells = Vec::with_capacity(self.num_cells() * 6);
+        for e in 0..self.num_cells() {
+            let c = self.cell(e);
+            let mut mids = [0; 3];
+            for (k, &(i, j, _)) in TRIANGLE_EDGES.iter().enumerate() {
+                let key = (c[i].min(c[j]), c[i].max(c[j]));
+                mids[k] = *mid_of.entry(key).or_insert_with(|| {
+                    let (a, b) = (self.nodes[c[i]], self.nodes[c[j]]);
+                    nodes.push([0.5 * (a[0] + b[0]), 0.5 * (a[1] + b[1])]);
+                    nodes.len() - 1
+                });
+            }
+            cells.extend_from_slice(c);
+            cells.extend_from_slice(&mids);
+        }
+        let boundaries = self
+            .boundaries
+            .iter()
+            .map(|(name, edges)| {
+                let edges = edges
+                    .iter()
+                    .map(|e| Edge {
+                        a: e.a,
+                        b: e.b,
+                        mid: mid_of.get(&(e.a.min(e.b), e.a.max(e.b))).copied(),
+                    })
+                    .collect();
+                (name.clone(), edges)
+            })
+            .collect();
+        Mesh {
+            nodes,
+            order: Order::P2,
+            cells,
+            boundaries,
+            node_sets: self.node_sets.clone(),
+        }
+    }
+
+    /// Outward unit normal and length of a boundary edge.
+    pub fn edge_normal(&self, edge: &Edge) -> ([f64; 2], f64) {
+        let (a, b) = (self.nodes[edge.a], self.nodes[edge.b]);
+        let (dx, dy) = (b[0] - a[0], b[1] - a[1]);
+        let len = dx.hypot(dy);
+        ([dy / len, -dx / len], len)
+    }
+
+    /// Returns a copy with every node moved by `f` (e.g. to map a reference mesh onto a body).
+    /// The result is validated again.
+    pub fn map_nodes(&self, f: impl Fn([f64; 2]) -> [f64; 2]) -> Result<Mesh, MeshError> {
+        Mesh::new(
+            self.nodes.iter().map(|&p| f(p)).collect(),
+            self.order,
+            self.cells.clone(),
+            self.boundaries.clone(),
+            self.node_sets.clone(),
+        )
+    }
+}
+
+/// Euclidean distance of two points.
+pub fn dist(a: [f64; 2], b: [f64; 2]) -> f64 {
+    (a[0] - b[0]).hypot(a[1] - b[1])
+}

@@ -1,0 +1,618 @@
+//! Reading Gmsh meshes (`gmsh`) and writing VTK unstructured grids (`vtu`).
+
+use std::path::{Path, PathBuf};
+
+use contactdd_core::error::GmshError;
+use contactdd_core::gmsh::{parse_msh, read_msh};
+use contactdd_core::mesh::{Mesh, Order};
+use contactdd_core::vtu::{vtu_string, write_vtu, PointField};
+
+fn data(name: &str) -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("tests")
+        .join("data")
+        .join(name)
+}
+
+fn square_text() -> String {
+    std::fs::read_to_string(data("square.msh")).expect("test data square.msh")
+}
+
+fn square() -> Mesh {
+    read_msh(&data("square.msh")).expect("square.msh reads")
+}
+
+/// The node at `p`, which must exist.
+fn node_at(mesh: &Mesh, p: [f64; 2]) -> usize {
+    mesh.nodes()
+        .iter()
+        .position(|q| (q[0] - p[0]).abs() < 1e-12 && (q[1] - p[1]).abs() < 1e-12)
+        .unwrap_or_else(|| panic!("no node at {p:?}"))
+}
+
+fn signed_area2(mesh: &Mesh, e: usize) -> f64 {
+    let c = mesh.cell(e);
+    let [p0, p1, p2] = [mesh.nodes()[c[0]], mesh.nodes()[c[1]], mesh.nodes()[c[2]]];
+    (p1[0] - p0[0]) * (p2[1] - p0[1]) - (p2[0] - p0[0]) * (p1[1] - p0[1])
+}
+
+/// The 1-based line of a parse error, or a panic describing the unexpected result.
+fn parse_error_line(result: Result<Mesh, GmshError>) -> usize {
+    match result {
+        Err(GmshError::Parse { line, .. }) => line,
+        other => panic!("expected a parse error, got {other:?}"),
+    }
+}
+
+fn is_unsupported(result: Result<Mesh, GmshError>) -> bool {
+    matches!(result, Err(GmshError::Unsupported(_)))
+}
+
+/// `text` with line `index` (0-based) replaced.
+fn replace_line(text: &str, index: usize, new: &str) -> String {
+    let mut lines: Vec<&str> = text.lines().collect();
+    lines[index] = new;
+    lines.join("\n") + "\n"
+}
+
+fn line_index(text: &str, line: &str) -> usize {
+    text.lines()
+        .position(|l| l == line)
+        .unwrap_or_else(|| panic!("no line '{line}'"))
+}
+
+#[test]
+fn square_counts_names_and_sets() {
+    let mesh = square();
+    assert_eq!(mesh.order(), Order::P1);
+    // 10 nodes in the file, of which the geometry point (2, 2) is used by no triangle.
+    assert_eq!(mesh.num_nodes(), 9);
+    assert_eq!(mesh.num_cells(), 8);
+    let names: Vec<&str> = mesh.boundaries().keys().map(String::as_str).collect();
+    assert_eq!(names, ["bottom", "left", "right", "top"]);
+    for edges in mesh.boundaries().values() {
+        assert_eq!(edges.len(), 2);
+    }
+    let corner = node_at(&mesh, [0.0, 0.0]);
+    assert_eq!(mesh.node_sets().get("corner"), Some(&vec![corner]));
+    // The surface's name is not a boundary or node set.
+    assert!(mesh.boundary("body").is_err());
+    // The clockwise triangle of the file was reoriented.
+    for e in 0..mesh.num_cells() {
+        assert!(signed_area2(&mesh, e) > 0.0);
+    }
+    // Nodes keep the file order: tags 1, 2, 3, 4 are the corners.
+    assert_eq!(
+        mesh.nodes()[..4],
+        [[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]]
+    );
+}
+
+#[test]
+fn square_boundaries_lie_on_the_sides_with_outward_normals() {
+    let mesh = square();
+    let sides = [
+        ("bottom", 1, 0.0, [0.0, -1.0]),
+        ("top", 1, 1.0, [0.0, 1.0]),
+        ("left", 0, 0.0, [-1.0, 0.0]),
+        ("right", 0, 1.0, [1.0, 0.0]),
+    ];
+    for (name, axis, value, normal) in sides {
+        let edges = mesh.boundary(name).expect("boundary exists");
+        let mut length = 0.0;
+        for edge in edges {
+            for v in edge.nodes() {
+                assert!((mesh.nodes()[v][axis] - value).abs() < 1e-12, "{name}");
+            }
+            let (n, len) = mesh.edge_normal(edge);
+            assert!((n[0] - normal[0]).abs() < 1e-12 && (n[1] - normal[1]).abs() < 1e-12);
+            length += len;
+        }
+        assert!((length - 1.0).abs() < 1e-12, "{name} has length {length}");
+    }
+}
+
+#[test]
+fn square_p2_reads_as_quadratic() {
+    let mesh = read_msh(&data("square_p2.msh")).expect("square_p2.msh reads");
+    assert_eq!(mesh.order(), Order::P2);
+    assert_eq!(mesh.num_nodes(), 25);
+    assert_eq!(mesh.num_cells(), 8);
+    assert_eq!(mesh.boundaries().len(), 4);
+    for edge in mesh.boundary("bottom").expect("bottom") {
+        let mid = edge.mid.expect("P2 edges have a mid-side node");
+        let [a, b, m] = [edge.a, edge.b, mid].map(|v| mesh.nodes()[v]);
+        assert!((0.5 * (a[0] + b[0]) - m[0]).abs() < 1e-12 && m[1] == 0.0);
+        assert_eq!(mesh.edge_normal(edge).0, [0.0, -1.0]);
+    }
+    let corner = node_at(&mesh, [0.0, 0.0]);
+    assert_eq!(mesh.node_sets().get("corner"), Some(&vec![corner]));
+}
+
+#[test]
+fn clockwise_p2_triangle_is_reoriented_with_its_mid_nodes() {
+    // One P2 triangle written clockwise: v0 v2 v1 order, mids of (0,2), (2,1), (1,0).
+    let text = "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n$Nodes\n1 6 1 6\n2 1 0 6\n1\n2\n3\n4\n5\n6\n\
+                0 0 0\n0 1 0\n1 0 0\n0 0.5 0\n0.5 0.5 0\n0.5 0 0\n$EndNodes\n\
+                $Elements\n1 1 1 1\n2 1 9 1\n1 1 2 3 4 5 6\n$EndElements\n";
+    let mesh = parse_msh(text).expect("reads");
+    assert_eq!(mesh.cell(0), [0, 2, 1, 5, 4, 3]);
+    assert!(signed_area2(&mesh, 0) > 0.0);
+}
+
+#[test]
+fn msh22_is_read() {
+    let text = "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n\
+                $PhysicalNames\n2\n1 7 \"fixed side\"\n2 9 \"plate\"\n$EndPhysicalNames\n\
+                $Nodes\n4\n1 0 0 0\n2 2 0 0\n3 2 1 0\n4 0 1 0\n$EndNodes\n\
+                $Elements\n5\n1 1 2 7 1 1 2\n2 1 2 8 2 3 4\n3 15 2 0 1 1\n\
+                4 2 2 9 1 1 2 3\n5 2 2 9 1 1 3 4\n$EndElements\n";
+    let mesh = parse_msh(text).expect("reads");
+    assert_eq!(mesh.num_nodes(), 4);
+    assert_eq!(mesh.num_cells(), 2);
+    // Unnamed physical groups are named by their tag; physical tag 0 means none.
+    let names: Vec<&str> = mesh.boundaries().keys().map(String::as_str).collect();
+    assert_eq!(names, ["8", "fixed side"]);
+    assert!(mesh.node_sets().is_empty());
+    let edge = mesh.boundary("8").expect("boundary 8")[0];
+    assert_eq!(mesh.edge_normal(&edge).0, [0.0, 1.0]);
+}
+
+#[test]
+fn half_disc_example_reads() {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/meshes/half_disc.msh");
+    let mesh = read_msh(&path).expect("half_disc.msh reads");
+    assert_eq!(mesh.order(), Order::P1);
+    assert!(
+        (3000..=8000).contains(&mesh.num_cells()),
+        "{}",
+        mesh.num_cells()
+    );
+    for e in 0..mesh.num_cells() {
+        assert!(signed_area2(&mesh, e) > 0.0);
+    }
+    let names: Vec<&str> = mesh.boundaries().keys().map(String::as_str).collect();
+    assert_eq!(names, ["arc", "top"]);
+    let contact = node_at(&mesh, [0.0, 0.0]);
+    let centre = [0.0, 1.0];
+    let mut arc_length = 0.0;
+    let mut shortest = f64::INFINITY;
+    for edge in mesh.boundary("arc").expect("arc") {
+        let (n, len) = mesh.edge_normal(edge);
+        let p = mesh.nodes()[edge.a];
+        assert!(((p[0] - centre[0]).hypot(p[1] - centre[1]) - 1.0).abs() < 1e-12);
+        // Outward: along the radius.
+        assert!(n[0] * (p[0] - centre[0]) + n[1] * (p[1] - centre[1]) > 0.9);
+        arc_length += len;
+        if edge.a == contact || edge.b == contact {
+            shortest = shortest.min(len);
+        }
+    }
+    assert!(
+        (arc_length - std::f64::consts::PI).abs() < 1e-2,
+        "{arc_length}"
+    );
+    assert!(
+        shortest < 1.0 / 150.0,
+        "edge at the contact point: {shortest}"
+    );
+    let mut top_length = 0.0;
+    for edge in mesh.boundary("top").expect("top") {
+        let (n, len) = mesh.edge_normal(edge);
+        assert!(n[1] > 1.0 - 1e-12 && mesh.nodes()[edge.a][1] == 1.0);
+        top_length += len;
+    }
+    assert!((top_length - 2.0).abs() < 1e-12);
+}
+
+// The `gmsh_*.msh` files were written by gmsh 4.15.2 itself (OpenCASCADE rectangle 2 x 1, mesh
+// size 0.3, physical groups named after the sides, physical point "origin", surface "plate").
+
+/// Total length of boundary `name`.
+fn boundary_length(mesh: &Mesh, name: &str) -> f64 {
+    let edges = mesh.boundary(name).expect("boundary exists");
+    edges.iter().map(|e| mesh.edge_normal(e).1).sum()
+}
+
+#[test]
+fn gmsh_files_read() {
+    for (file, order) in [
+        ("gmsh_rect_v22.msh", Order::P1),
+        ("gmsh_plate_hole.msh", Order::P1),
+        ("gmsh_rect_p2_clockwise.msh", Order::P2),
+    ] {
+        let mesh = read_msh(&data(file)).unwrap_or_else(|e| panic!("{file}: {e}"));
+        assert_eq!(mesh.order(), order, "{file}");
+        for e in 0..mesh.num_cells() {
+            assert!(signed_area2(&mesh, e) > 0.0, "{file}");
+        }
+        for (name, length) in [("bottom", 2.0), ("top", 2.0), ("left", 1.0), ("right", 1.0)] {
+            assert!(
+                (boundary_length(&mesh, name) - length).abs() < 1e-12,
+                "{file}: {name}"
+            );
+        }
+        let origin = node_at(&mesh, [0.0, 0.0]);
+        assert_eq!(
+            mesh.node_sets().get("origin"),
+            Some(&vec![origin]),
+            "{file}"
+        );
+        for edge in mesh.boundary("bottom").expect("bottom") {
+            assert_eq!(mesh.edge_normal(edge).0, [0.0, -1.0], "{file}");
+        }
+    }
+    // The hole (radius 0.2 at (1, 0.5)): outward normals of the body point into the hole.
+    let mesh = read_msh(&data("gmsh_plate_hole.msh")).expect("reads");
+    for edge in mesh.boundary("hole").expect("hole") {
+        let (n, _) = mesh.edge_normal(edge);
+        let p = mesh.nodes()[edge.a];
+        assert!(((p[0] - 1.0).hypot(p[1] - 0.5) - 0.2).abs() < 1e-9);
+        assert!(n[0] * (p[0] - 1.0) + n[1] * (p[1] - 0.5) < -0.15);
+    }
+}
+
+#[test]
+fn truncated_files_are_errors_not_panics() {
+    let text = square_text();
+    let half = text.len() / 2;
+    let line = parse_error_line(parse_msh(&text[..half]));
+    assert_eq!(line, text[..half].lines().count() + 1);
+    // Every shorter prefix, cut at any character, fails cleanly.
+    for cut in 0..text.len() - 1 {
+        if text.is_char_boundary(cut) {
+            assert!(parse_msh(&text[..cut]).is_err(), "prefix of {cut} bytes");
+        }
+    }
+}
+
+#[test]
+fn missing_end_nodes_is_a_parse_error() {
+    let text = square_text();
+    let text = replace_line(&text, line_index(&text, "$EndNodes"), "");
+    let line = parse_error_line(parse_msh(&text));
+    assert_eq!(line, line_index(&text, "$Elements") + 1);
+}
+
+#[test]
+fn bad_numbers_give_their_line() {
+    let text = square_text();
+    let index = line_index(&text, "0.5 0.5 0");
+    let line = parse_error_line(parse_msh(&replace_line(&text, index, "0.5 zero 0")));
+    assert_eq!(line, index + 1);
+    let line = parse_error_line(parse_msh(&replace_line(&text, index, "0.5 nan 0")));
+    assert_eq!(line, index + 1);
+    let index = line_index(&text, "13 5 6 20");
+    let line = parse_error_line(parse_msh(&replace_line(&text, index, "13 5 6 -20")));
+    assert_eq!(line, index + 1);
+}
+
+#[test]
+fn unknown_node_gives_the_element_line() {
+    let text = square_text();
+    let index = line_index(&text, "13 5 6 20");
+    let line = parse_error_line(parse_msh(&replace_line(&text, index, "13 5 6 999")));
+    assert_eq!(line, index + 1);
+    // A line element on a node that no triangle uses.
+    let index = line_index(&text, "3 5 2");
+    let line = parse_error_line(parse_msh(&replace_line(&text, index, "3 5 30")));
+    assert_eq!(line, index + 1);
+}
+
+#[test]
+fn wrong_counts_are_parse_errors() {
+    let text = square_text();
+    let index = line_index(&text, "10 10 1 30");
+    assert_eq!(
+        parse_error_line(parse_msh(&replace_line(&text, index, "10 11 1 30"))),
+        index + 1
+    );
+    let index = line_index(&text, "6 17 1 17");
+    assert_eq!(
+        parse_error_line(parse_msh(&replace_line(&text, index, "6 16 1 17"))),
+        index + 1
+    );
+}
+
+#[test]
+fn unsupported_content_is_reported() {
+    let text = square_text();
+    let format = line_index(&text, "4.1 0 8");
+    assert!(is_unsupported(parse_msh(&replace_line(
+        &text, format, "4.1 1 8"
+    ))));
+    assert!(is_unsupported(parse_msh(&replace_line(
+        &text, format, "3.0 0 8"
+    ))));
+    // A node off the z = 0 plane.
+    let index = line_index(&text, "0.5 0.5 0");
+    assert!(is_unsupported(parse_msh(&replace_line(
+        &text,
+        index,
+        "0.5 0.5 0.1"
+    ))));
+    // Quadrilaterals and tetrahedra.
+    let block = line_index(&text, "2 1 2 8");
+    let quads = replace_line(&text, block, "2 1 3 8");
+    assert!(is_unsupported(parse_msh(&quads)));
+    let tets = replace_line(&text, block, "3 1 4 8");
+    assert!(is_unsupported(parse_msh(&tets)));
+    // No triangles at all.
+    let points_only = "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n$Nodes\n1 1 1 1\n0 1 0 1\n1\n0 0 0\n\
+                       $EndNodes\n$Elements\n1 1 1 1\n0 1 15 1\n1 1\n$EndElements\n";
+    assert!(is_unsupported(parse_msh(points_only)));
+}
+
+#[test]
+fn mixed_orders_are_rejected() {
+    let p2 = std::fs::read_to_string(data("square_p2.msh")).expect("square_p2.msh");
+    // Turn the first P2 triangle into a P1 one in its own block.
+    let block = line_index(&p2, "2 1 9 8");
+    let mut lines: Vec<String> = p2.lines().map(str::to_string).collect();
+    lines[block] = "2 1 9 7".to_string();
+    let first: Vec<String> = lines[block + 1]
+        .split_whitespace()
+        .take(4)
+        .map(str::to_string)
+        .collect();
+    lines.remove(block + 1);
+    lines.insert(block, format!("2 1 2 1\n{}", first.join(" ")));
+    let header = line_index(&p2, "6 17 1 17");
+    lines[header] = "7 17 1 17".to_string();
+    let text = lines.join("\n") + "\n";
+    assert!(is_unsupported(parse_msh(&text)), "{:?}", parse_msh(&text));
+}
+
+#[test]
+fn comments_and_unknown_sections_are_skipped() {
+    let text = square_text().replace(
+        "$Nodes",
+        "$Comments\nanything \"$Nodes\" here\n$EndComments\n$NodeData\n1\n\"x\"\n$EndNodeData\n$Nodes",
+    );
+    assert_eq!(parse_msh(&text).expect("reads").num_cells(), 8);
+}
+
+#[test]
+fn mutated_files_never_panic() {
+    let text = square_text();
+    let bytes = text.as_bytes();
+    let replacements: &[&[u8]] = &[
+        b"",
+        b"9",
+        b"-1",
+        b" ",
+        b"\n",
+        b"$",
+        b"1e999",
+        b"18446744073709551616",
+    ];
+    let mut state = 0x2545_f491_4f6c_dd1d_u64;
+    let mut next = move |bound: usize| {
+        state ^= state << 13;
+        state ^= state >> 7;
+        state ^= state << 17;
+        (state % bound as u64) as usize
+    };
+    for _ in 0..3000 {
+        let mut mutated = bytes.to_vec();
+        for _ in 0..1 + next(3) {
+            let at = next(mutated.len());
+            let len = next(4).min(mutated.len() - at);
+            let with = replacements[next(replacements.len())];
+            mutated.splice(at..at + len, with.iter().copied());
+        }
+        // Any outcome but a panic is fine.
+        let _ = parse_msh(&String::from_utf8_lossy(&mutated));
+    }
+}
+
+#[test]
+fn io_errors_name_the_file() {
+    match read_msh(Path::new("/nonexistent/mesh.msh")) {
+        Err(GmshError::Io { path, .. }) => assert_eq!(path, "/nonexistent/mesh.msh"),
+        other => panic!("expected an I/O error, got {other:?}"),
+    }
+}
+
+/// The text between `<tag ...>` and `</tag>` of the first DataArray named `name`.
+fn data_array<'a>(xml: &'a str, name: &str) -> (&'a str, &'a str) {
+    let start = xml
+        .find(&format!("Name=\"{name}\""))
+        .unwrap_or_else(|| panic!("no array {name}"));
+    let open_start = xml[..start].rfind('<').expect("tag start");
+    let open_end = start + xml[start..].find('>').expect("tag end");
+    let close = open_end + xml[open_end..].find("</DataArray>").expect("closing tag");
+    (&xml[open_start..=open_end], xml[open_end + 1..close].trim())
+}
+
+fn numbers(text: &str) -> Vec<f64> {
+    text.split_whitespace()
+        .map(|t| t.parse().expect("a number"))
+        .collect()
+}
+
+fn decode_base64(text: &str) -> Vec<u8> {
+    let value = |c: u8| match c {
+        b'A'..=b'Z' => c - b'A',
+        b'a'..=b'z' => c - b'a' + 26,
+        b'0'..=b'9' => c - b'0' + 52,
+        b'+' => 62,
+        b'/' => 63,
+        _ => panic!("not base64: {c}"),
+    };
+    let mut out = Vec::new();
+    for chunk in text.trim().as_bytes().chunks(4) {
+        let digits: Vec<u32> = chunk
+            .iter()
+            .filter(|&&c| c != b'=')
+            .map(|&c| u32::from(value(c)))
+            .collect();
+        let word = digits.iter().fold(0, |w, d| (w << 6) | d) << (6 * (4 - digits.len()));
+        out.extend_from_slice(&word.to_be_bytes()[1..digits.len()]);
+    }
+    out
+}
+
+#[test]
+fn vtu_of_p1_mesh() {
+    let mesh = square();
+    let n = mesh.num_nodes();
+    let displacement: Vec<f64> = (0..2 * n).map(|i| i as f64 * 0.25).collect();
+    let pressure: Vec<f64> = (0..n).map(|i| -(i as f64)).collect();
+    let stress: Vec<f64> = (0..4 * n).map(|i| i as f64 * 1e-20).collect();
+    let fields = [
+        PointField {
+            name: "pressure",
+            components: 1,
+            values: &pressure,
+        },
+        PointField {
+            name: "stress <xx,yy,xy,zz>",
+            components: 4,
+            values: &stress,
+        },
+    ];
+    let xml = vtu_string(&mesh, Some(&displacement), &fields).expect("valid fields");
+    assert!(xml.starts_with("<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\""));
+    assert!(xml.contains("<Piece NumberOfPoints=\"9\" NumberOfCells=\"8\">"));
+    for tag in [
+        "VTKFile",
+        "UnstructuredGrid",
+        "Piece",
+        "PointData",
+        "Points",
+        "Cells",
+    ] {
+        assert_eq!(xml.matches(&format!("<{tag}")).count(), 1, "{tag}");
+        assert_eq!(xml.matches(&format!("</{tag}>")).count(), 1, "{tag}");
+    }
+    assert_eq!(xml.matches("<DataArray").count(), 7);
+    assert_eq!(xml.matches("</DataArray>").count(), 7);
+    assert!(!xml.contains("format=\"binary\""));
+
+    let (tag, text) = data_array(&xml, "displacement");
+    assert!(tag.contains("NumberOfComponents=\"3\"") && tag.contains("Float64"));
+    let values = numbers(text);
+    assert_eq!(values.len(), 3 * n);
+    for (node, xyz) in values.chunks(3).enumerate() {
+        assert_eq!(
+            xyz,
+            [displacement[2 * node], displacement[2 * node + 1], 0.0]
+        );
+    }
+    let (tag, text) = data_array(&xml, "pressure");
+    assert!(tag.contains("NumberOfComponents=\"1\""));
+    assert_eq!(numbers(text), pressure);
+    let (tag, text) = data_array(&xml, "stress &lt;xx,yy,xy,zz&gt;");
+    assert!(tag.contains("NumberOfComponents=\"4\""));
+    assert_eq!(numbers(text), stress);
+
+    let connectivity = numbers(data_array(&xml, "connectivity").1);
+    let expected: Vec<f64> = mesh.cells().iter().map(|&v| v as f64).collect();
+    assert_eq!(connectivity, expected);
+    assert_eq!(
+        numbers(data_array(&xml, "offsets").1),
+        [3., 6., 9., 12., 15., 18., 21., 24.]
+    );
+    assert_eq!(numbers(data_array(&xml, "types").1), [5.0; 8]);
+
+    // The points follow the PointData arrays.
+    let points_start = xml.find("<Points>").expect("Points");
+    let points_end = xml.find("</Points>").expect("Points end");
+    let points_xml = &xml[points_start..points_end];
+    let text_start = points_xml.find('>').expect("tag") + 1;
+    let text_start = text_start + points_xml[text_start..].find('>').expect("tag") + 1;
+    let text_end = points_xml.find("</DataArray>").expect("end");
+    let points = numbers(&points_xml[text_start..text_end]);
+    let expected: Vec<f64> = mesh
+        .nodes()
+        .iter()
+        .flat_map(|p| [p[0], p[1], 0.0])
+        .collect();
+    assert_eq!(points, expected);
+}
+
+#[test]
+fn vtu_of_p2_mesh_uses_quadratic_triangles() {
+    let mesh = read_msh(&data("square_p2.msh")).expect("square_p2.msh");
+    let xml = vtu_string(&mesh, None, &[]).expect("no fields");
+    assert!(xml.contains("<Piece NumberOfPoints=\"25\" NumberOfCells=\"8\">"));
+    assert!(xml.contains("<PointData>\n      </PointData>"));
+    assert_eq!(numbers(data_array(&xml, "types").1), [22.0; 8]);
+    assert_eq!(numbers(data_array(&xml, "offsets").1).last(), Some(&48.0));
+    assert_eq!(numbers(data_array(&xml, "connectivity").1).len(), 48);
+}
+
+#[test]
+fn non_finite_values_are_written_as_binary() {
+    let mesh = square();
+    let n = mesh.num_nodes();
+    let mut gap = vec![1.5; n];
+    gap[0] = f64::NAN;
+    gap[1] = f64::INFINITY;
+    gap[2] = f64::NEG_INFINITY;
+    let fields = [PointField {
+        name: "gap",
+        components: 1,
+        values: &gap,
+    }];
+    let xml = vtu_string(&mesh, None, &fields).expect("valid");
+    let (tag, text) = data_array(&xml, "gap");
+    assert!(tag.contains("format=\"binary\""));
+    assert!(xml.contains("header_type=\"UInt64\""));
+    let bytes = decode_base64(text);
+    assert_eq!(bytes.len(), 8 + 8 * n);
+    let word = |k: usize| {
+        let mut b = [0u8; 8];
+        b.copy_from_slice(&bytes[8 * k..8 * k + 8]);
+        b
+    };
+    assert_eq!(u64::from_le_bytes(word(0)), 8 * n as u64);
+    let values: Vec<f64> = (1..=n).map(|k| f64::from_le_bytes(word(k))).collect();
+    assert!(values[0].is_nan());
+    assert_eq!(values[1..], gap[1..]);
+}
+
+#[test]
+fn vtu_rejects_wrong_lengths() {
+    let mesh = square();
+    let short = vec![0.0; 2 * mesh.num_nodes() - 1];
+    let err = vtu_string(&mesh, Some(&short), &[]).expect_err("short displacement");
+    assert_eq!(err.kind(), std::io::ErrorKind::InvalidInput);
+    let values = vec![0.0; mesh.num_nodes()];
+    let bad = [PointField {
+        name: "v",
+        components: 2,
+        values: &values,
+    }];
+    assert!(vtu_string(&mesh, None, &bad).is_err());
+    let zero = [PointField {
+        name: "v",
+        components: 0,
+        values: &[],
+    }];
+    assert!(vtu_string(&mesh, None, &zero).is_err());
+}
+
+#[test]
+fn write_vtu_writes_the_file_atomically() {
+    let mesh = square();
+    let dir = std::env::temp_dir().join(format!("contactdd-vtu-test-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("temp dir");
+    let path = dir.join("square.vtu");
+    let displacement = vec![0.0; 2 * mesh.num_nodes()];
+    write_vtu(&path, &mesh, Some(&displacement), &[]).expect("written");
+    let written = std::fs::read_to_string(&path).expect("read back");
+    assert_eq!(
+        written,
+        vtu_string(&mesh, Some(&displacement), &[]).expect("valid")
+    );
+    // Nothing else is left in the folder, and a bad call leaves the old file alone.
+    assert!(write_vtu(&path, &mesh, Some(&displacement[1..]), &[]).is_err());
+    let entries: Vec<_> = std::fs::read_dir(&dir).expect("list").collect();
+    assert_eq!(entries.len(), 1);
+    assert_eq!(std::fs::read_to_string(&path).expect("read back"), written);
+    // A missing folder is an I/O error.
+    assert!(write_vtu(&dir.join("missing/x.vtu"), &mesh, None, &[]).is_err());
+    std::fs::remove_dir_all(&dir).expect("clean up");
+}

@@ -1,0 +1,113 @@
+//! The paper's two-body notch benchmark (method.md §5), built in code: used by tests, benches and
+//! the Python module. `examples/notch.toml` describes the same problem as a file.
+
+use contactdd_core::{
+    Component, Constraints, Diagonal, ElasticBody, Load, Material, Order, Plane, Rectangle,
+};
+
+use crate::error::SetupError;
+use crate::model::{ContactPair, Model, Penalty};
+use crate::profile::{Along, GapProfile};
+
+/// Parameters of the notch benchmark (defaults: the paper's values).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Notch {
+    /// Cells in x per body (32).
+    pub nx: usize,
+    /// Cells in y per body (16).
+    pub ny: usize,
+    /// Element order (P1).
+    pub order: Order,
+    /// Young's modulus E (any value: displacements do not depend on it since q = 0.01 E).
+    pub young: f64,
+    /// Poisson's ratio (0.3).
+    pub poisson: f64,
+    /// Rod-model penalty factor c (0.05).
+    pub c: f64,
+}
+
+impl Default for Notch {
+    fn default() -> Notch {
+        Notch {
+            nx: 32,
+            ny: 16,
+            order: Order::P1,
+            young: 2.1e5,
+            poisson: 0.3,
+            c: 0.05,
+        }
+    }
+}
+
+/// Body height h and length l (cm).
+pub const H: f64 = 1.0;
+/// Body length l (cm).
+pub const L: f64 = 4.0;
+
+impl Notch {
+    /// The applied pressure q = 0.01 E.
+    pub fn pressure(&self) -> f64 {
+        0.01 * self.young
+    }
+
+    /// Builds the model.
+    pub fn model(&self) -> Result<Model, SetupError> {
+        let material =
+            Material::new(self.young, self.poisson).map_err(|e| SetupError::body("lower", e))?;
+        let q = self.pressure();
+        let mut bodies = Vec::new();
+        for (name, y0, mirror, loaded) in
+            [("lower", 0.0, false, "bottom"), ("upper", H, true, "top")]
+        {
+            let mesh = Rectangle {
+                origin: [0.0, y0],
+                corner: [L, y0 + H],
+                nx: self.nx,
+                ny: self.ny,
+                diagonal: Diagonal::Right,
+                mirror,
+                order: self.order,
+            }
+            .mesh()
+            .map_err(|e| SetupError::body(name, e))?;
+            let mut constraints = Constraints::new(mesh.num_nodes());
+            constraints
+                .fix(&mesh, "right", Component::X, 0.0)
+                .map_err(|e| SetupError::body(name, e))?;
+            let load = contactdd_core::loads::load_vector(
+                &mesh,
+                &[Load::Pressure {
+                    boundary: loaded.into(),
+                    value: q,
+                }],
+            )
+            .map_err(|e| SetupError::body(name, e))?;
+            bodies.push(ElasticBody {
+                name: name.into(),
+                mesh,
+                material,
+                plane: Plane::Strain,
+                constraints,
+                load,
+            });
+        }
+        Ok(Model {
+            name: "notch".into(),
+            plane: Plane::Strain,
+            bodies,
+            pairs: vec![ContactPair {
+                name: "notch".into(),
+                bodies: [0, 1],
+                boundaries: ["top".into(), "bottom".into()],
+                penalty: Penalty::RodModel { c: self.c, h: H },
+                profile: Some(GapProfile::Notch {
+                    r0: 0.05,
+                    b: 1.0,
+                    centre: L,
+                    power: 1.5,
+                    along: Along::X,
+                }),
+            }],
+        })
+    }
+}

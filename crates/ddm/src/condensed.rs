@@ -1,0 +1,236 @@
+//! A body condensed onto the normal displacements of its contact points.
+//!
+//! Each body's Robin problem (method.md §3) is
+//!   (K + N D Nᵀ) ũ = f + N r,   D = diag(φ_j w_j / θ),   r_j = (w_j/θ)(φ_j u^k_n,j + (d_j − s^k_j)⁻),
+//! where column j of N is the normal n_j at the node of contact point j. A floating body has a
+//! singular K, so we factor the *reference* operator K₀ = K + N D₀ Nᵀ with D₀ = diag(w_j/θ) (φ ≡ 1,
+//! regular as soon as the contact zone holds the body) once, with the contact DOFs ordered last.
+//! With C₀ = Nᵀ K₀⁻¹ N (from the trailing Schur factor L₂₂: C₀ = YᵀY, Y = L₂₂⁻¹ N) and
+//! f₀ = Nᵀ K₀⁻¹ f, the normal displacements of the Robin solution satisfy
+//!   ũ_n = f₀ + C₀ (r − E ũ_n),   E = D − D₀ = −diag((1 − φ_j) w_j/θ).
+//! Only points with φ_j < 1 (set J) enter the matrix: with F = −E_J and v = F^{½} ũ_J,
+//!   (I − F^{½} C₀,JJ F^{½}) v = F^{½} z_J,   z = f₀ + C₀ r,
+//! a small dense SPD system that is SPD exactly when the Robin problem is regular, so a failed
+//! Cholesky there *is* the diagnosis "this body is floating". An iteration therefore costs a few
+//! small dense operations per body, never a sparse solve. The full field is K₀⁻¹(f + N T) for the
+//! accumulated interface load T, recovered by one sparse solve at the end.
+
+use faer::prelude::Solve;
+use faer::{Mat, Side};
+
+use contactdd_core::{BodyError, ElasticBody, FactoredBody};
+
+use crate::contact::ContactPoint;
+
+/// A singular Robin problem: the body has lost its hold.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Singular;
+
+/// One body's factorised reference operator and its condensation on the contact points.
+pub struct CondensedBody {
+    op: FactoredBody,
+    /// Nodes and normals of the contact points (body-local order).
+    nodes: Vec<usize>,
+    normals: Vec<[f64; 2]>,
+    /// Reference spring stiffness w_j/θ_j (φ = 1).
+    d0: Vec<f64>,
+    /// C₀ = Nᵀ K₀⁻¹ N.
+    c0: Mat<f64>,
+    /// f₀ = Nᵀ K₀⁻¹ f (with the prescribed displacements).
+    f0: Vec<f64>,
+    load: Vec<f64>,
+}
+
+/// The cached factorisation of the reduced Robin matrix for one φ.
+#[derive(Default)]
+pub struct RobinCache {
+    phi: Vec<f64>,
+    set: Vec<usize>,
+    sqrt_f: Vec<f64>,
+    llt: Option<faer::linalg::solvers::Llt<f64>>,
+}
+
+impl CondensedBody {
+    /// Assembles, factorises (with the reference springs) and condenses one body.
+    pub fn new(
+        body: &ElasticBody,
+        points: &[ContactPoint],
+        par: faer::Par,
+    ) -> Result<CondensedBody, BodyError> {
+        let nodes: Vec<usize> = points.iter().map(|p| p.node).collect();
+        let normals: Vec<[f64; 2]> = points.iter().map(|p| p.normal).collect();
+        let d0: Vec<f64> = points.iter().map(|p| p.weight / p.theta).collect();
+        let springs: Vec<(usize, [f64; 2])> =
+            nodes.iter().copied().zip(normals.iter().copied()).collect();
+        body.check_held(&springs)?;
+        if body.load.iter().any(|v| !v.is_finite()) {
+            return Err(BodyError::NonFinite {
+                body: body.name.clone(),
+                what: "the load vector".into(),
+            });
+        }
+        let mut interface: Vec<usize> = nodes.iter().flat_map(|&v| [2 * v, 2 * v + 1]).collect();
+        interface.sort_unstable();
+        interface.dedup();
+        let mut op =
+            FactoredBody::new(&body.name, body.stiffness(), &body.constraints, &interface)?;
+        op.set_parallelism(par);
+        let mut additions = Vec::with_capacity(4 * nodes.len());
+        for ((&v, n), &k) in nodes.iter().zip(&normals).zip(&d0) {
+            additions.push((2 * v, 2 * v, k * n[0] * n[0]));
+            additions.push((2 * v + 1, 2 * v + 1, k * n[1] * n[1]));
+            additions.push((2 * v + 1, 2 * v, k * n[0] * n[1]));
+        }
+        op.factorize(&additions)?;
+
+        // Y = L₂₂⁻¹ N on the free interface DOFs, C₀ = Yᵀ Y.
+        let l22 = op.interface_schur_factor();
+        let index = op.interface_index(&interface);
+        let pos: std::collections::HashMap<usize, Option<usize>> =
+            interface.iter().copied().zip(index).collect();
+        let m = nodes.len();
+        let mut y = Mat::<f64>::zeros(l22.nrows(), m);
+        for (j, (&v, n)) in nodes.iter().zip(&normals).enumerate() {
+            for c in 0..2 {
+                if let Some(Some(i)) = pos.get(&(2 * v + c)) {
+                    y[(*i, j)] += n[c];
+                }
+            }
+        }
+        faer::linalg::triangular_solve::solve_lower_triangular_in_place(
+            l22.as_ref(),
+            y.as_mut(),
+            par,
+        );
+        let c0 = y.transpose() * &y;
+        let x = op.solve(&body.load)?;
+        let f0 = nodes
+            .iter()
+            .zip(&normals)
+            .map(|(&v, n)| n[0] * x[2 * v] + n[1] * x[2 * v + 1])
+            .collect();
+        Ok(CondensedBody {
+            op,
+            nodes,
+            normals,
+            d0,
+            c0,
+            f0,
+            load: body.load.clone(),
+        })
+    }
+
+    /// Number of contact points.
+    pub fn len(&self) -> usize {
+        self.nodes.len()
+    }
+
+    /// True if the body has no contact points.
+    pub fn is_empty(&self) -> bool {
+        self.nodes.is_empty()
+    }
+
+    /// Reference spring stiffness w_j/θ_j.
+    pub fn d0(&self) -> &[f64] {
+        &self.d0
+    }
+
+    /// f₀ = Nᵀ K₀⁻¹ f.
+    pub fn f0(&self) -> &[f64] {
+        &self.f0
+    }
+
+    /// The factorised operator.
+    pub fn operator(&self) -> &FactoredBody {
+        &self.op
+    }
+
+    /// The interface load T⁰ whose field K₀⁻¹(f + N T⁰) has normal displacements `un0`
+    /// (least-squares-free: falls back to T⁰ = 0 if C₀ is singular).
+    pub fn initial_load(&self, un0: &[f64]) -> Vec<f64> {
+        let m = self.len();
+        let rhs = Mat::<f64>::from_fn(m, 1, |i, _| un0[i] - self.f0[i]);
+        match self.c0.llt(Side::Lower) {
+            Ok(llt) => {
+                let t = llt.solve(&rhs);
+                let t: Vec<f64> = (0..m).map(|i| t[(i, 0)]).collect();
+                if t.iter().all(|v| v.is_finite()) {
+                    t
+                } else {
+                    vec![0.0; m]
+                }
+            }
+            Err(_) => vec![0.0; m],
+        }
+    }
+
+    /// Solves the Robin problem for coefficients `phi` and right-hand side `r` (see the module
+    /// docs). Writes the normal displacements ũ_n to `un` and the interface load
+    /// t = r − E ũ_n (so that ũ = K₀⁻¹(f + N t)) to `t`.
+    pub fn robin_solve(
+        &self,
+        phi: &[f64],
+        r: &[f64],
+        cache: &mut RobinCache,
+        un: &mut [f64],
+        t: &mut [f64],
+    ) -> Result<(), Singular> {
+        let m = self.len();
+        if cache.phi.as_slice() != phi || (cache.llt.is_none() && !cache.set.is_empty()) {
+            cache.phi = phi.to_vec();
+            cache.set = (0..m).filter(|&j| phi[j] < 1.0).collect();
+            cache.sqrt_f = cache
+                .set
+                .iter()
+                .map(|&j| ((1.0 - phi[j]) * self.d0[j]).sqrt())
+                .collect();
+            let (set, sf) = (&cache.set, &cache.sqrt_f);
+            let g = Mat::<f64>::from_fn(set.len(), set.len(), |a, b| {
+                let id = if a == b { 1.0 } else { 0.0 };
+                id - sf[a] * self.c0[(set[a], set[b])] * sf[b]
+            });
+            cache.llt = None;
+            if !set.is_empty() {
+                let llt = g.llt(Side::Lower).map_err(|_| Singular)?;
+                // A pivot this small means the Robin operator is numerically singular.
+                let l = llt.L();
+                if (0..set.len()).any(|i| l[(i, i)] * l[(i, i)] < 1e-11) {
+                    return Err(Singular);
+                }
+                cache.llt = Some(llt);
+            }
+        }
+        // z = f₀ + C₀ r
+        for i in 0..m {
+            un[i] = self.f0[i] + (0..m).map(|j| self.c0[(i, j)] * r[j]).sum::<f64>();
+        }
+        let (set, sf) = (&cache.set, &cache.sqrt_f);
+        if let Some(llt) = &cache.llt {
+            let rhs = Mat::<f64>::from_fn(set.len(), 1, |a, _| sf[a] * un[set[a]]);
+            let v = llt.solve(&rhs);
+            // ũ_J = F^{-½} v; then ũ = z + C₀,·J F ũ_J.
+            let fu: Vec<f64> = (0..set.len()).map(|a| sf[a] * v[(a, 0)]).collect();
+            for i in 0..m {
+                un[i] += set
+                    .iter()
+                    .zip(&fu)
+                    .map(|(&j, &x)| self.c0[(i, j)] * x)
+                    .sum::<f64>();
+            }
+        }
+        for j in 0..m {
+            t[j] = r[j] + (1.0 - phi[j]) * self.d0[j] * un[j];
+        }
+        Ok(())
+    }
+
+    /// The full displacement K₀⁻¹(f + N T) for interface load `t_load`.
+    pub fn recover(&self, t_load: &[f64]) -> Result<Vec<f64>, BodyError> {
+        let mut f = self.load.clone();
+        for ((&v, n), &t) in self.nodes.iter().zip(&self.normals).zip(t_load) {
+            f[2 * v] += n[0] * t;
+            f[2 * v + 1] += n[1] * t;
+        }
+        self.op.solve(&f)
+    }
+}

@@ -1,0 +1,263 @@
+//! Contact geometry: contact points with nodal normals and quadrature weights, initial gaps, and
+//! the projection of every contact point onto the opposite body's contact boundary.
+//!
+//! Every body integrates the contact terms over its own contact zone with nodal quadrature
+//! (trapezoid weights for P1, Simpson for P2; method.md §4), so each node of a contact boundary is
+//! a *contact point* of its body. For a point x of body α, the ray x + t n_α(x) is intersected with
+//! the edges of the partner boundary of body β; the hit x' gives the initial gap
+//! d = t + d_profile(x) and the interpolation coefficients of β's normal displacement at x', so
+//! that s = u_αn(x) + Σ_k c_k u_βn(x_k). Nodal normals are length-weighted averages of the
+//! adjacent edge normals of the zone, which makes curved boundaries work.
+
+use std::collections::HashMap;
+use std::ops::Range;
+
+use contactdd_core::element::{edge_nodal_weights, edge_shape};
+use contactdd_core::{Edge, Mesh};
+
+use crate::error::SetupError;
+use crate::model::Model;
+
+/// One contact point: a node of a contact boundary of one body, in one contact pair.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ContactPoint {
+    /// Owning body.
+    pub body: usize,
+    /// Node of the owning body.
+    pub node: usize,
+    /// Contact pair index.
+    pub pair: usize,
+    /// Outward unit normal of the owning body at the node.
+    pub normal: [f64; 2],
+    /// Nodal quadrature weight (length).
+    pub weight: f64,
+    /// Initial gap d (geometric normal distance plus the pair's profile).
+    pub gap: f64,
+    /// Penalty θ of the pair.
+    pub theta: f64,
+    /// Interpolation of the partner's normal displacement at the projection: (global point index,
+    /// coefficient). Empty if the normal ray misses the partner boundary (the point stays open).
+    pub partner: Vec<(usize, f64)>,
+}
+
+impl ContactPoint {
+    /// True if the point has a partner (can close).
+    pub fn has_partner(&self) -> bool {
+        !self.partner.is_empty()
+    }
+}
+
+/// All contact points of a model, grouped by body (the interface unknowns are their normal
+/// displacements, in this order).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Interface {
+    /// The points, body by body.
+    pub points: Vec<ContactPoint>,
+    /// Index range of each body's points.
+    pub body_range: Vec<Range<usize>>,
+}
+
+impl Interface {
+    /// Builds the contact points of a model.
+    pub fn new(model: &Model) -> Result<Interface, SetupError> {
+        // Points per (pair, side) before global numbering.
+        struct Side {
+            body: usize,
+            pair: usize,
+            nodes: Vec<usize>,
+            normals: Vec<[f64; 2]>,
+            weights: Vec<f64>,
+        }
+        let mut sides = Vec::new();
+        for (p, pair) in model.pairs.iter().enumerate() {
+            for s in 0..2 {
+                let b = pair.bodies[s];
+                let body = model.bodies.get(b).ok_or_else(|| SetupError::Pair {
+                    pair: pair.name.clone(),
+                    message: format!("body index {b} does not exist"),
+                })?;
+                let edges =
+                    body.mesh
+                        .boundary(&pair.boundaries[s])
+                        .map_err(|e| SetupError::Pair {
+                            pair: pair.name.clone(),
+                            message: format!("body '{}': {e}", body.name),
+                        })?;
+                let (nodes, normals, weights) = nodal_quadrature(&body.mesh, edges);
+                sides.push(Side {
+                    body: b,
+                    pair: p,
+                    nodes,
+                    normals,
+                    weights,
+                });
+            }
+        }
+        // Global numbering: body by body, then pair by pair, then node order.
+        let nb = model.bodies.len();
+        let mut order: Vec<usize> = (0..sides.len()).collect();
+        order.sort_by_key(|&i| (sides[i].body, sides[i].pair, i));
+        let mut offset = vec![0usize; sides.len()];
+        let mut body_range = vec![0..0; nb];
+        let mut next = 0;
+        for b in 0..nb {
+            let start = next;
+            for &i in order.iter().filter(|&&i| sides[i].body == b) {
+                offset[i] = next;
+                next += sides[i].nodes.len();
+            }
+            body_range[b] = start..next;
+        }
+        let mut points: Vec<Option<ContactPoint>> = vec![None; next];
+        for (i, side) in sides.iter().enumerate() {
+            let pair = &model.pairs[side.pair];
+            let other = i ^ 1; // sides come in pairs (2p, 2p + 1)
+            let partner_side = &sides[other];
+            let (a, b) = (&model.bodies[side.body], &model.bodies[partner_side.body]);
+            let theta = pair.penalty.theta(model.plane, &a.material, &b.material);
+            if !(theta.is_finite() && theta > 0.0) {
+                return Err(SetupError::Pair {
+                    pair: pair.name.clone(),
+                    message: format!("the penalty θ must be positive and finite, got {theta}"),
+                });
+            }
+            let partner_edges =
+                b.mesh
+                    .boundary(&pair.boundaries[other % 2])
+                    .map_err(|e| SetupError::Pair {
+                        pair: pair.name.clone(),
+                        message: e.to_string(),
+                    })?;
+            let partner_index: HashMap<usize, usize> = partner_side
+                .nodes
+                .iter()
+                .enumerate()
+                .map(|(k, &v)| (v, offset[other] + k))
+                .collect();
+            for (k, &v) in side.nodes.iter().enumerate() {
+                let x = a.mesh.nodes()[v];
+                let n = side.normals[k];
+                let hit = project(x, n, &b.mesh, partner_edges);
+                let (gap, partner) = match hit {
+                    Some((t, coeffs)) => (
+                        t,
+                        coeffs
+                            .into_iter()
+                            .filter_map(|(node, c)| partner_index.get(&node).map(|&g| (g, c)))
+                            .collect(),
+                    ),
+                    None => (f64::INFINITY, Vec::new()),
+                };
+                let profile = pair.profile.as_ref().map_or(0.0, |p| p.at(x));
+                points[offset[i] + k] = Some(ContactPoint {
+                    body: side.body,
+                    node: v,
+                    pair: side.pair,
+                    normal: n,
+                    weight: side.weights[k],
+                    gap: gap + profile,
+                    theta,
+                    partner,
+                });
+            }
+        }
+        Ok(Interface {
+            points: points.into_iter().flatten().collect(),
+            body_range,
+        })
+    }
+
+    /// The points of body `b`.
+    pub fn of_body(&self, b: usize) -> &[ContactPoint] {
+        &self.points[self.body_range[b].clone()]
+    }
+
+    /// Number of contact points.
+    pub fn len(&self) -> usize {
+        self.points.len()
+    }
+
+    /// True if there are no contact points.
+    pub fn is_empty(&self) -> bool {
+        self.points.is_empty()
+    }
+
+    /// s_j = u_n,j + Σ c u_n,partner for every point, from all normal displacements `un`.
+    pub fn sum_normal(&self, un: &[f64], out: &mut [f64]) {
+        for (j, p) in self.points.iter().enumerate() {
+            out[j] = un[j] + p.partner.iter().map(|&(k, c)| c * un[k]).sum::<f64>();
+        }
+    }
+}
+
+/// Nodes of a boundary with their nodal normals and quadrature weights.
+fn nodal_quadrature(mesh: &Mesh, edges: &[Edge]) -> (Vec<usize>, Vec<[f64; 2]>, Vec<f64>) {
+    let mut index: HashMap<usize, usize> = HashMap::new();
+    let (mut nodes, mut normals, mut weights) = (Vec::new(), Vec::new(), Vec::new());
+    for e in edges {
+        let (n, len) = mesh.edge_normal(e);
+        let w = edge_nodal_weights(mesh.order(), len);
+        for (k, v) in e.nodes().enumerate() {
+            let i = *index.entry(v).or_insert_with(|| {
+                nodes.push(v);
+                normals.push([0.0, 0.0]);
+                weights.push(0.0);
+                nodes.len() - 1
+            });
+            weights[i] += w[k];
+            normals[i][0] += len * n[0];
+            normals[i][1] += len * n[1];
+        }
+    }
+    for n in &mut normals {
+        let l = n[0].hypot(n[1]);
+        if l > 0.0 {
+            *n = [n[0] / l, n[1] / l];
+        }
+    }
+    (nodes, normals, weights)
+}
+
+fn cross(a: [f64; 2], b: [f64; 2]) -> f64 {
+    a[0] * b[1] - a[1] * b[0]
+}
+
+/// Intersects the ray x + t n with the edges (facing the ray) and returns the signed distance t
+/// of the nearest hit and the partner node coefficients there.
+fn project(
+    x: [f64; 2],
+    n: [f64; 2],
+    mesh: &Mesh,
+    edges: &[Edge],
+) -> Option<(f64, Vec<(usize, f64)>)> {
+    let p = mesh.nodes();
+    let mut best: Option<(f64, Vec<(usize, f64)>)> = None;
+    for e in edges {
+        let (ne, len) = mesh.edge_normal(e);
+        // Only edges facing the point: their outward normal opposes n.
+        if ne[0] * n[0] + ne[1] * n[1] >= -1e-3 {
+            continue;
+        }
+        let (a, b) = (p[e.a], p[e.b]);
+        let dir = [b[0] - a[0], b[1] - a[1]];
+        let den = cross(n, dir);
+        if den.abs() < 1e-14 * len {
+            continue;
+        }
+        let ax = [a[0] - x[0], a[1] - x[1]];
+        let t = cross(ax, dir) / den;
+        let s = cross(ax, n) / den;
+        let tol = 1e-9;
+        if !(-tol..=1.0 + tol).contains(&s) {
+            continue;
+        }
+        let s = s.clamp(0.0, 1.0);
+        if best.as_ref().is_some_and(|(bt, _)| bt.abs() <= t.abs()) {
+            continue;
+        }
+        let shape = edge_shape(mesh.order(), s);
+        let coeffs = e.nodes().zip(shape).filter(|(_, c)| *c != 0.0).collect();
+        best = Some((t, coeffs));
+    }
+    best
+}

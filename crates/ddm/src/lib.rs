@@ -1,0 +1,35 @@
+//! # contactdd-ddm
+//!
+//! Frictionless unilateral contact of several linear elastic bodies by the penalty Robin domain
+//! decomposition of Prokopyshyn & Shakhno (see `method.md`): every body solves its own linear
+//! elasticity problem with Robin conditions on its contact zones, in parallel, followed by a
+//! relaxation with parameter γ. Five Robin coefficient rules are available ([`Method`]).
+//!
+//! Data flow: problem description ([`problem`], plain serde types) → [`setup`] → [`Model`] →
+//! [`solver::prepare`] (contact geometry, per-body factorisation and condensation) →
+//! [`iteration`] → [`Solution`] → [`output`].
+
+pub mod benchmark;
+pub mod condensed;
+pub mod contact;
+pub mod error;
+pub mod iteration;
+pub mod method;
+pub mod model;
+pub mod monolithic;
+pub mod profile;
+pub mod relaxation;
+pub mod solution;
+pub mod solver;
+pub mod sweep;
+
+pub use error::SetupError;
+pub use iteration::{Hooks, Record, Settings, Stop};
+pub use method::Method;
+pub use model::{ContactPair, Model, Penalty};
+pub use monolithic::{solve_monolithic, MonolithicSolution};
+pub use profile::GapProfile;
+pub use relaxation::Gamma;
+pub use solution::Solution;
+pub use solver::{prepare, solve, Prepared};
+pub use sweep::{sweep, SweepRun};

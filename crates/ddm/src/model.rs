@@ -1,0 +1,64 @@
+//! The resolved multibody contact model: bodies (mesh, material, supports, loads) and contact
+//! pairs. This is solver input built by [`crate::setup`] from a problem description, or directly in
+//! code.
+
+use contactdd_core::{ElasticBody, Material, Plane};
+
+use crate::profile::GapProfile;
+
+/// How the penalty parameter θ of a contact pair is chosen.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Penalty {
+    /// θ given directly (length / stress units).
+    Theta(f64),
+    /// The rod model of method.md §2: θ = c · h · (1/E*_α + 1/E*_β), which for equal materials is
+    /// θ = 2 c h (1 − ν²)/E in plane strain (2 c h / E in plane stress). `c` is dimensionless, `h` a
+    /// characteristic body height.
+    RodModel {
+        /// Dimensionless factor c (the benchmark uses 0.05).
+        c: f64,
+        /// Characteristic height h.
+        h: f64,
+    },
+}
+
+impl Penalty {
+    /// θ for a pair of materials.
+    pub fn theta(&self, plane: Plane, a: &Material, b: &Material) -> f64 {
+        match *self {
+            Penalty::Theta(t) => t,
+            Penalty::RodModel { c, h } => {
+                c * h * (1.0 / a.plane_modulus(plane) + 1.0 / b.plane_modulus(plane))
+            }
+        }
+    }
+}
+
+/// A contact pair: boundary `boundaries[0]` of body `bodies[0]` may touch boundary
+/// `boundaries[1]` of body `bodies[1]`.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ContactPair {
+    /// Pair name used in output.
+    pub name: String,
+    /// Body indices (distinct).
+    pub bodies: [usize; 2],
+    /// Boundary names, one per body.
+    pub boundaries: [String; 2],
+    /// Penalty.
+    pub penalty: Penalty,
+    /// Prescribed gap profile added to the geometric gap (e.g. the notch).
+    pub profile: Option<GapProfile>,
+}
+
+/// Bodies and contact pairs.
+#[derive(Clone, Debug)]
+pub struct Model {
+    /// Problem name.
+    pub name: String,
+    /// Plane strain or stress (all bodies).
+    pub plane: Plane,
+    /// The bodies.
+    pub bodies: Vec<ElasticBody>,
+    /// The contact pairs.
+    pub pairs: Vec<ContactPair>,
+}

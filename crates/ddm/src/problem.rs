@@ -1,0 +1,346 @@
+//! The problem file schema: plain serde data, exactly what a TOML problem file says.
+//!
+//! These types only describe; they check nothing beyond the shape of the data (types, required
+//! keys, no unknown keys). [`crate::setup::resolve`] turns a [`Problem`] into solver input
+//! ([`Model`](crate::Model) + [`Settings`](crate::Settings)), validating every value and naming the
+//! key and the body or pair when something is wrong. Solver state never derives `Deserialize`.
+//!
+//! Keys are kebab-case and use the names of `method.md`. A complete file:
+//!
+//! ```toml
+//! name = "notch"                  # optional; default: the file stem
+//! plane = "strain"                # "strain" | "stress"
+//! units = "cm, N/cm^2"            # optional free-text note
+//!
+//! [materials.steel]
+//! young = 2.1e5
+//! poisson = 0.3
+//!
+//! [[bodies]]
+//! name = "lower"
+//! material = "steel"
+//! mesh = { kind = "rectangle", x = [0.0, 4.0], y = [0.0, 1.0], nx = 32, ny = 16 }
+//! supports = [{ boundary = "right", component = "x" }]
+//! loads = [{ kind = "pressure", boundary = "bottom", value = 2100.0 }]
+//!
+//! [[contact]]
+//! bodies = ["lower", "upper"]
+//! boundaries = ["top", "bottom"]
+//! penalty = { c = 0.05, h = 1.0 }
+//!
+//! [solver]
+//! method = "newton-kurchatov"
+//! gamma = 0.5
+//! ```
+//!
+//! `docs/problem-format.md` documents every key for users.
+
+use std::collections::BTreeMap;
+use std::fmt;
+use std::path::PathBuf;
+
+use serde::de::{self, Deserializer, Visitor};
+use serde::{Deserialize, Serialize, Serializer};
+
+use contactdd_core::{Component, Diagonal, Order, Plane};
+
+use crate::method::Method;
+use crate::profile::Along;
+use crate::relaxation::Gamma;
+
+/// A whole problem file.
+#[derive(Clone, Debug, PartialEq, Deserialize, Serialize)]
+#[serde(deny_unknown_fields, rename_all = "kebab-case")]
+pub struct Problem {
+    /// Problem name used in output; default: the file stem.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub name: Option<String>,
+    /// Plane strain or plane stress, for all bodies.
+    pub plane: Plane,
+    /// Free-text note on the (consistent) units used; not interpreted.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub units: Option<String>,
+    /// Named materials (`[materials.NAME]` tables).
+    #[serde(default)]
+    pub materials: BTreeMap<String, MaterialSpec>,
+    /// The bodies (`[[bodies]]`), at least one.
+    pub bodies: Vec<BodySpec>,
+    /// The contact pairs (`[[contact]]`).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub contact: Vec<ContactSpec>,
+    /// Solver settings (`[solver]`); every key is optional.
+    #[serde(default)]
+    pub solver: SolverSpec,
+}
+
+/// An isotropic linear elastic material.
+#[derive(Clone, Copy, Debug, PartialEq, Deserialize, Serialize)]
+#[serde(deny_unknown_fields, rename_all = "kebab-case")]
+pub struct MaterialSpec {
+    /// Young's modulus E > 0 (stress units).
+    pub young: f64,
+    /// Poisson's ratio ν ∈ (−1, 0.5).
+    pub poisson: f64,
+}
+
+/// One body.
+#[derive(Clone, Debug, PartialEq, Deserialize, Serialize)]
+#[serde(deny_unknown_fields, rename_all = "kebab-case")]
+pub struct BodySpec {
+    /// Unique body name.
+    pub name: String,
+    /// Key of `[materials]`.
+    pub material: String,
+    /// How the body is meshed.
+    pub mesh: MeshSpec,
+    /// Prescribed displacements.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub supports: Vec<SupportSpec>,
+    /// Applied loads.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub loads: Vec<LoadSpec>,
+}
+
+/// A body's mesh, selected by `kind`.
+#[derive(Clone, Debug, PartialEq, Deserialize, Serialize)]
+#[serde(tag = "kind", deny_unknown_fields, rename_all = "kebab-case")]
+pub enum MeshSpec {
+    /// A structured mesh of the box `x[0] ≤ x ≤ x[1]`, `y[0] ≤ y ≤ y[1]` with `nx × ny` cells of
+    /// two triangles each; boundaries `left`, `right`, `bottom`, `top`.
+    #[serde(rename_all = "kebab-case")]
+    Rectangle {
+        /// x range `[x0, x1]`, x0 < x1.
+        x: [f64; 2],
+        /// y range `[y0, y1]`, y0 < y1.
+        y: [f64; 2],
+        /// Cells in x (≥ 1).
+        nx: usize,
+        /// Cells in y (≥ 1).
+        ny: usize,
+        /// Cell diagonal (default `right`, "/").
+        #[serde(default)]
+        diagonal: Diagonal,
+        /// Mirror the mesh about its horizontal centre line (default false); used for the upper
+        /// body of a pair so that the two meshes are mirror images.
+        #[serde(default)]
+        mirror: bool,
+        /// Element order (default `p1`).
+        #[serde(default = "default_order")]
+        order: Order,
+    },
+    /// A Gmsh `.msh` file (ASCII 4.1 or 2.2); boundaries are its physical lines.
+    #[serde(rename_all = "kebab-case")]
+    Gmsh {
+        /// File path; relative paths resolve against the problem file's folder.
+        file: PathBuf,
+        /// Element order: `p2` promotes P1 triangles to P2; default: as in the file.
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        order: Option<Order>,
+        /// Added to every node after scaling (default `[0, 0]`).
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        translate: Option<[f64; 2]>,
+        /// Every coordinate is multiplied by this factor > 0 first (default 1).
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        scale: Option<f64>,
+    },
+}
+
+fn default_order() -> Order {
+    Order::P1
+}
+
+/// A prescribed displacement component on a named boundary.
+#[derive(Clone, Debug, PartialEq, Deserialize, Serialize)]
+#[serde(deny_unknown_fields, rename_all = "kebab-case")]
+pub struct SupportSpec {
+    /// Boundary (or Gmsh physical point) name.
+    pub boundary: String,
+    /// `x`, `y`, `both`, or `normal` (a straight axis-parallel boundary: symmetry line).
+    pub component: Component,
+    /// Prescribed value (default 0).
+    #[serde(default)]
+    pub value: f64,
+}
+
+/// An applied load, selected by `kind`.
+#[derive(Clone, Debug, PartialEq, Deserialize, Serialize)]
+#[serde(tag = "kind", deny_unknown_fields, rename_all = "kebab-case")]
+pub enum LoadSpec {
+    /// Uniform normal pressure on a boundary, positive into the body.
+    Pressure {
+        /// Boundary name.
+        boundary: String,
+        /// Pressure (force per unit length in 2D).
+        value: f64,
+    },
+    /// Uniform traction vector `[tx, ty]` on a boundary.
+    Traction {
+        /// Boundary name.
+        boundary: String,
+        /// Force per unit length.
+        value: [f64; 2],
+    },
+    /// Uniform body force `[fx, fy]` per unit area.
+    BodyForce {
+        /// Force per unit area.
+        value: [f64; 2],
+    },
+}
+
+/// A contact pair.
+#[derive(Clone, Debug, PartialEq, Deserialize, Serialize)]
+#[serde(deny_unknown_fields, rename_all = "kebab-case")]
+pub struct ContactSpec {
+    /// Pair name; default `"<body1>-<body2>"`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub name: Option<String>,
+    /// The two (distinct) body names.
+    pub bodies: [String; 2],
+    /// The contact boundary of each body, in the same order.
+    pub boundaries: [String; 2],
+    /// Penalty: either `{ c, h }` (rod model) or `{ theta }`.
+    pub penalty: PenaltySpec,
+    /// Prescribed gap profile added to the geometric normal gap.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub gap: Option<GapSpec>,
+}
+
+/// The penalty θ of a pair: give either `theta`, or both `c` and `h` (rod model
+/// θ = c·h·(1/E*₁ + 1/E*₂)). Kept as one table of optional keys so that a wrong combination gets a
+/// precise message from [`crate::setup`].
+#[derive(Clone, Copy, Debug, Default, PartialEq, Deserialize, Serialize)]
+#[serde(deny_unknown_fields, rename_all = "kebab-case")]
+pub struct PenaltySpec {
+    /// Dimensionless rod-model factor c.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub c: Option<f64>,
+    /// Characteristic body height h of the rod model.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub h: Option<f64>,
+    /// θ given directly (length / stress units).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub theta: Option<f64>,
+}
+
+/// A prescribed gap profile, selected by `kind`.
+#[derive(Clone, Debug, PartialEq, Deserialize, Serialize)]
+#[serde(tag = "kind", deny_unknown_fields, rename_all = "kebab-case")]
+pub enum GapSpec {
+    /// d_p(ξ) = r0 · {[1 − ((ξ − centre)/b)²]⁺}^power.
+    Notch {
+        /// Depth r0.
+        r0: f64,
+        /// Half-width b > 0.
+        b: f64,
+        /// Centre ξ_c.
+        centre: f64,
+        /// Exponent (default 1.5).
+        #[serde(default = "default_power")]
+        power: f64,
+        /// Contact coordinate ξ: `x` (default) or `y`.
+        #[serde(default)]
+        along: Along,
+    },
+    /// A constant added gap.
+    Uniform {
+        /// Added gap (negative: initial interference).
+        value: f64,
+    },
+}
+
+fn default_power() -> f64 {
+    1.5
+}
+
+/// The `[solver]` table; absent keys take the defaults of [`crate::Settings`].
+#[derive(Clone, Debug, Default, PartialEq, Deserialize, Serialize)]
+#[serde(deny_unknown_fields, rename_all = "kebab-case")]
+pub struct SolverSpec {
+    /// Robin coefficient rule (default `newton-kurchatov`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub method: Option<Method>,
+    /// Relaxation parameter γ > 0 or `"auto"` (default `"auto"`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub gamma: Option<GammaSpec>,
+    /// Stopping tolerance ε_u > 0 (default 1e-6).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub tol: Option<f64>,
+    /// Iteration cap ≥ 1 (default 500).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub max_iter: Option<usize>,
+    /// Initial normal displacement u⁰ₙ on all contact points (default 1e-4).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub u0: Option<f64>,
+    /// Initial u⁻¹ₙ of the two-point methods (default 2e-4).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub u_prev: Option<f64>,
+    /// Worker threads ≥ 1 (default: the machine's).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub threads: Option<usize>,
+}
+
+/// `gamma`: a number, or the string `"auto"`. Deserialized like an untagged enum, but by hand so
+/// that a wrong string gets a message naming the key.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum GammaSpec {
+    /// A constant γ.
+    Value(f64),
+    /// Safeguarded Aitken relaxation.
+    Auto,
+}
+
+impl From<GammaSpec> for Gamma {
+    fn from(g: GammaSpec) -> Gamma {
+        match g {
+            GammaSpec::Value(v) => Gamma::Constant(v),
+            GammaSpec::Auto => Gamma::Auto,
+        }
+    }
+}
+
+impl Serialize for GammaSpec {
+    fn serialize<S: Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        match *self {
+            GammaSpec::Value(v) => s.serialize_f64(v),
+            GammaSpec::Auto => s.serialize_str("auto"),
+        }
+    }
+}
+
+impl<'de> Deserialize<'de> for GammaSpec {
+    fn deserialize<D: Deserializer<'de>>(d: D) -> Result<GammaSpec, D::Error> {
+        struct GammaVisitor;
+
+        impl Visitor<'_> for GammaVisitor {
+            type Value = GammaSpec;
+
+            fn expecting(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+                f.write_str("gamma: a positive number or \"auto\"")
+            }
+
+            fn visit_f64<E: de::Error>(self, v: f64) -> Result<GammaSpec, E> {
+                Ok(GammaSpec::Value(v))
+            }
+
+            fn visit_i64<E: de::Error>(self, v: i64) -> Result<GammaSpec, E> {
+                Ok(GammaSpec::Value(v as f64))
+            }
+
+            fn visit_u64<E: de::Error>(self, v: u64) -> Result<GammaSpec, E> {
+                Ok(GammaSpec::Value(v as f64))
+            }
+
+            fn visit_str<E: de::Error>(self, v: &str) -> Result<GammaSpec, E> {
+                if v == "auto" {
+                    Ok(GammaSpec::Auto)
+                } else {
+                    Err(E::custom(format!(
+                        "gamma: expected a positive number or \"auto\", got \"{v}\""
+                    )))
+                }
+            }
+        }
+
+        d.deserialize_any(GammaVisitor)
+    }
+}

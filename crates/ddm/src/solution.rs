@@ -1,0 +1,225 @@
+//! Results of a solve: per-body fields, per-pair contact quantities, history and timings.
+
+use std::collections::BTreeMap;
+
+use contactdd_core::post::stresses;
+use contactdd_core::Mesh;
+
+use crate::contact::Interface;
+use crate::iteration::{Breakdown, Record, Stop};
+use crate::method::Method;
+use crate::model::Model;
+use crate::relaxation::Gamma;
+
+/// Fields of one body.
+#[derive(Clone, Debug)]
+pub struct BodyResult {
+    /// Body name.
+    pub name: String,
+    /// The mesh (nodes, triangles, boundaries).
+    pub mesh: Mesh,
+    /// Displacement, 2 per node.
+    pub displacement: Vec<f64>,
+    /// Nodal (averaged) stress `[σ_xx, σ_yy, σ_xy, σ_zz]`.
+    pub stress: Vec<[f64; 4]>,
+    /// Nodal von Mises stress.
+    pub von_mises: Vec<f64>,
+    /// Contact pressure σ_n at the body's contact nodes (≤ 0, compressive), 0 elsewhere.
+    pub contact_pressure: Vec<f64>,
+}
+
+/// Contact quantities of one pair, one entry per contact point (both sides).
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct PairResult {
+    /// Pair name.
+    pub name: String,
+    /// The two body names.
+    pub bodies: [String; 2],
+    /// Which side (0 or 1) each point belongs to.
+    pub side: Vec<usize>,
+    /// Node index in its body.
+    pub node: Vec<usize>,
+    /// Coordinates (undeformed).
+    pub x: Vec<f64>,
+    /// Coordinates (undeformed).
+    pub y: Vec<f64>,
+    /// Gap after deformation d − s (negative = penetration of the penalty solution).
+    pub gap: Vec<f64>,
+    /// Normal contact stress σ_n = (d − s)⁻/θ (≤ 0).
+    pub pressure: Vec<f64>,
+    /// True where closed (d − s < 0).
+    pub closed: Vec<bool>,
+    /// Nodal quadrature weight of each point.
+    pub weight: Vec<f64>,
+    /// Outward normal of each point (x component).
+    pub nx: Vec<f64>,
+    /// Outward normal of each point (y component).
+    pub ny: Vec<f64>,
+}
+
+impl PairResult {
+    /// Total contact force on side `side`: Σ w σ_n n (the force the other body exerts).
+    pub fn force_on(&self, side: usize) -> [f64; 2] {
+        let mut f = [0.0, 0.0];
+        for i in (0..self.side.len()).filter(|&i| self.side[i] == side) {
+            f[0] += self.weight[i] * self.pressure[i] * self.nx[i];
+            f[1] += self.weight[i] * self.pressure[i] * self.ny[i];
+        }
+        f
+    }
+}
+
+/// A solve's result (also the partial result of a failed solve).
+#[derive(Clone, Debug)]
+pub struct Solution {
+    /// True if every body met the tolerance.
+    pub converged: bool,
+    /// How the iteration ended.
+    pub stop: Stop,
+    /// Human-readable outcome (`None` when converged).
+    pub message: Option<String>,
+    /// Iterations taken.
+    pub iterations: usize,
+    /// Method used.
+    pub method: Method,
+    /// γ rule used.
+    pub gamma: Gamma,
+    /// Penalty θ per pair.
+    pub theta: Vec<f64>,
+    /// Per-iteration history.
+    pub history: Vec<Record>,
+    /// Per-body fields.
+    pub bodies: Vec<BodyResult>,
+    /// Per-pair contact results.
+    pub contact: Vec<PairResult>,
+    /// Wall time per phase, seconds.
+    pub timing: BTreeMap<String, f64>,
+}
+
+/// The message for a non-converged outcome.
+pub fn stop_message(
+    stop: &Stop,
+    model: &Model,
+    method: Method,
+    history: &[Record],
+    tol: f64,
+) -> Option<String> {
+    let body = |b: usize| {
+        model
+            .bodies
+            .get(b)
+            .map_or("?", |x| x.name.as_str())
+            .to_string()
+    };
+    match stop {
+        Stop::Converged => None,
+        Stop::MaxIterations => {
+            let worst = history
+                .last()
+                .map(|r| r.rel_change.iter().cloned().fold(0.0, f64::max))
+                .unwrap_or(f64::NAN);
+            Some(format!(
+                "not converged after {} iterations (largest relative change {worst:.3e} > tolerance {tol:.1e}); raise max-iter, try a smaller gamma, gamma = \"auto\" or another method",
+                history.len()
+            ))
+        }
+        Stop::Interrupted => Some(format!("interrupted after {} iterations", history.len())),
+        Stop::Diverged {
+            body: b,
+            iteration,
+            reason,
+        } => Some(match reason {
+            Breakdown::LostContact if method == Method::Neumann => format!(
+                "diverged: body '{}' is singular at iteration {iteration}: the neumann method (φ = 0) cannot hold a body that only its contact zone supports; use robin, active-set or a two-point method",
+                body(*b)
+            ),
+            Breakdown::LostContact => format!(
+                "diverged: body '{}' lost all contact at iteration {iteration} (its Robin problem became singular); try a smaller gamma, gamma = \"auto\" or another method",
+                body(*b)
+            ),
+            Breakdown::Singular => format!(
+                "diverged: the Robin problem of body '{}' became singular at iteration {iteration}; try a smaller gamma or another method",
+                body(*b)
+            ),
+            Breakdown::NonFinite => format!(
+                "diverged: non-finite values in body '{}' at iteration {iteration}; try a smaller gamma",
+                body(*b)
+            ),
+            Breakdown::Growth => format!(
+                "diverged: the displacements of body '{}' grew without bound at iteration {iteration}; try a smaller gamma",
+                body(*b)
+            ),
+        }),
+    }
+}
+
+/// Per-pair contact results from the final normal displacements.
+pub fn pair_results(model: &Model, interface: &Interface, un: &[f64]) -> Vec<PairResult> {
+    let mut s = vec![0.0; un.len()];
+    interface.sum_normal(un, &mut s);
+    let mut out: Vec<PairResult> = model
+        .pairs
+        .iter()
+        .map(|p| PairResult {
+            name: p.name.clone(),
+            bodies: p.bodies.map(|b| model.bodies[b].name.clone()),
+            ..Default::default()
+        })
+        .collect();
+    for (j, p) in interface.points.iter().enumerate() {
+        let r = &mut out[p.pair];
+        let side = usize::from(model.pairs[p.pair].bodies[0] != p.body);
+        let x = model.bodies[p.body].mesh.nodes()[p.node];
+        let gap = if p.has_partner() {
+            p.gap - s[j]
+        } else {
+            f64::INFINITY
+        };
+        r.side.push(side);
+        r.node.push(p.node);
+        r.x.push(x[0]);
+        r.y.push(x[1]);
+        r.gap.push(gap);
+        r.pressure.push(gap.min(0.0) / p.theta);
+        r.closed.push(gap < 0.0);
+        r.weight.push(p.weight);
+        r.nx.push(p.normal[0]);
+        r.ny.push(p.normal[1]);
+    }
+    out
+}
+
+/// Fields of every body from their displacements.
+pub fn body_results(
+    model: &Model,
+    interface: &Interface,
+    un: &[f64],
+    displacements: Vec<Vec<f64>>,
+) -> Vec<BodyResult> {
+    let mut s = vec![0.0; un.len()];
+    interface.sum_normal(un, &mut s);
+    model
+        .bodies
+        .iter()
+        .zip(displacements)
+        .enumerate()
+        .map(|(b, (body, u))| {
+            let st = stresses(&body.mesh, &body.material, model.plane, &u);
+            let mut pressure = vec![0.0; body.mesh.num_nodes()];
+            for (j, p) in interface.points.iter().enumerate() {
+                if p.body == b && p.has_partner() {
+                    let sn = (p.gap - s[j]).min(0.0) / p.theta;
+                    pressure[p.node] = f64::min(pressure[p.node], sn);
+                }
+            }
+            BodyResult {
+                name: body.name.clone(),
+                mesh: body.mesh.clone(),
+                displacement: u,
+                stress: st.nodal,
+                von_mises: st.von_mises,
+                contact_pressure: pressure,
+            }
+        })
+        .collect()
+}

@@ -1,0 +1,8 @@
+//! # contactdd
+//!
+//! A facade over the workspace crates: [`fem`] (meshes, P1/P2 elasticity, sparse Cholesky per
+//! body) and [`ddm`] (contact, the penalty Robin domain decomposition, the monolithic reference).
+//! This package also hosts the workspace-level tests and benches.
+
+pub use contactdd_core as fem;
+pub use contactdd_ddm as ddm;
