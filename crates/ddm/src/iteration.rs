@@ -258,6 +258,9 @@ pub fn iterate(
         if let Some(s) = failed {
             // Keep the last good iterate consistent: U^k with its T^k.
             t_load = t_backup;
+            if relax.retreat() {
+                continue;
+            }
             stop = s;
             break;
         }
@@ -279,8 +282,11 @@ pub fn iterate(
         if let Some(f) = hooks.on_iteration {
             f(&record);
         }
-        let converged = record.rel_change.iter().all(|&r| r <= settings.tol);
-        relax.update(&u_cur, &u_next, &record);
+        // With an adaptive γ a tiny step must not pass for convergence: the change is judged as
+        // if γ were at least the starting value (for a constant γ this is the paper's criterion).
+        let scale = relax.convergence_scale();
+        let converged = record.rel_change.iter().all(|&r| r * scale <= settings.tol);
+        relax.update(&u_cur, &u_next);
         history.push(record);
         // Rotate the double buffers: k−1 ← k ← k+1.
         std::mem::swap(&mut u_prev, &mut u_cur);

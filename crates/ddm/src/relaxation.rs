@@ -1,15 +1,20 @@
 //! The relaxation parameter γ^k: constant, or chosen per iteration (`auto`).
 //!
 //! `auto` is Aitken's Δ² dynamic relaxation on the interface iterate, as used in partitioned
-//! fluid–structure interaction (Irons–Tuck / Küttler–Wall): with the unrelaxed update
-//! r^k = ũ^k − u^k,
-//!   γ^{k+1} = −γ^k · (r^{k−1} · (r^k − r^{k−1})) / ‖r^k − r^{k−1}‖²,
-//! safeguarded: γ is kept in [γ_min, γ_max]; when the update grows (‖r^k‖ > 2‖r^{k−1}‖) γ is halved
-//! instead, and it restarts from γ₀ when the update is not defined (r^k = r^{k−1}).
+//! fluid–structure interaction (Irons–Tuck; Küttler & Wall 2008). With the unrelaxed update
+//! r^k = ũ^k − u^k of the normal contact displacements,
+//!   γ^{k+1} = −γ^k · (r^{k−1} · (r^k − r^{k−1})) / ‖r^k − r^{k−1}‖².
+//! Safeguards, because the contact map is only piecewise linear:
+//! - γ starts at γ₀ = 0.5 and stays in [γ_min, γ_max] = [0.1, 1];
+//! - γ may at most double from one iteration to the next (Aitken overshoots after an active-set
+//!   change);
+//! - when the update grows (‖r^k‖ > 2‖r^{k−1}‖) γ is halved instead;
+//! - when a body breaks down (its contact zone opens completely, or values blow up) the iteration
+//!   goes back to the last iterate and retries with half the γ, down to γ_min;
+//! - convergence is judged as if γ were at least γ₀ (see [`Relaxation::convergence_scale`]), so a
+//!   small step cannot pass for convergence.
 
 use std::fmt;
-
-use crate::iteration::Record;
 
 /// A relaxation parameter choice.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -30,7 +35,7 @@ impl fmt::Display for Gamma {
 }
 
 /// Smallest γ the `auto` rule uses.
-pub const GAMMA_MIN: f64 = 0.02;
+pub const GAMMA_MIN: f64 = 0.1;
 /// Largest γ the `auto` rule uses.
 pub const GAMMA_MAX: f64 = 1.0;
 /// Starting γ of the `auto` rule.
@@ -62,8 +67,30 @@ impl Relaxation {
         self.gamma
     }
 
+    /// Factor applied to the relative change before comparing it with the tolerance: 1 for a
+    /// constant γ, `max(1, γ₀/γ)` for `auto`, so that shrinking γ cannot fake convergence.
+    pub fn convergence_scale(&self) -> f64 {
+        match self.rule {
+            Gamma::Constant(_) => 1.0,
+            Gamma::Auto => (GAMMA_START / self.gamma).max(1.0),
+        }
+    }
+
+    /// After a breakdown with the current γ: halves γ and returns true if the rule may retry
+    /// (only `auto`, and only above γ_min).
+    pub fn retreat(&mut self) -> bool {
+        match self.rule {
+            Gamma::Auto if self.gamma > GAMMA_MIN => {
+                self.gamma = (0.5 * self.gamma).max(GAMMA_MIN);
+                self.last_update = None;
+                true
+            }
+            _ => false,
+        }
+    }
+
     /// Learns from an iteration that went from `u` to `u_next` with the current γ.
-    pub fn update(&mut self, u: &[f64], u_next: &[f64], _record: &Record) {
+    pub fn update(&mut self, u: &[f64], u_next: &[f64]) {
         if let Gamma::Constant(_) = self.rule {
             return;
         }
@@ -81,7 +108,7 @@ impl Relaxation {
                 GAMMA_START
             };
             self.gamma = if next.is_finite() {
-                next.clamp(GAMMA_MIN, GAMMA_MAX)
+                next.min(2.0 * g).clamp(GAMMA_MIN, GAMMA_MAX)
             } else {
                 GAMMA_START
             };

@@ -1,0 +1,109 @@
+//! The domain decomposition: setup of the notch benchmark, one iteration, a full solve per method,
+//! the 45-run γ sweep, and an 8-body stack with 1 and 2 threads.
+//!
+//! Run: `cargo bench --bench ddm`.
+
+use contactdd_core::{Component, Constraints, Diagonal, ElasticBody, Load, Material, Order, Plane, Rectangle};
+use contactdd_ddm::benchmark::Notch;
+use contactdd_ddm::iteration::iterate;
+use contactdd_ddm::{prepare, solve, sweep, ContactPair, Gamma, Hooks, Method, Model, Penalty, Settings};
+use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion};
+
+fn settings(method: Method, gamma: f64) -> Settings {
+    Settings {
+        method,
+        gamma: Gamma::Constant(gamma),
+        tol: 1e-3,
+        max_iter: 500,
+        u0: 1e-4,
+        u_prev: 2e-4,
+    }
+}
+
+/// 15 γ values 0.05, 0.1, …, 0.75: with 3 methods, the 45-run sweep of the performance target.
+fn gamma_grid() -> Vec<Gamma> {
+    (1..=15).map(|i| Gamma::Constant(0.05 * i as f64)).collect()
+}
+
+fn stack(n: usize, cells: usize) -> Model {
+    let material = Material::new(1000.0, 0.3).expect("material");
+    let bodies = (0..n)
+        .map(|i| {
+            let mesh = Rectangle {
+                origin: [0.0, i as f64],
+                corner: [2.0, i as f64 + 1.0],
+                nx: 2 * cells,
+                ny: cells,
+                diagonal: Diagonal::Right,
+                mirror: i % 2 == 1,
+                order: Order::P1,
+            }
+            .mesh()
+            .expect("mesh");
+            let mut constraints = Constraints::new(mesh.num_nodes());
+            constraints.fix(&mesh, "left", Component::X, 0.0).expect("left");
+            if i == 0 {
+                constraints.fix(&mesh, "bottom", Component::Y, 0.0).expect("bottom");
+            }
+            let loads = if i + 1 == n {
+                vec![Load::Pressure { boundary: "top".into(), value: 5.0 }]
+            } else {
+                vec![]
+            };
+            let load = contactdd_core::loads::load_vector(&mesh, &loads).expect("load");
+            ElasticBody { name: format!("b{i}"), mesh, material, plane: Plane::Strain, constraints, load }
+        })
+        .collect();
+    let pairs = (1..n)
+        .map(|i| ContactPair {
+            name: format!("p{i}"),
+            bodies: [i - 1, i],
+            boundaries: ["top".into(), "bottom".into()],
+            penalty: Penalty::RodModel { c: 0.05, h: 1.0 },
+            profile: None,
+        })
+        .collect();
+    Model { name: "stack".into(), plane: Plane::Strain, bodies, pairs }
+}
+
+fn notch(c: &mut Criterion) {
+    let model = Notch::default().model().expect("model");
+    let mut group = c.benchmark_group("notch");
+    group.bench_function("prepare", |b| b.iter(|| prepare(&model).expect("prepare")));
+    let prepared = prepare(&model).expect("prepare");
+    let one = Settings { max_iter: 1, ..settings(Method::NewtonKurchatov, 0.5) };
+    group.bench_function("one_iteration", |b| {
+        b.iter(|| iterate(&prepared.interface, &prepared.bodies, &prepared.scale, &one, Hooks::default()))
+    });
+    for (method, gamma) in [(Method::ActiveSet, 0.5), (Method::NewtonChord, 0.3), (Method::NewtonKurchatov, 0.5)] {
+        group.bench_function(BenchmarkId::new("solve", method.name()), |b| {
+            b.iter(|| solve(&model, &prepared, &settings(method, gamma), Hooks::default()).expect("solve"))
+        });
+    }
+    let methods = [Method::ActiveSet, Method::NewtonChord, Method::NewtonKurchatov];
+    let gammas = gamma_grid();
+    let base = settings(Method::ActiveSet, 0.5);
+    group.bench_function("sweep_45_runs", |b| b.iter(|| sweep(&model, &prepared, &methods, &gammas, &base)));
+    group.finish();
+}
+
+fn threads(c: &mut Criterion) {
+    let model = stack(8, 40);
+    let mut group = c.benchmark_group("stack8");
+    group.sample_size(10);
+    for t in [1, 2] {
+        let pool = rayon::ThreadPoolBuilder::new().num_threads(t).build().expect("pool");
+        group.bench_function(BenchmarkId::new("prepare_and_solve", t), |b| {
+            b.iter(|| {
+                pool.install(|| {
+                    let prepared = prepare(&model).expect("prepare");
+                    solve(&model, &prepared, &settings(Method::ActiveSet, 0.5), Hooks::default()).expect("solve")
+                })
+            })
+        });
+    }
+    group.finish();
+}
+
+criterion_group!(benches, notch, threads);
+criterion_main!(benches);
