@@ -1,1 +1,122 @@
+//! # contactdd-cli
+//!
+//! The `contactdd` command line: read a TOML problem file, solve it by penalty Robin domain
+//! decomposition and write the results; or sweep methods × γ, check a file, or run the monolithic
+//! reference. The binary's `main` only calls [`run`], which tests call in-process too.
+//!
+//! ```text
+//! contactdd solve FILE [--out DIR] [--method M] [--gamma G|auto] [--tol T] [--max-iter K]
+//!                      [--threads N] [--quiet]
+//! contactdd sweep FILE [--method LIST] [--gamma LIST] [--out PATH] [--tol T] [--max-iter K]
+//!                      [--threads N]
+//! contactdd check FILE
+//! contactdd monolithic FILE [--out DIR] [--threads N]
+//! ```
+//!
+//! Exit codes ([`Exit`]):
+//!
+//! | code | meaning                                                                            |
+//! |------|------------------------------------------------------------------------------------|
+//! | 0    | success: solved and converged (`solve`), ran (`sweep`), valid (`check`)             |
+//! | 1    | bad input or I/O error: invalid command line, unreadable or invalid problem file,  |
+//! |      | a body that cannot be factorised, results that cannot be written                   |
+//! | 2    | ran but did not converge or diverged; the last iterate's results are still written |
+//! |      | and `summary.json` says `"converged": false` with the message                      |
+//!
+//! Errors print one line `error: <context>: <cause>` on stderr.
 
+/// `println!` that ignores a closed stdout (`contactdd sweep … | head` must not fail): the
+/// results go to files anyway, the console is only a report.
+macro_rules! say {
+    ($($arg:tt)*) => {{
+        use std::io::Write as _;
+        let _ = writeln!(std::io::stdout().lock(), $($arg)*);
+    }};
+}
+
+mod args;
+mod check;
+mod report;
+mod solve;
+mod sweep;
+
+use std::ffi::OsString;
+use std::process::ExitCode;
+
+use anyhow::{Context, Result};
+use clap::error::ErrorKind;
+use clap::Parser;
+
+use args::{Cli, Command};
+
+/// The process outcome, one exit code each.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Exit {
+    /// 0: solved and converged, or the command ran successfully.
+    Success = 0,
+    /// 1: bad input (command line or problem file) or an I/O error.
+    Error = 1,
+    /// 2: the solve ran but did not converge (or diverged); results were still written.
+    NotConverged = 2,
+}
+
+impl From<Exit> for ExitCode {
+    fn from(e: Exit) -> ExitCode {
+        ExitCode::from(e as u8)
+    }
+}
+
+/// Runs the command line `args` (the first item is the program name) and returns the outcome.
+/// Output goes to stdout, errors to stderr as `error: …`.
+pub fn run<I, T>(args: I) -> Exit
+where
+    I: IntoIterator<Item = T>,
+    T: Into<OsString> + Clone,
+{
+    let cli = match Cli::try_parse_from(args) {
+        Ok(cli) => cli,
+        Err(e) => {
+            // --help and --version are "errors" to clap; print them and succeed.
+            let _ = e.print();
+            return match e.kind() {
+                ErrorKind::DisplayHelp | ErrorKind::DisplayVersion => Exit::Success,
+                _ => Exit::Error,
+            };
+        }
+    };
+    let result = match cli.command {
+        Command::Solve(a) => solve::solve(a),
+        Command::Sweep(a) => sweep::sweep(a),
+        Command::Check(a) => check::check(a),
+        Command::Monolithic(a) => solve::monolithic(a),
+    };
+    match result {
+        Ok(exit) => exit,
+        Err(e) => {
+            eprintln!("error: {e:#}");
+            Exit::Error
+        }
+    }
+}
+
+/// Runs `f` on a rayon pool of `threads` workers, or on the global pool when `None`.
+fn with_threads<R>(threads: Option<usize>, f: impl FnOnce() -> Result<R> + Send) -> Result<R>
+where
+    R: Send,
+{
+    match threads {
+        None => f(),
+        Some(n) => rayon::ThreadPoolBuilder::new()
+            .num_threads(n)
+            .build()
+            .with_context(|| format!("cannot start {n} worker threads"))?
+            .install(f),
+    }
+}
+
+/// Loads a problem file; the setup error's message already names the file, body and key.
+fn load(path: &std::path::Path) -> Result<contactdd_ddm::Loaded> {
+    // `to_string` rather than `?`: the message already contains the cause, so a `{:#}` chain
+    // would repeat it.
+    contactdd_ddm::load_file(path).map_err(|e| anyhow::anyhow!("{e}"))
+}

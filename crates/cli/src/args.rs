@@ -1,0 +1,264 @@
+//! The command line grammar (clap derive) and the parsers of its values: a method, γ, and the
+//! comma-separated lists of a sweep (γ also as `start:stop:step`).
+
+use std::path::PathBuf;
+
+use clap::{Args, Parser, Subcommand};
+
+use contactdd_ddm::{Gamma, Method};
+
+const EXIT_CODES: &str = "\
+Exit codes:
+  0  success (solve: converged; sweep: ran; check: the file is valid)
+  1  bad input (command line, problem file) or I/O error
+  2  the solve ran but did not converge or diverged; the results of the last iterate
+     are still written and summary.json says \"converged\": false with the reason";
+
+/// Frictionless contact of elastic bodies by penalty Robin domain decomposition.
+#[derive(Debug, Parser)]
+#[command(name = "contactdd", version, after_help = EXIT_CODES)]
+pub struct Cli {
+    /// What to do.
+    #[command(subcommand)]
+    pub command: Command,
+}
+
+/// The subcommands.
+#[derive(Debug, Subcommand)]
+pub enum Command {
+    /// Solve a problem file and write summary.json, contact.csv, history.csv and one .vtu per body.
+    #[command(after_help = EXIT_CODES)]
+    Solve(SolveArgs),
+    /// Run every method with every γ and tabulate the iteration counts (the paper's study).
+    #[command(after_help = EXIT_CODES)]
+    Sweep(SweepArgs),
+    /// Validate a problem file and describe it, without solving.
+    #[command(after_help = EXIT_CODES)]
+    Check(CheckArgs),
+    /// Solve all bodies at once by semismooth Newton (the reference the DD methods converge to).
+    #[command(after_help = EXIT_CODES)]
+    Monolithic(MonolithicArgs),
+}
+
+/// Options shared by the solving commands; they override the file's `[solver]` table.
+#[derive(Debug, Args)]
+pub struct Common {
+    /// Stopping tolerance ε_u on every body's relative change (overrides solver.tol).
+    #[arg(long, value_name = "T", value_parser = parse_positive)]
+    pub tol: Option<f64>,
+    /// Iteration cap (overrides solver.max-iter).
+    #[arg(long, value_name = "K", value_parser = clap::value_parser!(u64).range(1..))]
+    pub max_iter: Option<u64>,
+    /// Worker threads (overrides solver.threads; default: all cores).
+    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u64).range(1..=1024))]
+    pub threads: Option<u64>,
+}
+
+/// `contactdd solve`.
+#[derive(Debug, Args)]
+pub struct SolveArgs {
+    /// Problem file (TOML).
+    pub file: PathBuf,
+    /// Output folder [default: ./<problem name>-out].
+    #[arg(long, value_name = "DIR")]
+    pub out: Option<PathBuf>,
+    /// Method: neumann, robin, active-set, newton-chord or newton-kurchatov.
+    #[arg(long, value_name = "M", value_parser = parse_method)]
+    pub method: Option<Method>,
+    /// Relaxation parameter γ > 0, or "auto" (Aitken).
+    #[arg(long, value_name = "G", value_parser = parse_gamma)]
+    pub gamma: Option<Gamma>,
+    /// Solver options.
+    #[command(flatten)]
+    pub common: Common,
+    /// Print only the final result line (no per-iteration lines).
+    #[arg(long, short)]
+    pub quiet: bool,
+}
+
+/// `contactdd sweep`.
+#[derive(Debug, Args)]
+pub struct SweepArgs {
+    /// Problem file (TOML).
+    pub file: PathBuf,
+    /// Comma-separated methods.
+    #[arg(
+        long,
+        value_name = "LIST",
+        default_value = "active-set,newton-chord,newton-kurchatov",
+        value_parser = parse_method_list
+    )]
+    pub method: MethodList,
+    /// Comma-separated γ values, "auto", or ranges start:stop:step (stop included), e.g.
+    /// 0.05:0.85:0.05,auto.
+    #[arg(long, value_name = "LIST", default_value = "0.1:1:0.1", value_parser = parse_gamma_list)]
+    pub gamma: GammaList,
+    /// CSV file to write [default: ./<problem name>-sweep.csv].
+    #[arg(long, value_name = "PATH")]
+    pub out: Option<PathBuf>,
+    /// Solver options.
+    #[command(flatten)]
+    pub common: Common,
+}
+
+/// `contactdd check`.
+#[derive(Debug, Args)]
+pub struct CheckArgs {
+    /// Problem file (TOML).
+    pub file: PathBuf,
+}
+
+/// `contactdd monolithic`.
+#[derive(Debug, Args)]
+pub struct MonolithicArgs {
+    /// Problem file (TOML).
+    pub file: PathBuf,
+    /// Output folder [default: ./<problem name>-monolithic-out].
+    #[arg(long, value_name = "DIR")]
+    pub out: Option<PathBuf>,
+    /// Worker threads (default: all cores).
+    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u64).range(1..=1024))]
+    pub threads: Option<u64>,
+}
+
+/// A list of methods.
+#[derive(Clone, Debug, PartialEq)]
+pub struct MethodList(pub Vec<Method>);
+
+/// A list of γ rules.
+#[derive(Clone, Debug, PartialEq)]
+pub struct GammaList(pub Vec<Gamma>);
+
+/// Most γ values one range may produce.
+const MAX_RANGE_VALUES: usize = 10_000;
+
+fn parse_positive(s: &str) -> Result<f64, String> {
+    match s.trim().parse::<f64>() {
+        Ok(v) if v.is_finite() && v > 0.0 => Ok(v),
+        _ => Err(format!("expected a positive number, got '{s}'")),
+    }
+}
+
+fn parse_method(s: &str) -> Result<Method, String> {
+    s.trim().parse::<Method>().map_err(|e| e.to_string())
+}
+
+fn parse_gamma(s: &str) -> Result<Gamma, String> {
+    let s = s.trim();
+    if s == "auto" {
+        return Ok(Gamma::Auto);
+    }
+    parse_positive(s)
+        .map(Gamma::Constant)
+        .map_err(|_| format!("expected a positive number or \"auto\", got '{s}'"))
+}
+
+fn parse_method_list(s: &str) -> Result<MethodList, String> {
+    let methods = s
+        .split(',')
+        .map(parse_method)
+        .collect::<Result<Vec<_>, _>>()?;
+    Ok(MethodList(methods))
+}
+
+fn parse_gamma_list(s: &str) -> Result<GammaList, String> {
+    let mut out = Vec::new();
+    for item in s.split(',') {
+        let parts: Vec<&str> = item.split(':').collect();
+        match parts.as_slice() {
+            [one] => out.push(parse_gamma(one)?),
+            [start, stop, step] => out.extend(gamma_range(start, stop, step)?),
+            _ => {
+                return Err(format!(
+                    "'{item}': expected a number, \"auto\" or start:stop:step"
+                ))
+            }
+        }
+    }
+    Ok(GammaList(out))
+}
+
+/// start, start + step, … up to and including `stop` (within a small tolerance, so that
+/// 0.05:0.85:0.05 ends at 0.85 despite rounding); values are rounded to 12 significant digits.
+fn gamma_range(start: &str, stop: &str, step: &str) -> Result<Vec<Gamma>, String> {
+    let range = format!("{start}:{stop}:{step}");
+    let (start, stop, step) = (
+        parse_positive(start),
+        parse_positive(stop),
+        parse_positive(step),
+    );
+    let (Ok(start), Ok(stop), Ok(step)) = (start, stop, step) else {
+        return Err(format!(
+            "'{range}': start, stop and step must be positive numbers"
+        ));
+    };
+    if stop < start {
+        return Err(format!("'{range}': stop is smaller than start"));
+    }
+    let steps = ((stop - start) / step + 1e-9).floor();
+    if steps >= MAX_RANGE_VALUES as f64 {
+        return Err(format!(
+            "'{range}': more than {MAX_RANGE_VALUES} values; use a larger step"
+        ));
+    }
+    let round = |x: f64| {
+        let scale = 10f64.powi(11 - x.abs().log10().floor() as i32);
+        (x * scale).round() / scale
+    };
+    Ok((0..=steps as usize)
+        .map(|i| Gamma::Constant(round(start + i as f64 * step)))
+        .collect())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn constants(list: &GammaList) -> Vec<f64> {
+        list.0
+            .iter()
+            .map(|g| match g {
+                Gamma::Constant(v) => *v,
+                Gamma::Auto => f64::NAN,
+            })
+            .collect()
+    }
+
+    #[test]
+    fn gamma_ranges_include_the_stop_value() {
+        let list = parse_gamma_list("0.05:0.85:0.05").unwrap();
+        let v = constants(&list);
+        assert_eq!(v.len(), 17);
+        assert_eq!(v[0], 0.05);
+        assert_eq!(v[2], 0.15);
+        assert_eq!(v[16], 0.85);
+        let list = parse_gamma_list("0.5,auto,0.1:0.3:0.1").unwrap();
+        assert_eq!(list.0[1], Gamma::Auto);
+        assert_eq!(constants(&list)[2..], [0.1, 0.2, 0.3]);
+    }
+
+    #[test]
+    fn bad_gamma_lists_are_rejected() {
+        for bad in [
+            "",
+            "0",
+            "-1",
+            "x",
+            "0.1:0.05:0.01",
+            "0.1:1",
+            "0.1:1:0",
+            "1e-9:1:1e-9",
+            "nan",
+        ] {
+            assert!(parse_gamma_list(bad).is_err(), "{bad}");
+        }
+    }
+
+    #[test]
+    fn method_lists() {
+        let m = parse_method_list("robin,active-set").unwrap();
+        assert_eq!(m.0, [Method::Robin, Method::ActiveSet]);
+        let err = parse_method_list("robin,nope").unwrap_err();
+        assert!(err.contains("unknown method 'nope'"), "{err}");
+    }
+}

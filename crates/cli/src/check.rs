@@ -1,0 +1,167 @@
+//! `contactdd check`: load and validate a problem file (including the contact geometry) and
+//! describe it, without factorising or solving anything.
+
+use anyhow::Result;
+
+use contactdd_core::{Component, Order};
+use contactdd_ddm::contact::Interface;
+use contactdd_ddm::problem::{LoadSpec, MeshSpec};
+use contactdd_ddm::{Gamma, Loaded, Penalty};
+
+use crate::args::CheckArgs;
+use crate::report::{sig, vec2};
+use crate::solve::count;
+use crate::{load, Exit};
+
+/// `contactdd check`.
+pub fn check(args: CheckArgs) -> Result<Exit> {
+    let loaded = load(&args.file)?;
+    let interface = Interface::new(&loaded.model).map_err(|e| anyhow::anyhow!("{e}"))?;
+    say!("{}", describe(&loaded, &interface).trim_end());
+    say!("ok: '{}' is a valid problem", args.file.display());
+    Ok(Exit::Success)
+}
+
+fn describe(loaded: &Loaded, interface: &Interface) -> String {
+    let (model, problem, settings) = (&loaded.model, &loaded.problem, &loaded.settings);
+    let mut out = format!(
+        "problem {} (plane {}): {}, {}\n",
+        model.name,
+        match model.plane {
+            contactdd_core::Plane::Strain => "strain",
+            contactdd_core::Plane::Stress => "stress",
+        },
+        count(model.bodies.len(), "body", "bodies"),
+        count(model.pairs.len(), "contact pair", "contact pairs"),
+    );
+    if let Some(units) = &problem.units {
+        out += &format!("units: {units}\n");
+    }
+    for (body, spec) in model.bodies.iter().zip(&problem.bodies) {
+        let nodes = body.mesh.num_nodes();
+        let prescribed = body.constraints.fixed().count();
+        out += &format!(
+            "body {}: {} nodes, {} elements ({}), {} DOFs ({} prescribed), E = {}, ν = {}\n",
+            body.name,
+            nodes,
+            body.mesh.num_cells(),
+            match body.mesh.order() {
+                Order::P1 => "P1",
+                Order::P2 => "P2",
+            },
+            2 * nodes - prescribed.min(2 * nodes),
+            prescribed,
+            sig(body.material.young()),
+            body.material.poisson()
+        );
+        out += &format!("  mesh: {}\n", mesh_text(&spec.mesh));
+        let names: Vec<&str> = body.mesh.boundaries().keys().map(String::as_str).collect();
+        out += &format!("  boundaries: {}\n", names.join(", "));
+        if spec.supports.is_empty() {
+            out += "  supports: none (held by contact only)\n";
+        }
+        for s in &spec.supports {
+            let comp = match s.component {
+                Component::X => "u_x",
+                Component::Y => "u_y",
+                Component::Both => "u_x, u_y",
+                Component::Normal => "u_n (symmetry)",
+            };
+            out += &format!("  support: {comp} = {} on {}\n", sig(s.value), s.boundary);
+        }
+        for l in &spec.loads {
+            out += &match l {
+                LoadSpec::Pressure { boundary, value } => {
+                    format!("  load: pressure {} on {boundary}\n", sig(*value))
+                }
+                LoadSpec::Traction { boundary, value } => {
+                    format!("  load: traction {} on {boundary}\n", vec2(*value))
+                }
+                LoadSpec::BodyForce { value } => format!("  load: body force {}\n", vec2(*value)),
+            };
+        }
+    }
+    for (p, pair) in model.pairs.iter().enumerate() {
+        let (a, b) = (&model.bodies[pair.bodies[0]], &model.bodies[pair.bodies[1]]);
+        let theta = pair.penalty.theta(model.plane, &a.material, &b.material);
+        let penalty = match pair.penalty {
+            Penalty::Theta(_) => "given".to_string(),
+            Penalty::RodModel { c, h } => format!("rod model c = {c}, h = {h}"),
+        };
+        out += &format!(
+            "contact pair {}: {}.{} with {}.{}, θ = {} ({penalty}){}\n",
+            pair.name,
+            a.name,
+            pair.boundaries[0],
+            b.name,
+            pair.boundaries[1],
+            sig(theta),
+            if pair.profile.is_some() {
+                ", with a gap profile"
+            } else {
+                ""
+            }
+        );
+        for (side, body) in [a, b].into_iter().enumerate() {
+            let points: Vec<_> = interface
+                .points
+                .iter()
+                .filter(|q| q.pair == p && q.body == pair.bodies[side])
+                .collect();
+            let partnered: Vec<_> = points.iter().filter(|q| q.has_partner()).collect();
+            let min_gap = partnered
+                .iter()
+                .map(|q| q.gap)
+                .fold(f64::INFINITY, f64::min);
+            let gap = if partnered.is_empty() {
+                String::new()
+            } else {
+                format!(", smallest initial gap {}", sig(min_gap))
+            };
+            out += &format!(
+                "  {}: {} contact points, {} facing {}{gap}\n",
+                body.name,
+                points.len(),
+                partnered.len(),
+                [b, a][side].name
+            );
+        }
+    }
+    let threads = loaded
+        .threads
+        .map_or("all cores".to_string(), |n| n.to_string());
+    out += &format!(
+        "solver: method {}, gamma {}, tol {:e}, max-iter {}, u0 {:e}, u-prev {:e}, threads {threads}\n",
+        settings.method,
+        match settings.gamma {
+            Gamma::Auto => "auto".to_string(),
+            Gamma::Constant(g) => g.to_string(),
+        },
+        settings.tol,
+        settings.max_iter,
+        settings.u0,
+        settings.u_prev
+    );
+    out
+}
+
+fn mesh_text(mesh: &MeshSpec) -> String {
+    match mesh {
+        MeshSpec::Rectangle {
+            x,
+            y,
+            nx,
+            ny,
+            mirror,
+            ..
+        } => format!(
+            "rectangle [{}, {}] × [{}, {}], {nx} × {ny} cells{}",
+            x[0],
+            x[1],
+            y[0],
+            y[1],
+            if *mirror { ", mirrored" } else { "" }
+        ),
+        MeshSpec::Gmsh { file, .. } => format!("gmsh file {}", file.display()),
+    }
+}

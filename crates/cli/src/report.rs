@@ -1,0 +1,174 @@
+//! Console text: the per-iteration table, the per-pair contact report and number formatting.
+
+use std::fmt::Write as _;
+use std::io::IsTerminal;
+
+use contactdd_ddm::output::applied_load;
+use contactdd_ddm::solution::PairResult;
+use contactdd_ddm::{Model, Record};
+
+/// A number with 4 significant digits: fixed notation for moderate magnitudes, else exponent.
+pub fn sig(x: f64) -> String {
+    let m = x.abs();
+    if x == 0.0 {
+        "0".into()
+    } else if (1e-3..1e6).contains(&m) {
+        let decimals = (3 - m.log10().floor() as i32).max(0) as usize;
+        format!("{x:.decimals$}")
+    } else {
+        format!("{x:.3e}")
+    }
+}
+
+/// A 2D vector as `(x, y)`.
+pub fn vec2(v: [f64; 2]) -> String {
+    format!("({}, {})", sig(v[0]), sig(v[1]))
+}
+
+/// Writes a progress note to stderr, only when stderr is a terminal (never into logs or pipes).
+pub fn progress(note: &str) {
+    if std::io::stderr().is_terminal() {
+        eprintln!("{note}");
+    }
+}
+
+/// The per-iteration table: k, γ, then per body the relative change, the number of closed contact
+/// points and the total contact force.
+pub struct IterationTable {
+    bodies: Vec<String>,
+}
+
+const CHANGE_WIDTH: usize = 9;
+const ACTIVE_WIDTH: usize = 6;
+const FORCE_WIDTH: usize = 10;
+
+impl IterationTable {
+    /// A table for the bodies of `model`.
+    pub fn new(model: &Model) -> IterationTable {
+        IterationTable {
+            bodies: model.bodies.iter().map(|b| b.name.clone()).collect(),
+        }
+    }
+
+    /// Two header lines: the column groups, then the body names.
+    pub fn header(&self) -> String {
+        let n = self.bodies.len();
+        let group = |title: &str, width: usize| format!("  {title:<w$}", w = n * width);
+        let mut top = format!("{:>5}  {:>6}", "", "");
+        top += &group("relative change", CHANGE_WIDTH);
+        top += &group("closed points", ACTIVE_WIDTH);
+        top += &group("contact force", FORCE_WIDTH);
+        let mut names = format!("{:>5}  {:>6}", "k", "gamma");
+        for (width, gap) in [(CHANGE_WIDTH, 2), (ACTIVE_WIDTH, 2), (FORCE_WIDTH, 2)] {
+            names += &" ".repeat(gap);
+            for b in &self.bodies {
+                let short: String = b.chars().take(width - 1).collect();
+                let _ = write!(names, "{short:>width$}");
+            }
+        }
+        format!("{}\n{}", top.trim_end(), names)
+    }
+
+    /// One iteration's line.
+    pub fn line(&self, r: &Record) -> String {
+        let mut s = format!("{:>5}  {:>6.4}  ", r.k, r.gamma);
+        for x in &r.rel_change {
+            let _ = write!(s, "{:>w$}", format!("{x:.2e}"), w = CHANGE_WIDTH);
+        }
+        s += "  ";
+        for a in &r.active {
+            let _ = write!(s, "{a:>w$}", w = ACTIVE_WIDTH);
+        }
+        s += "  ";
+        for f in &r.contact_force {
+            let _ = write!(s, "{:>w$}", sig(*f), w = FORCE_WIDTH);
+        }
+        s
+    }
+}
+
+/// Lines describing each pair's result: closed points, largest pressure, contact forces on both
+/// sides and their balance.
+pub fn pair_report(pairs: &[PairResult], theta: &[f64]) -> Vec<String> {
+    let mut lines = Vec::new();
+    for (p, pair) in pairs.iter().enumerate() {
+        let theta = theta
+            .get(p)
+            .map_or(String::new(), |t| format!(" (θ = {})", sig(*t)));
+        lines.push(format!("contact pair {}{theta}:", pair.name));
+        let count = |side: usize| {
+            let idx = (0..pair.side.len()).filter(move |&i| pair.side[i] == side);
+            (idx.clone().filter(|&i| pair.closed[i]).count(), idx.count())
+        };
+        let (c0, n0) = count(0);
+        let (c1, n1) = count(1);
+        lines.push(format!(
+            "  closed points: {} {c0} of {n0}, {} {c1} of {n1}",
+            pair.bodies[0], pair.bodies[1]
+        ));
+        // Pressure is σ_n ≤ 0; the largest pressure is the most negative σ_n.
+        let peak = (0..pair.pressure.len())
+            .filter(|&i| pair.pressure[i].is_finite())
+            .min_by(|&a, &b| pair.pressure[a].total_cmp(&pair.pressure[b]));
+        match peak {
+            Some(i) if pair.pressure[i] < 0.0 => lines.push(format!(
+                "  max contact pressure |σn| = {} at {} on {}",
+                sig(-pair.pressure[i]),
+                vec2([pair.x[i], pair.y[i]]),
+                pair.bodies[pair.side[i]]
+            )),
+            _ => lines.push("  no contact pressure: the bodies do not touch".into()),
+        }
+        let (f0, f1) = (pair.force_on(0), pair.force_on(1));
+        let scale = f0[0].hypot(f0[1]).max(f1[0].hypot(f1[1]));
+        let balance = if scale > 0.0 {
+            format!(
+                "; balance |F1 + F2| / |F| = {:.1e}",
+                (f0[0] + f1[0]).hypot(f0[1] + f1[1]) / scale
+            )
+        } else {
+            String::new()
+        };
+        lines.push(format!(
+            "  contact force on {} {}, on {} {}{balance}",
+            pair.bodies[0],
+            vec2(f0),
+            pair.bodies[1],
+            vec2(f1)
+        ));
+    }
+    lines
+}
+
+/// `applied loads: lower (0, 8400), upper (0, -8400)`.
+pub fn applied_loads(model: &Model) -> String {
+    let items: Vec<String> = model
+        .bodies
+        .iter()
+        .map(|b| format!("{} {}", b.name, vec2(applied_load(&b.load))))
+        .collect();
+    format!("applied loads: {}", items.join(", "))
+}
+
+/// `time: phase 0.012 s, …` in the given order.
+pub fn timing<'a>(phases: impl IntoIterator<Item = (&'a str, f64)>) -> String {
+    let items: Vec<String> = phases
+        .into_iter()
+        .map(|(name, s)| format!("{name} {s:.3} s"))
+        .collect();
+    format!("time: {}", items.join(", "))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn significant_digits() {
+        assert_eq!(sig(8400.0), "8400");
+        assert_eq!(sig(0.12345), "0.1235");
+        assert_eq!(sig(-2.5), "-2.500");
+        assert_eq!(sig(4.333e-7), "4.333e-7");
+        assert_eq!(sig(0.0), "0");
+    }
+}

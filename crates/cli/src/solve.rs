@@ -1,0 +1,217 @@
+//! `contactdd solve` (domain decomposition) and `contactdd monolithic` (the reference): load the
+//! file, apply the command-line overrides, prepare, solve while printing one line per iteration,
+//! write the result folder, print the summary.
+
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+
+use anyhow::{Context, Result};
+
+use contactdd_ddm::contact::Interface;
+use contactdd_ddm::output::{safe_file_name, write_monolithic_results, write_results};
+use contactdd_ddm::{prepare, solve as dd_solve, solve_monolithic, Hooks, Model, Record};
+
+use crate::args::{Common, MonolithicArgs, SolveArgs};
+use crate::report::{applied_loads, pair_report, progress, timing, IterationTable};
+use crate::{load, with_threads, Exit};
+
+/// Applies `--tol`, `--max-iter` and `--threads` to the file's settings; returns the thread count.
+pub fn apply_common(
+    common: &Common,
+    settings: &mut contactdd_ddm::Settings,
+    file_threads: Option<usize>,
+) -> Option<usize> {
+    if let Some(t) = common.tol {
+        settings.tol = t;
+    }
+    if let Some(k) = common.max_iter {
+        settings.max_iter = usize::try_from(k).unwrap_or(usize::MAX);
+    }
+    common
+        .threads
+        .map(|n| usize::try_from(n).unwrap_or(usize::MAX))
+        .or(file_threads)
+}
+
+/// `contactdd solve`.
+pub fn solve(args: SolveArgs) -> Result<Exit> {
+    let start = Instant::now();
+    let loaded = load(&args.file)?;
+    let t_load = start.elapsed().as_secs_f64();
+    let mut settings = loaded.settings.clone();
+    if let Some(m) = args.method {
+        settings.method = m;
+    }
+    if let Some(g) = args.gamma {
+        settings.gamma = g;
+    }
+    let threads = apply_common(&args.common, &mut settings, loaded.threads);
+    let model = &loaded.model;
+    let out = args
+        .out
+        .clone()
+        .unwrap_or_else(|| default_dir(model, "out"));
+    let quiet = args.quiet;
+
+    with_threads(threads, || {
+        if !quiet {
+            progress(&format!(
+                "assembling and factorising {}…",
+                count(model.bodies.len(), "body", "bodies")
+            ));
+        }
+        let prepared = prepare(model).map_err(|e| anyhow::anyhow!("{e}"))?;
+        let table = IterationTable::new(model);
+        if !quiet {
+            say!(
+                "solving {}: {}, {}, method {}, gamma {}, tol {:e}, max-iter {}",
+                model.name,
+                count(model.bodies.len(), "body", "bodies"),
+                count(model.pairs.len(), "contact pair", "contact pairs"),
+                settings.method,
+                settings.gamma,
+                settings.tol,
+                settings.max_iter
+            );
+            say!("{}", table.header());
+        }
+        let print_line = |r: &Record| say!("{}", table.line(r));
+        let hooks = Hooks {
+            on_iteration: if quiet { None } else { Some(&print_line) },
+            cancel: None,
+        };
+        let sol =
+            dd_solve(model, &prepared, &settings, hooks).map_err(|e| anyhow::anyhow!("{e}"))?;
+        let written = write_results(&out, model, &sol)
+            .with_context(|| format!("cannot write the results to '{}'", out.display()))?;
+
+        let outcome = if sol.converged {
+            format!(
+                "converged in {} iterations ({}, gamma {})",
+                sol.iterations, sol.method, sol.gamma
+            )
+        } else {
+            format!(
+                "NOT converged: {}",
+                sol.message.as_deref().unwrap_or("unknown reason")
+            )
+        };
+        if quiet {
+            say!("{outcome}; results in {}", out.display());
+        } else {
+            say!("");
+            say!("{outcome}");
+            for line in pair_report(&sol.contact, &sol.theta) {
+                say!("{line}");
+            }
+            say!("{}", applied_loads(model));
+            let mut phases = vec![("load", t_load)];
+            for key in [
+                "contact_setup",
+                "assemble_factor_condense",
+                "iterate",
+                "recover",
+                "post",
+            ] {
+                if let Some(&s) = sol.timing.get(key) {
+                    phases.push((key, s));
+                }
+            }
+            phases.push(("total", start.elapsed().as_secs_f64()));
+            say!("{}", timing(phases));
+            say!("results: {}", files(&out, &written));
+        }
+        if sol.converged {
+            Ok(Exit::Success)
+        } else {
+            eprintln!(
+                "warning: not converged; the last iterate was written to '{}'",
+                out.display()
+            );
+            Ok(Exit::NotConverged)
+        }
+    })
+}
+
+/// `contactdd monolithic`.
+pub fn monolithic(args: MonolithicArgs) -> Result<Exit> {
+    let start = Instant::now();
+    let loaded = load(&args.file)?;
+    let model = &loaded.model;
+    let threads = args
+        .threads
+        .map(|n| usize::try_from(n).unwrap_or(usize::MAX))
+        .or(loaded.threads);
+    let out = args
+        .out
+        .clone()
+        .unwrap_or_else(|| default_dir(model, "monolithic-out"));
+    with_threads(threads, || {
+        // Contact geometry errors are input errors (exit 1); a Newton failure is exit 2.
+        Interface::new(model).map_err(|e| anyhow::anyhow!("{e}"))?;
+        progress("solving all bodies at once by semismooth Newton…");
+        let sol = match solve_monolithic(model) {
+            Ok(sol) => sol,
+            Err(e) => {
+                eprintln!("error: monolithic solve failed: {e}");
+                return Ok(Exit::NotConverged);
+            }
+        };
+        let written = write_monolithic_results(&out, model, &sol)
+            .with_context(|| format!("cannot write the results to '{}'", out.display()))?;
+        let theta: Vec<f64> = model
+            .pairs
+            .iter()
+            .map(|p| {
+                let (a, b) = (&model.bodies[p.bodies[0]], &model.bodies[p.bodies[1]]);
+                p.penalty.theta(model.plane, &a.material, &b.material)
+            })
+            .collect();
+        say!(
+            "monolithic reference for {}: {} semismooth Newton steps",
+            model.name,
+            sol.newton_steps
+        );
+        if sol.rigid_modes.is_empty() {
+            say!("rigid modes fixed: none");
+        } else {
+            say!("rigid modes fixed:");
+            for m in &sol.rigid_modes {
+                say!("  {m}");
+            }
+        }
+        for line in pair_report(&sol.contact, &theta) {
+            say!("{line}");
+        }
+        say!("{}", applied_loads(model));
+        say!(
+            "{}",
+            timing([
+                ("solve", sol.seconds),
+                ("total", start.elapsed().as_secs_f64())
+            ])
+        );
+        say!("results: {}", files(&out, &written));
+        Ok(Exit::Success)
+    })
+}
+
+/// `./<problem name>-<suffix>`.
+fn default_dir(model: &Model, suffix: &str) -> PathBuf {
+    PathBuf::from(format!("{}-{suffix}", safe_file_name(&model.name)))
+}
+
+/// `dir/ (a, b, c)`.
+fn files(dir: &Path, written: &[PathBuf]) -> String {
+    let names: Vec<String> = written
+        .iter()
+        .filter_map(|p| p.file_name())
+        .map(|n| n.to_string_lossy().into_owned())
+        .collect();
+    format!("{}/ ({})", dir.display(), names.join(", "))
+}
+
+/// `1 body`, `2 bodies`.
+pub fn count(n: usize, one: &str, many: &str) -> String {
+    format!("{n} {}", if n == 1 { one } else { many })
+}

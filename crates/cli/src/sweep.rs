@@ -1,0 +1,90 @@
+//! `contactdd sweep`: prepare once, run every method with every γ, print the table of iteration
+//! counts (rows γ, columns methods) and write it as CSV.
+
+use std::path::PathBuf;
+
+use anyhow::{Context, Result};
+
+use contactdd_ddm::output::{safe_file_name, sweep_csv, write_atomic};
+use contactdd_ddm::sweep::SweepRun;
+use contactdd_ddm::{prepare, sweep as dd_sweep, Gamma, Method};
+
+use crate::args::SweepArgs;
+use crate::report::progress;
+use crate::solve::{apply_common, count};
+use crate::{load, with_threads, Exit};
+
+/// `contactdd sweep`.
+pub fn sweep(args: SweepArgs) -> Result<Exit> {
+    let loaded = load(&args.file)?;
+    let mut settings = loaded.settings.clone();
+    let threads = apply_common(&args.common, &mut settings, loaded.threads);
+    let model = &loaded.model;
+    let (methods, gammas) = (&args.method.0, &args.gamma.0);
+    let out = args
+        .out
+        .clone()
+        .unwrap_or_else(|| PathBuf::from(format!("{}-sweep.csv", safe_file_name(&model.name))));
+    let runs = with_threads(threads, || {
+        progress(&format!(
+            "assembling and factorising {}…",
+            count(model.bodies.len(), "body", "bodies")
+        ));
+        let prepared = prepare(model).map_err(|e| anyhow::anyhow!("{e}"))?;
+        progress(&format!(
+            "running {} × {} = {} solves…",
+            count(methods.len(), "method", "methods"),
+            count(gammas.len(), "gamma", "gammas"),
+            methods.len() * gammas.len()
+        ));
+        Ok(dd_sweep(model, &prepared, methods, gammas, &settings))
+    })?;
+    write_atomic(&out, sweep_csv(&runs).as_bytes())
+        .with_context(|| format!("cannot write '{}'", out.display()))?;
+    say!(
+        "sweep of {}: iterations m to reach tol {:e} (max-iter {}); div@k = diverged at \
+         iteration k, max = not converged within max-iter",
+        model.name,
+        settings.tol,
+        settings.max_iter
+    );
+    say!("{}", table(methods, gammas, &runs).trim_end());
+    say!("wrote {}", out.display());
+    Ok(Exit::Success)
+}
+
+/// The table: one row per γ, one column per method.
+fn table(methods: &[Method], gammas: &[Gamma], runs: &[SweepRun]) -> String {
+    let widths: Vec<usize> = methods.iter().map(|m| m.name().len().max(7)).collect();
+    let mut s = format!("{:>8}", "gamma");
+    for (m, w) in methods.iter().zip(&widths) {
+        s += &format!("  {:>w$}", m.name());
+    }
+    s.push('\n');
+    for g in gammas {
+        let key = match *g {
+            Gamma::Constant(v) => Some(v),
+            Gamma::Auto => None,
+        };
+        s += &format!("{:>8}", g.to_string());
+        for (m, w) in methods.iter().zip(&widths) {
+            let run = runs.iter().find(|r| r.method == *m && r.gamma == key);
+            s += &format!("  {:>w$}", run.map_or("?".into(), cell));
+        }
+        s.push('\n');
+    }
+    s
+}
+
+/// `m` when converged, `max` at the iteration cap, `div@k` when it broke down at iteration k.
+fn cell(run: &SweepRun) -> String {
+    if run.converged {
+        run.iterations.to_string()
+    } else if run.reason.starts_with("max") {
+        "max".into()
+    } else if run.reason == "interrupted" {
+        "int".into()
+    } else {
+        format!("div@{}", run.iterations)
+    }
+}

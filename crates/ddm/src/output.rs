@@ -1,0 +1,442 @@
+//! Result files of a solve: `summary.json`, `contact.csv`, `history.csv` and one `.vtu` per body,
+//! plus the CSV table of a γ sweep.
+//!
+//! The text builders ([`summary_json`], [`contact_csv`], [`history_csv`], [`sweep_csv`]) only
+//! format; [`write_results`] writes a whole result folder. Every file is written to a temporary
+//! file in the target folder and then renamed, so a reader (or a crash mid-write) never leaves a
+//! half-written file behind.
+//!
+//! Non-finite numbers: JSON has no NaN or infinity, so every non-finite value in `summary.json`
+//! becomes `null` (e.g. the gap of a contact point whose normal ray misses the partner body, or the
+//! relative change of an iteration that broke down). The CSV files write such values as `inf`,
+//! `-inf` or `NaN`, which Python's `float()`, numpy and pandas read back.
+//!
+//! `summary.json` keys:
+//!
+//! | key         | value                                                                      |
+//! |-------------|----------------------------------------------------------------------------|
+//! | `converged` | true if every body met the tolerance                                       |
+//! | `iterations`| iterations taken (m)                                                       |
+//! | `method`    | method name (`newton-kurchatov`, …)                                         |
+//! | `gamma`     | the constant γ, or `"auto"`                                                |
+//! | `theta`     | penalty θ per contact pair                                                 |
+//! | `message`   | `null` when converged, else why not                                        |
+//! | `history`   | per iteration `{k, gamma, rel_change, active, contact_force}` (per body)   |
+//! | `bodies`    | per body `{name, nodes, elements, dofs, order, applied_load}`               |
+//! | `contact`   | per pair `{name, bodies, x, y, gap, pressure, status, force}`              |
+//! | `timing_s`  | wall time per phase, seconds                                               |
+//! | `version`   | contactdd version                                                          |
+//!
+//! `dofs` counts the unknowns (2 per node minus the prescribed ones); `applied_load` is the total
+//! applied force `[fx, fy]`. In `contact`, the arrays have one entry per contact point of both
+//! sides; `status` is `closed` (d − s < 0, the point carries pressure), `open`, or `no-partner`
+//! (the normal ray misses the other body: infinite gap, written as `null`); `force` holds the total
+//! contact force `[fx, fy]` on each of the two bodies.
+
+use std::fmt::Write as _;
+use std::io::{Error, ErrorKind, Write as _};
+use std::path::{Path, PathBuf};
+use std::sync::atomic::{AtomicUsize, Ordering};
+
+use serde_json::{json, Value};
+
+use contactdd_core::vtu::{write_vtu, PointField};
+use contactdd_core::Order;
+
+use crate::model::Model;
+use crate::monolithic::MonolithicSolution;
+use crate::relaxation::Gamma;
+use crate::solution::{BodyResult, PairResult, Solution};
+use crate::sweep::SweepRun;
+
+/// A JSON number, or `null` for NaN and ±infinity (which JSON cannot represent).
+pub fn json_number(x: f64) -> Value {
+    // `From<f64>` maps non-finite values to `Value::Null`; spelled out here because the file
+    // format depends on it.
+    if x.is_finite() {
+        Value::from(x)
+    } else {
+        Value::Null
+    }
+}
+
+fn json_numbers(xs: &[f64]) -> Value {
+    Value::Array(xs.iter().map(|&x| json_number(x)).collect())
+}
+
+/// The status of a contact point: `closed`, `open`, or `no-partner` (infinite gap).
+pub fn point_status(pair: &PairResult, i: usize) -> &'static str {
+    if !pair.gap[i].is_finite() {
+        "no-partner"
+    } else if pair.closed[i] {
+        "closed"
+    } else {
+        "open"
+    }
+}
+
+/// `summary.json` of a DD solve (keys in the module docs).
+pub fn summary_json(model: &Model, sol: &Solution) -> Value {
+    let history: Vec<Value> = sol
+        .history
+        .iter()
+        .map(|r| {
+            json!({
+                "k": r.k,
+                "gamma": json_number(r.gamma),
+                "rel_change": json_numbers(&r.rel_change),
+                "active": r.active,
+                "contact_force": json_numbers(&r.contact_force),
+            })
+        })
+        .collect();
+    let timing: serde_json::Map<String, Value> = sol
+        .timing
+        .iter()
+        .map(|(phase, &s)| (phase.clone(), json_number(s)))
+        .collect();
+    json!({
+        "converged": sol.converged,
+        "iterations": sol.iterations,
+        "method": sol.method.name(),
+        "gamma": gamma_json(sol.gamma),
+        "theta": json_numbers(&sol.theta),
+        "message": sol.message,
+        "history": history,
+        "bodies": bodies_json(model),
+        "contact": contact_json(&sol.contact),
+        "timing_s": timing,
+        "version": env!("CARGO_PKG_VERSION"),
+    })
+}
+
+/// `summary.json` of a monolithic reference solve: `solver = "monolithic"`, `newton_steps`,
+/// `rigid_modes` (the fixed rigid modes, as text), `bodies`, `contact` and `timing_s` as in
+/// [`summary_json`], and `version`.
+pub fn monolithic_summary_json(model: &Model, sol: &MonolithicSolution) -> Value {
+    json!({
+        "solver": "monolithic",
+        "converged": true,
+        "newton_steps": sol.newton_steps,
+        "rigid_modes": sol.rigid_modes,
+        "bodies": bodies_json(model),
+        "contact": contact_json(&sol.contact),
+        "timing_s": { "total": json_number(sol.seconds) },
+        "version": env!("CARGO_PKG_VERSION"),
+    })
+}
+
+fn gamma_json(gamma: Gamma) -> Value {
+    match gamma {
+        Gamma::Constant(g) => json_number(g),
+        Gamma::Auto => Value::from("auto"),
+    }
+}
+
+/// Total applied force `[fx, fy]` of a body (the sum of its nodal load vector).
+pub fn applied_load(load: &[f64]) -> [f64; 2] {
+    load.chunks(2).fold([0.0, 0.0], |s, f| {
+        [s[0] + f[0], s[1] + f.get(1).copied().unwrap_or(0.0)]
+    })
+}
+
+fn bodies_json(model: &Model) -> Value {
+    model
+        .bodies
+        .iter()
+        .map(|b| {
+            let nodes = b.mesh.num_nodes();
+            let prescribed = b.constraints.fixed().count();
+            json!({
+                "name": b.name,
+                "nodes": nodes,
+                "elements": b.mesh.num_cells(),
+                "dofs": (2 * nodes).saturating_sub(prescribed),
+                "order": match b.mesh.order() {
+                    Order::P1 => "p1",
+                    Order::P2 => "p2",
+                },
+                "applied_load": json_numbers(&applied_load(&b.load)),
+            })
+        })
+        .collect()
+}
+
+fn contact_json(pairs: &[PairResult]) -> Value {
+    pairs
+        .iter()
+        .map(|p| {
+            let status: Vec<&str> = (0..p.gap.len()).map(|i| point_status(p, i)).collect();
+            let body: Vec<&str> = p.side.iter().map(|&s| p.bodies[s].as_str()).collect();
+            json!({
+                "name": p.name,
+                "bodies": p.bodies,
+                "body": body,
+                "x": json_numbers(&p.x),
+                "y": json_numbers(&p.y),
+                "gap": json_numbers(&p.gap),
+                "pressure": json_numbers(&p.pressure),
+                "status": status,
+                "force": [json_numbers(&p.force_on(0)), json_numbers(&p.force_on(1))],
+            })
+        })
+        .collect()
+}
+
+/// `contact.csv` of a solve: one row per contact point.
+pub fn contact_csv(sol: &Solution) -> String {
+    pairs_csv(&sol.contact)
+}
+
+/// The contact CSV of any list of pair results, with header `pair,body,x,y,gap,pressure,status`.
+pub fn pairs_csv(pairs: &[PairResult]) -> String {
+    let mut out = String::from("pair,body,x,y,gap,pressure,status\n");
+    for p in pairs {
+        for i in 0..p.gap.len() {
+            let _ = writeln!(
+                out,
+                "{},{},{},{},{},{},{}",
+                csv_field(&p.name),
+                csv_field(&p.bodies[p.side[i]]),
+                num(p.x[i]),
+                num(p.y[i]),
+                num(p.gap[i]),
+                num(p.pressure[i]),
+                point_status(p, i)
+            );
+        }
+    }
+    out
+}
+
+/// `history.csv`: one row per iteration, header
+/// `k,gamma,rel_change_<body>…,active_<body>…,contact_force_<body>…`.
+pub fn history_csv(sol: &Solution) -> String {
+    let mut out = String::from("k,gamma");
+    for prefix in ["rel_change", "active", "contact_force"] {
+        for b in &sol.bodies {
+            out.push(',');
+            out.push_str(&csv_field(&format!("{prefix}_{}", b.name)));
+        }
+    }
+    out.push('\n');
+    for r in &sol.history {
+        let _ = write!(out, "{},{}", r.k, num(r.gamma));
+        for &x in &r.rel_change {
+            let _ = write!(out, ",{}", num(x));
+        }
+        for &a in &r.active {
+            let _ = write!(out, ",{a}");
+        }
+        for &f in &r.contact_force {
+            let _ = write!(out, ",{}", num(f));
+        }
+        out.push('\n');
+    }
+    out
+}
+
+/// The table of a γ sweep, header `method,gamma,iterations,converged,reason` (γ `auto` for the
+/// Aitken rule, reason empty when converged).
+pub fn sweep_csv(runs: &[SweepRun]) -> String {
+    let mut out = String::from("method,gamma,iterations,converged,reason\n");
+    for r in runs {
+        let gamma = r.gamma.map_or_else(|| "auto".to_string(), num);
+        let _ = writeln!(
+            out,
+            "{},{gamma},{},{},{}",
+            r.method.name(),
+            r.iterations,
+            r.converged,
+            csv_field(&r.reason)
+        );
+    }
+    out
+}
+
+/// Writes a solve's result folder (created if needed): `summary.json`, `contact.csv`,
+/// `history.csv` and `<body>.vtu` per body. Returns the paths written.
+pub fn write_results(dir: &Path, model: &Model, sol: &Solution) -> std::io::Result<Vec<PathBuf>> {
+    std::fs::create_dir_all(dir)?;
+    let summary = summary_json(model, sol);
+    let mut written = Vec::new();
+    for (name, text) in [
+        ("summary.json", pretty(&summary)?),
+        ("contact.csv", contact_csv(sol)),
+        ("history.csv", history_csv(sol)),
+    ] {
+        let path = dir.join(name);
+        write_atomic(&path, text.as_bytes())?;
+        written.push(path);
+    }
+    written.extend(write_body_vtus(dir, &sol.bodies)?);
+    Ok(written)
+}
+
+/// Writes a monolithic solve's result folder: `summary.json` ([`monolithic_summary_json`]),
+/// `contact.csv` and `<body>.vtu` per body. Returns the paths written.
+pub fn write_monolithic_results(
+    dir: &Path,
+    model: &Model,
+    sol: &MonolithicSolution,
+) -> std::io::Result<Vec<PathBuf>> {
+    std::fs::create_dir_all(dir)?;
+    let mut written = Vec::new();
+    for (name, text) in [
+        (
+            "summary.json",
+            pretty(&monolithic_summary_json(model, sol))?,
+        ),
+        ("contact.csv", pairs_csv(&sol.contact)),
+    ] {
+        let path = dir.join(name);
+        write_atomic(&path, text.as_bytes())?;
+        written.push(path);
+    }
+    written.extend(write_body_vtus(dir, &sol.bodies)?);
+    Ok(written)
+}
+
+/// Writes `<body>.vtu` per body into `dir` with point data `displacement` (vector), `sigma_xx`,
+/// `sigma_yy`, `sigma_xy`, `sigma_zz`, `von_mises` and `contact_pressure` (scalars, which
+/// ParaView colours by directly). File names are [`safe_file_name`]s of the body names, made
+/// unique.
+pub fn write_body_vtus(dir: &Path, bodies: &[BodyResult]) -> std::io::Result<Vec<PathBuf>> {
+    let mut written: Vec<PathBuf> = Vec::with_capacity(bodies.len());
+    for (b, body) in bodies.iter().enumerate() {
+        let mut path = dir.join(format!("{}.vtu", safe_file_name(&body.name)));
+        if written.contains(&path) {
+            path = dir.join(format!("{}-{b}.vtu", safe_file_name(&body.name)));
+        }
+        let component = |k: usize| body.stress.iter().map(|s| s[k]).collect::<Vec<f64>>();
+        let (sxx, syy, sxy, szz) = (component(0), component(1), component(2), component(3));
+        let scalar = |name, values| PointField {
+            name,
+            components: 1,
+            values,
+        };
+        let fields = [
+            scalar("sigma_xx", &sxx),
+            scalar("sigma_yy", &syy),
+            scalar("sigma_xy", &sxy),
+            scalar("sigma_zz", &szz),
+            scalar("von_mises", &body.von_mises),
+            scalar("contact_pressure", &body.contact_pressure),
+        ];
+        write_vtu(&path, &body.mesh, Some(&body.displacement), &fields)?;
+        written.push(path);
+    }
+    Ok(written)
+}
+
+/// A name usable as a file name on every platform: letters, digits, `-`, `_` and `.` are kept,
+/// anything else becomes `_` (an empty name becomes `_`).
+pub fn safe_file_name(name: &str) -> String {
+    let s: String = name
+        .chars()
+        .map(|c| {
+            if c.is_ascii_alphanumeric() || matches!(c, '-' | '_' | '.') {
+                c
+            } else {
+                '_'
+            }
+        })
+        .collect();
+    if s.is_empty() || s.chars().all(|c| c == '.') {
+        "_".into()
+    } else {
+        s
+    }
+}
+
+/// Writes `bytes` to `path` through a temporary file in the same folder and a rename, so that
+/// `path` is either the old file or the complete new one.
+pub fn write_atomic(path: &Path, bytes: &[u8]) -> std::io::Result<()> {
+    let file_name = path.file_name().ok_or_else(|| {
+        Error::new(
+            ErrorKind::InvalidInput,
+            format!("'{}' is not a file path", path.display()),
+        )
+    })?;
+    // Unique per process and call, so that concurrent writers never share a temporary file.
+    static COUNTER: AtomicUsize = AtomicUsize::new(0);
+    let mut temp_name = std::ffi::OsString::from(".");
+    temp_name.push(file_name);
+    temp_name.push(format!(
+        ".{}-{}.tmp",
+        std::process::id(),
+        COUNTER.fetch_add(1, Ordering::Relaxed)
+    ));
+    let temp = path.with_file_name(temp_name);
+    let result = (|| {
+        let mut file = std::fs::File::create(&temp)?;
+        file.write_all(bytes)?;
+        file.sync_all()?;
+        drop(file);
+        std::fs::rename(&temp, path)
+    })();
+    if result.is_err() {
+        // Best effort: the original error is the one worth reporting.
+        let _ = std::fs::remove_file(&temp);
+    }
+    result
+}
+
+fn pretty(value: &Value) -> std::io::Result<String> {
+    let mut text = serde_json::to_string_pretty(value).map_err(Error::other)?;
+    text.push('\n');
+    Ok(text)
+}
+
+/// A float for CSV: the shortest text that reads back to the same value, with an exponent for very
+/// small or large magnitudes; `inf`, `-inf`, `NaN` for non-finite values.
+fn num(x: f64) -> String {
+    let m = x.abs();
+    if x == 0.0 || !x.is_finite() || (1e-4..1e15).contains(&m) {
+        format!("{x}")
+    } else {
+        format!("{x:e}")
+    }
+}
+
+/// A CSV field, quoted when it holds a comma, quote or line break.
+fn csv_field(s: &str) -> String {
+    if s.contains([',', '"', '\n', '\r']) {
+        format!("\"{}\"", s.replace('"', "\"\""))
+    } else {
+        s.to_string()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn non_finite_numbers_become_json_null() {
+        for x in [f64::NAN, f64::INFINITY, f64::NEG_INFINITY] {
+            assert_eq!(json_number(x), Value::Null);
+            assert_eq!(json!({ "v": json_number(x) }).to_string(), r#"{"v":null}"#);
+        }
+        assert_eq!(json_number(1.5), json!(1.5));
+    }
+
+    #[test]
+    fn csv_numbers_and_fields() {
+        assert_eq!(num(0.25), "0.25");
+        assert_eq!(num(-2.5e-7), "-2.5e-7");
+        assert_eq!(num(f64::INFINITY), "inf");
+        assert_eq!("-2.5e-7".parse::<f64>(), Ok(-2.5e-7));
+        assert_eq!(csv_field("a,b"), "\"a,b\"");
+        assert_eq!(csv_field("say \"x\""), "\"say \"\"x\"\"\"");
+        assert_eq!(csv_field("plain"), "plain");
+    }
+
+    #[test]
+    fn file_names_are_sanitised() {
+        assert_eq!(safe_file_name("lower"), "lower");
+        assert_eq!(safe_file_name("a/b c"), "a_b_c");
+        assert_eq!(safe_file_name(".."), "_");
+        assert_eq!(safe_file_name(""), "_");
+    }
+}
