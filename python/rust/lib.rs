@@ -1,0 +1,358 @@
+//! # contactdd-python
+//!
+//! The `contactdd._contactdd` extension module: a thin pyo3 layer over `contactdd-core` and
+//! `contactdd-ddm`. It converts numpy arrays and dicts into the Rust types and back and runs the
+//! solves with the GIL released; all numerics live in the Rust crates.
+//!
+//! Solves run on a worker thread while the calling thread, detached from the interpreter, wakes
+//! every 50 ms to check for signals: Ctrl-C sets the solver's cancel flag, the iteration stops at
+//! the next iteration boundary and `KeyboardInterrupt` is raised.
+
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::Arc;
+use std::time::Duration;
+
+use pyo3::prelude::*;
+use pyo3::types::{PyDict, PyList};
+
+use contactdd_core::{Order, Plane};
+use contactdd_ddm::benchmark::Notch;
+use contactdd_ddm::{Gamma, Hooks, Method, SetupError};
+
+mod convert;
+mod error;
+mod problem;
+mod results;
+
+use error::{convergence_error, panic_error, setup_error, ContactddError, ConvergenceError};
+use problem::{gamma, gamma_to_py, GammaArg, Overrides, Problem};
+use results::{Body, Contact, MonolithicResult, SolveResult};
+
+/// How often the waiting thread checks for Ctrl-C.
+const SIGNAL_POLL: Duration = Duration::from_millis(50);
+
+/// The methods a sweep runs by default: the three of the paper's γ study.
+const SWEEP_METHODS: [Method; 3] = [
+    Method::ActiveSet,
+    Method::NewtonChord,
+    Method::NewtonKurchatov,
+];
+
+/// Runs `work` on a worker thread with the GIL released. The calling thread checks for signals
+/// every [`SIGNAL_POLL`]; on the first one it sets the cancel flag passed to `work` and keeps
+/// waiting for `work` to return. Returns `work`'s value and the signal's exception, if any. A
+/// panic in `work` becomes a `RuntimeError`.
+fn run_interruptible<T, F>(py: Python<'_>, work: F) -> PyResult<(T, Option<PyErr>)>
+where
+    T: Send,
+    F: FnOnce(&AtomicBool) -> T + Send,
+{
+    let cancel = AtomicBool::new(false);
+    let done = AtomicBool::new(false);
+    let (out, interrupt) = py.detach(|| {
+        let caller = std::thread::current();
+        std::thread::scope(|s| {
+            let worker = s.spawn(|| {
+                let out = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| work(&cancel)));
+                done.store(true, Ordering::Release);
+                caller.unpark();
+                out
+            });
+            let mut interrupt = None;
+            while !done.load(Ordering::Acquire) {
+                std::thread::park_timeout(SIGNAL_POLL);
+                if interrupt.is_none() && !done.load(Ordering::Acquire) {
+                    if let Err(e) = Python::attach(|py| py.check_signals()) {
+                        cancel.store(true, Ordering::Relaxed);
+                        interrupt = Some(e);
+                    }
+                }
+            }
+            let out = match worker.join() {
+                Ok(out) => out,
+                Err(payload) => Err(payload),
+            };
+            (out, interrupt)
+        })
+    });
+    match out {
+        Ok(v) => Ok((v, interrupt)),
+        Err(payload) => Err(panic_error(payload)),
+    }
+}
+
+/// Runs `f` in a rayon pool of `threads` workers (`None`: the global pool).
+fn with_threads<T: Send>(
+    threads: Option<usize>,
+    f: impl FnOnce() -> Result<T, SetupError> + Send,
+) -> Result<T, SetupError> {
+    match threads {
+        None => f(),
+        Some(n) => rayon::ThreadPoolBuilder::new()
+            .num_threads(n)
+            .build()
+            .map_err(|e| {
+                SetupError::Solver(format!("threads: cannot start {n} worker threads: {e}"))
+            })?
+            .install(f),
+    }
+}
+
+/// Solves a contact problem by the penalty Robin domain decomposition.
+///
+/// Settings left at ``None`` take the problem's (its ``[solver]`` table, or
+/// :meth:`Problem.solver`). The solve releases the GIL and can be interrupted with Ctrl-C
+/// (``KeyboardInterrupt``).
+///
+/// Args:
+///     problem: the :class:`Problem`.
+///     method: ``"neumann"``, ``"robin"``, ``"active-set"``, ``"newton-chord"`` or
+///         ``"newton-kurchatov"``.
+///     gamma: relaxation parameter γ > 0, or ``"auto"``.
+///     tol: stopping tolerance ε_u.
+///     max_iter: iteration cap.
+///     u0, u_prev: initial normal displacements u⁰ₙ and u⁻¹ₙ.
+///     threads: worker threads (default: the problem's, else all cores).
+///     check: raise :class:`ConvergenceError` if the solve does not converge (default); with
+///         ``False`` the result is returned regardless (see ``Result.converged``).
+///
+/// Returns:
+///     A :class:`Result`.
+///
+/// Raises:
+///     ContactddError: bad settings, or a body that cannot be factorised.
+///     ConvergenceError: the iteration did not converge (``check=True``); ``.result`` holds the
+///         partial result.
+///     KeyboardInterrupt: interrupted.
+#[pyfunction]
+#[pyo3(signature = (problem, method = None, gamma = None, tol = None, max_iter = None, u0 = None, u_prev = None, threads = None, check = true))]
+#[allow(clippy::too_many_arguments)]
+fn solve(
+    py: Python<'_>,
+    problem: &Bound<'_, Problem>,
+    method: Option<String>,
+    gamma: Option<GammaArg>,
+    tol: Option<f64>,
+    max_iter: Option<usize>,
+    u0: Option<f64>,
+    u_prev: Option<f64>,
+    threads: Option<usize>,
+    check: bool,
+) -> PyResult<Py<SolveResult>> {
+    let (model, settings, threads) = {
+        let p = problem.borrow();
+        let o = Overrides {
+            method,
+            gamma,
+            tol,
+            max_iter,
+            u0,
+            u_prev,
+            threads,
+        };
+        (p.model()?, o.apply(&p.settings)?, threads.or(p.threads))
+    };
+    let model = Arc::new(model);
+    let m = model.clone();
+    let (out, interrupt) = run_interruptible(py, move |cancel| {
+        with_threads(threads, || {
+            let prepared = contactdd_ddm::prepare(&m)?;
+            let hooks = Hooks {
+                on_iteration: None,
+                cancel: Some(cancel),
+            };
+            contactdd_ddm::solve(&m, &prepared, &settings, hooks)
+        })
+    })?;
+    if let Some(e) = interrupt {
+        return Err(e);
+    }
+    let sol = out.map_err(setup_error)?;
+    let result = SolveResult::new(py, model, sol)?;
+    let (converged, message) = (result.is_converged(), result.failure_message());
+    let result = Py::new(py, result)?;
+    if check && !converged {
+        return Err(convergence_error(py, &message, result.into_any()));
+    }
+    Ok(result)
+}
+
+/// Runs a γ study: every method with every γ, on one preparation of the problem (assembly and
+/// factorisation are done once; the runs execute in parallel).
+///
+/// Args:
+///     problem: the :class:`Problem`.
+///     methods: method names (default: ``["active-set", "newton-chord", "newton-kurchatov"]``,
+///         the paper's).
+///     gammas: γ values (numbers, or ``"auto"``); default 0.02, 0.05, 0.1, 0.15, …, 0.85.
+///     tol, max_iter, u0, u_prev, threads: as for :func:`solve` (default: the problem's).
+///
+/// Returns:
+///     One dict per run, γ by γ and method by method: ``{"method": str, "gamma": float or
+///     "auto", "iterations": int, "converged": bool, "reason": str}`` (``reason`` is empty when
+///     converged).
+#[pyfunction]
+#[pyo3(signature = (problem, methods = None, gammas = None, tol = None, max_iter = None, u0 = None, u_prev = None, threads = None))]
+#[allow(clippy::too_many_arguments)]
+fn sweep<'py>(
+    py: Python<'py>,
+    problem: &Bound<'py, Problem>,
+    methods: Option<Vec<String>>,
+    gammas: Option<Vec<GammaArg>>,
+    tol: Option<f64>,
+    max_iter: Option<usize>,
+    u0: Option<f64>,
+    u_prev: Option<f64>,
+    threads: Option<usize>,
+) -> PyResult<Bound<'py, PyList>> {
+    let methods: Vec<Method> = match methods {
+        None => SWEEP_METHODS.to_vec(),
+        Some(names) => names
+            .iter()
+            .map(|n| {
+                n.parse::<Method>()
+                    .map_err(|e| setup_error(SetupError::Solver(format!("methods: {e}"))))
+            })
+            .collect::<PyResult<_>>()?,
+    };
+    let gammas: Vec<Gamma> = match gammas {
+        None => default_gammas(),
+        Some(gs) => gs.iter().map(gamma).collect::<PyResult<_>>()?,
+    };
+    let (model, base, threads) = {
+        let p = problem.borrow();
+        let o = Overrides {
+            tol,
+            max_iter,
+            u0,
+            u_prev,
+            threads,
+            ..Overrides::default()
+        };
+        (p.model()?, o.apply(&p.settings)?, threads.or(p.threads))
+    };
+    let (out, interrupt) = run_interruptible(py, |cancel| {
+        with_threads(threads, || {
+            let prepared = contactdd_ddm::prepare(&model)?;
+            // γ by γ, so that Ctrl-C stops the study between two values.
+            let mut runs = Vec::with_capacity(methods.len() * gammas.len());
+            for g in &gammas {
+                if cancel.load(Ordering::Relaxed) {
+                    break;
+                }
+                runs.extend(contactdd_ddm::sweep(
+                    &model,
+                    &prepared,
+                    &methods,
+                    std::slice::from_ref(g),
+                    &base,
+                ));
+            }
+            Ok(runs)
+        })
+    })?;
+    if let Some(e) = interrupt {
+        return Err(e);
+    }
+    let runs = out.map_err(setup_error)?;
+    let list = PyList::empty(py);
+    for r in runs {
+        let d = PyDict::new(py);
+        d.set_item("method", r.method.name())?;
+        let g = r.gamma.map_or(Gamma::Auto, Gamma::Constant);
+        d.set_item("gamma", gamma_to_py(py, g)?)?;
+        d.set_item("iterations", r.iterations)?;
+        d.set_item("converged", r.converged)?;
+        d.set_item("reason", r.reason)?;
+        list.append(d)?;
+    }
+    Ok(list)
+}
+
+/// γ = 0.02, 0.05, 0.1, 0.15, …, 0.85: the grid of the paper's γ study.
+fn default_gammas() -> Vec<Gamma> {
+    [0.02, 0.05]
+        .into_iter()
+        .chain((2..=17).map(|i| f64::from(i) / 20.0))
+        .map(Gamma::Constant)
+        .collect()
+}
+
+/// Solves the same penalty problem monolithically (semismooth Newton on all bodies at once): the
+/// reference the domain decomposition converges to. Releases the GIL.
+///
+/// Returns:
+///     A :class:`MonolithicResult`.
+#[pyfunction]
+fn monolithic(py: Python<'_>, problem: &Bound<'_, Problem>) -> PyResult<Py<MonolithicResult>> {
+    let model = Arc::new(problem.borrow().model()?);
+    let (out, interrupt) = run_interruptible(py, |_| contactdd_ddm::solve_monolithic(&model))?;
+    if let Some(e) = interrupt {
+        return Err(e);
+    }
+    let sol = out.map_err(setup_error)?;
+    Py::new(py, MonolithicResult::new(py, model, sol)?)
+}
+
+/// The two-body notch benchmark of the paper (method.md §5) as a :class:`Problem`.
+///
+/// Two 4 × 1 cm blocks (``lower``, ``upper``), pressed together by q = 0.01·E, with a notch of
+/// depth 0.05 cm in the gap at the symmetry line x = 4; contact pair ``notch``. The default
+/// settings are those of ``examples/notch.toml``: newton-kurchatov, γ = 0.5, ε_u = 1e-3,
+/// u⁰ₙ = 1e-4, u⁻¹ₙ = 2e-4.
+///
+/// Args:
+///     nx, ny: cells per body (32 × 16 in the paper).
+///     order: ``"p1"`` or ``"p2"``.
+#[pyfunction]
+#[pyo3(signature = (nx = 32, ny = 16, order = "p1"))]
+fn notch_benchmark(nx: usize, ny: usize, order: &str) -> PyResult<Problem> {
+    let order: Order = convert::from_name(order).map_err(|e| {
+        setup_error(SetupError::Invalid {
+            key: "order".into(),
+            message: e,
+        })
+    })?;
+    let notch = Notch {
+        nx,
+        ny,
+        order,
+        ..Notch::default()
+    };
+    let model = notch.model().map_err(setup_error)?;
+    let mut p = Problem::empty(&model.name, Plane::Strain);
+    if let Some(b) = model.bodies.first() {
+        p.materials.insert("steel".into(), b.material);
+    }
+    p.bodies = model.bodies;
+    p.pairs = model.pairs;
+    p.settings.method = Method::NewtonKurchatov;
+    p.settings.gamma = Gamma::Constant(0.5);
+    p.settings.tol = 1e-3;
+    p.settings.u0 = 1e-4;
+    p.settings.u_prev = 2e-4;
+    Ok(p)
+}
+
+/// The contactdd extension module.
+#[pymodule]
+fn _contactdd(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    let py = m.py();
+    m.add_class::<Problem>()?;
+    m.add_class::<SolveResult>()?;
+    m.add_class::<Body>()?;
+    m.add_class::<Contact>()?;
+    m.add_class::<MonolithicResult>()?;
+    m.add_function(wrap_pyfunction!(solve, m)?)?;
+    m.add_function(wrap_pyfunction!(sweep, m)?)?;
+    m.add_function(wrap_pyfunction!(monolithic, m)?)?;
+    m.add_function(wrap_pyfunction!(notch_benchmark, m)?)?;
+    m.add("ContactddError", py.get_type::<ContactddError>())?;
+    m.add("ConvergenceError", py.get_type::<ConvergenceError>())?;
+    m.add(
+        "METHODS",
+        Method::ALL.iter().map(|m| m.name()).collect::<Vec<_>>(),
+    )?;
+    m.add("__version__", env!("CARGO_PKG_VERSION"))?;
+    Ok(())
+}

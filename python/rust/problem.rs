@@ -1,0 +1,923 @@
+//! `contactdd.Problem`: a contact problem read from a TOML file or built in code.
+//!
+//! The problem holds resolved solver input (the bodies, contact pairs and iteration settings of a
+//! [`Model`]), built with the same core constructors as `contactdd_ddm::setup` (`Mesh::new`,
+//! `Constraints::fix`, `loads::load_vector`, `Material::new`) and checked with the same rules, so a
+//! bad value gets the message a problem file would get. Supports, loads and gap profiles are
+//! Python dicts deserialized into the problem-file schema (`contactdd_ddm::problem`): the same
+//! keys, kinds and defaults as the TOML tables.
+
+use std::collections::{BTreeMap, HashMap};
+use std::path::{Path, PathBuf};
+
+use numpy::{AllowTypeChange, PyArrayLike2, PyUntypedArrayMethods};
+use pyo3::exceptions::PyTypeError;
+use pyo3::prelude::*;
+use pyo3::types::PyDict;
+use serde::de::DeserializeOwned;
+
+use contactdd_core::{
+    BodyError, Constraints, Diagonal, Edge, ElasticBody, Load, Material, MaterialError, Mesh,
+    Order, Plane, Rectangle,
+};
+use contactdd_ddm::problem::{GapSpec, LoadSpec, SupportSpec};
+use contactdd_ddm::setup::MAX_RECTANGLE_CELLS;
+use contactdd_ddm::{
+    ContactPair, Gamma, GapProfile, Loaded, Method, Model, Penalty, Settings, SetupError,
+};
+
+use crate::convert::{from_name, name_of, to_json, Bad};
+use crate::error::{input_error, setup_error};
+
+/// A relaxation parameter as given from Python: a number or `"auto"`.
+#[derive(FromPyObject, Clone, Debug)]
+pub enum GammaArg {
+    /// A constant γ.
+    Value(f64),
+    /// A rule name (`"auto"`).
+    Name(String),
+}
+
+/// Solver settings given as keyword arguments; `None` keeps the current value.
+#[derive(Default)]
+pub struct Overrides {
+    pub method: Option<String>,
+    pub gamma: Option<GammaArg>,
+    pub tol: Option<f64>,
+    pub max_iter: Option<usize>,
+    pub u0: Option<f64>,
+    pub u_prev: Option<f64>,
+    pub threads: Option<usize>,
+}
+
+fn solver_error(key: &str, message: impl std::fmt::Display) -> PyErr {
+    setup_error(SetupError::Solver(format!("{key}: {message}")))
+}
+
+impl Overrides {
+    /// Applies the overrides to `base`, with the checks of a `[solver]` table.
+    pub fn apply(&self, base: &Settings) -> PyResult<Settings> {
+        let mut s = base.clone();
+        if let Some(m) = &self.method {
+            s.method = m.parse::<Method>().map_err(|e| solver_error("method", e))?;
+        }
+        if let Some(g) = &self.gamma {
+            s.gamma = gamma(g)?;
+        }
+        if let Some(tol) = self.tol {
+            if !(tol.is_finite() && tol > 0.0) {
+                return Err(solver_error(
+                    "tol",
+                    format!("must be a positive number, got {tol}"),
+                ));
+            }
+            s.tol = tol;
+        }
+        if let Some(n) = self.max_iter {
+            if n == 0 {
+                return Err(solver_error("max-iter", "must be at least 1, got 0"));
+            }
+            s.max_iter = n;
+        }
+        for (key, v, slot) in [
+            ("u0", self.u0, &mut s.u0),
+            ("u-prev", self.u_prev, &mut s.u_prev),
+        ] {
+            if let Some(v) = v {
+                if !v.is_finite() {
+                    return Err(solver_error(key, format!("must be finite, got {v}")));
+                }
+                *slot = v;
+            }
+        }
+        if self.threads == Some(0) {
+            return Err(solver_error("threads", "must be at least 1, got 0"));
+        }
+        Ok(s)
+    }
+}
+
+/// A γ argument as a γ rule.
+pub fn gamma(g: &GammaArg) -> PyResult<Gamma> {
+    match g {
+        GammaArg::Value(v) if v.is_finite() && *v > 0.0 => Ok(Gamma::Constant(*v)),
+        GammaArg::Name(s) if s == "auto" => Ok(Gamma::Auto),
+        GammaArg::Value(v) => Err(solver_error(
+            "gamma",
+            format!("must be a positive number or \"auto\", got {v}"),
+        )),
+        GammaArg::Name(s) => Err(solver_error(
+            "gamma",
+            format!("must be a positive number or \"auto\", got \"{s}\""),
+        )),
+    }
+}
+
+/// A γ rule as a Python value: a float, or `"auto"`.
+pub fn gamma_to_py(py: Python<'_>, g: Gamma) -> PyResult<Py<PyAny>> {
+    Ok(match g {
+        Gamma::Constant(v) => v.into_pyobject(py)?.into_any().unbind(),
+        Gamma::Auto => "auto".into_pyobject(py)?.into_any().unbind(),
+    })
+}
+
+/// A contact problem: materials, bodies, contact pairs and default solver settings.
+///
+/// Read one from a problem file with :meth:`Problem.from_toml` or build it in code::
+///
+///     p = contactdd.Problem(name="notch", plane="strain")
+///     p.add_material("steel", young=2.1e5, poisson=0.3)
+///     p.add_rectangle_body("lower", x=(0, 4), y=(0, 1), nx=32, ny=16, material="steel",
+///                          supports=[{"boundary": "right", "component": "x"}],
+///                          loads=[{"kind": "pressure", "boundary": "bottom", "value": 2100.0}])
+///     ...
+///     p.add_contact(bodies=("lower", "upper"), boundaries=("top", "bottom"), c=0.05, h=1.0)
+///
+/// Every ``add_*`` call checks its input at once and raises :class:`ContactddError` with the
+/// message a problem file would get.
+#[pyclass(module = "contactdd", name = "Problem")]
+pub struct Problem {
+    pub(crate) name: String,
+    pub(crate) plane: Plane,
+    pub(crate) materials: BTreeMap<String, Material>,
+    pub(crate) bodies: Vec<ElasticBody>,
+    pub(crate) pairs: Vec<ContactPair>,
+    pub(crate) settings: Settings,
+    pub(crate) threads: Option<usize>,
+}
+
+impl Problem {
+    /// An empty problem with default settings.
+    pub fn empty(name: &str, plane: Plane) -> Problem {
+        Problem {
+            name: name.to_string(),
+            plane,
+            materials: BTreeMap::new(),
+            bodies: Vec::new(),
+            pairs: Vec::new(),
+            settings: Settings::default(),
+            threads: None,
+        }
+    }
+
+    /// A problem from a resolved problem file.
+    fn from_loaded(loaded: Loaded, default_name: Option<&str>) -> PyResult<Problem> {
+        let mut materials = BTreeMap::new();
+        for (name, m) in &loaded.problem.materials {
+            let mat = Material::new(m.young, m.poisson).map_err(|e| {
+                setup_error(SetupError::Material {
+                    material: name.clone(),
+                    message: e.to_string(),
+                })
+            })?;
+            materials.insert(name.clone(), mat);
+        }
+        let name = match (&loaded.problem.name, default_name) {
+            (None, Some(d)) => d.to_string(),
+            _ => loaded.model.name,
+        };
+        Ok(Problem {
+            name,
+            plane: loaded.model.plane,
+            materials,
+            bodies: loaded.model.bodies,
+            pairs: loaded.model.pairs,
+            settings: loaded.settings,
+            threads: loaded.threads,
+        })
+    }
+
+    /// The solver input, checked as a whole: at least one body, and every body held by supports
+    /// or a contact pair (as a problem file is checked).
+    pub fn model(&self) -> PyResult<Model> {
+        if self.bodies.is_empty() {
+            return Err(setup_error(SetupError::Invalid {
+                key: "bodies".into(),
+                message: "the problem has no bodies (add one with Problem.add_body or \
+                          Problem.add_rectangle_body)"
+                    .into(),
+            }));
+        }
+        for (b, body) in self.bodies.iter().enumerate() {
+            if self.pairs.iter().any(|p| p.bodies.contains(&b)) {
+                continue;
+            }
+            if body.constraints.fixed().next().is_none() {
+                return Err(setup_error(SetupError::Floating {
+                    body: body.name.clone(),
+                }));
+            }
+            if let Err(BodyError::Floating {
+                modes, description, ..
+            }) = body.check_held(&[])
+            {
+                return Err(setup_error(body_error(
+                    &body.name,
+                    "supports",
+                    format!(
+                        "the body has no contact pair and its supports leave {modes} rigid-body \
+                         mode(s) free ({description}): it would float"
+                    ),
+                )));
+            }
+        }
+        Ok(Model {
+            name: self.name.clone(),
+            plane: self.plane,
+            bodies: self.bodies.clone(),
+            pairs: self.pairs.clone(),
+        })
+    }
+
+    fn body_index(&self) -> HashMap<&str, usize> {
+        self.bodies
+            .iter()
+            .enumerate()
+            .map(|(i, b)| (b.name.as_str(), i))
+            .collect()
+    }
+
+    fn check_new_body_name(&self, name: &str) -> PyResult<()> {
+        if name.trim().is_empty() {
+            return Err(setup_error(SetupError::Invalid {
+                key: format!("bodies[{}].name", self.bodies.len()),
+                message: "a body name must not be empty".into(),
+            }));
+        }
+        if let Some(j) = self.bodies.iter().position(|b| b.name == name) {
+            return Err(setup_error(body_error(
+                name,
+                "name",
+                format!(
+                    "the name is used by both bodies[{j}] and bodies[{}]",
+                    self.bodies.len()
+                ),
+            )));
+        }
+        Ok(())
+    }
+
+    /// Adds a body on a built mesh: material lookup, supports and loads as in `setup`.
+    fn push_body(
+        &mut self,
+        name: &str,
+        mesh: Mesh,
+        material: &str,
+        supports: Option<&Bound<'_, PyAny>>,
+        loads: Option<&Bound<'_, PyAny>>,
+    ) -> PyResult<()> {
+        let mat = *self.materials.get(material).ok_or_else(|| {
+            let known: Vec<&str> = self.materials.keys().map(String::as_str).collect();
+            let known = if known.is_empty() {
+                "none; add one with Problem.add_material".to_string()
+            } else {
+                known.join(", ")
+            };
+            setup_error(body_error(
+                name,
+                "material",
+                format!("unknown material '{material}' (known: {known})"),
+            ))
+        })?;
+        let supports: Vec<SupportSpec> = specs(name, "supports", supports)?;
+        let loads: Vec<LoadSpec> = specs(name, "loads", loads)?;
+        let mut constraints = Constraints::new(mesh.num_nodes());
+        for (i, s) in supports.iter().enumerate() {
+            constraints
+                .fix(&mesh, &s.boundary, s.component, s.value)
+                .map_err(|e| setup_error(body_error(name, &format!("supports[{i}]"), e)))?;
+        }
+        let mut resolved = Vec::with_capacity(loads.len());
+        for (i, l) in loads.iter().enumerate() {
+            let key = format!("loads[{i}]");
+            let (load, values): (Load, Vec<f64>) = match l {
+                LoadSpec::Pressure { boundary, value } => (
+                    Load::Pressure {
+                        boundary: boundary.clone(),
+                        value: *value,
+                    },
+                    vec![*value],
+                ),
+                LoadSpec::Traction { boundary, value } => (
+                    Load::Traction {
+                        boundary: boundary.clone(),
+                        value: *value,
+                    },
+                    value.to_vec(),
+                ),
+                LoadSpec::BodyForce { value } => (Load::BodyForce(*value), value.to_vec()),
+            };
+            if let Some(v) = values.iter().find(|v| !v.is_finite()) {
+                return Err(setup_error(body_error(
+                    name,
+                    &format!("{key}.value"),
+                    format!("must be finite, got {v}"),
+                )));
+            }
+            if let LoadSpec::Pressure { boundary, .. } | LoadSpec::Traction { boundary, .. } = l {
+                mesh.boundary(boundary)
+                    .map_err(|e| setup_error(body_error(name, &format!("{key}.boundary"), e)))?;
+            }
+            resolved.push(load);
+        }
+        let load = contactdd_core::loads::load_vector(&mesh, &resolved)
+            .map_err(|e| setup_error(body_error(name, "loads", e)))?;
+        self.bodies.push(ElasticBody {
+            name: name.to_string(),
+            mesh,
+            material: mat,
+            plane: self.plane,
+            constraints,
+            load,
+        });
+        Ok(())
+    }
+}
+
+fn body_error(body: &str, key: &str, message: impl std::fmt::Display) -> SetupError {
+    SetupError::Body {
+        body: body.to_string(),
+        message: format!("{key}: {message}"),
+    }
+}
+
+fn pair_error(pair: &str, key: &str, message: impl std::fmt::Display) -> SetupError {
+    SetupError::Pair {
+        pair: pair.to_string(),
+        message: format!("{key}: {message}"),
+    }
+}
+
+/// Parses one schema value at path `key`; a bad value or schema error is returned as a message
+/// (starting with the path) for the caller to attribute to a body or pair.
+fn parse<T: DeserializeOwned>(obj: &Bound<'_, PyAny>, key: &str) -> PyResult<Result<T, String>> {
+    match to_json(obj, key) {
+        Ok(value) => Ok(serde_json::from_value(value).map_err(|e| format!("{key}: {e}"))),
+        Err(Bad::Value(message)) => Ok(Err(message)),
+        Err(Bad::Py(e)) => Err(e),
+    }
+}
+
+/// A list of support or load dicts of body `body`.
+fn specs<T: DeserializeOwned>(
+    body: &str,
+    key: &str,
+    list: Option<&Bound<'_, PyAny>>,
+) -> PyResult<Vec<T>> {
+    let Some(list) = list else {
+        return Ok(Vec::new());
+    };
+    if list.is_instance_of::<PyDict>() {
+        return Err(PyTypeError::new_err(format!(
+            "{key}: expected a list of dicts, got a single dict (wrap it in a list)"
+        )));
+    }
+    let mut out = Vec::new();
+    for (i, item) in list.try_iter()?.enumerate() {
+        let k = format!("{key}[{i}]");
+        out.push(parse(&item?, &k)?.map_err(|message| {
+            setup_error(SetupError::Body {
+                body: body.to_string(),
+                message,
+            })
+        })?);
+    }
+    Ok(out)
+}
+
+/// Converts an integer array to node indices.
+fn indices(a: &PyArrayLike2<'_, i64, AllowTypeChange>, what: &str) -> PyResult<Vec<usize>> {
+    a.as_array()
+        .iter()
+        .map(|&v| {
+            usize::try_from(v)
+                .map_err(|_| input_error(format!("{what}: node index {v} is negative")))
+        })
+        .collect()
+}
+
+#[pymethods]
+impl Problem {
+    /// An empty problem.
+    ///
+    /// Args:
+    ///     name: problem name used in output files.
+    ///     plane: ``"strain"`` (thick bodies) or ``"stress"`` (thin plates), for all bodies.
+    #[new]
+    #[pyo3(signature = (name = "problem", plane = "strain"))]
+    fn new(name: &str, plane: &str) -> PyResult<Problem> {
+        let plane: Plane = from_name(plane).map_err(|e| {
+            setup_error(SetupError::Invalid {
+                key: "plane".into(),
+                message: e,
+            })
+        })?;
+        Ok(Problem::empty(name, plane))
+    }
+
+    /// Reads a TOML problem file (the format of the command line tool).
+    ///
+    /// Relative mesh paths resolve against the file's folder. The ``[solver]`` table becomes the
+    /// problem's default settings.
+    ///
+    /// Raises:
+    ///     ContactddError: the file cannot be read or is not a valid problem.
+    #[staticmethod]
+    fn from_toml(py: Python<'_>, path: PathBuf) -> PyResult<Problem> {
+        let loaded = py
+            .detach(|| contactdd_ddm::load_file(&path))
+            .map_err(setup_error)?;
+        Problem::from_loaded(loaded, None)
+    }
+
+    /// Parses the text of a TOML problem file.
+    ///
+    /// Args:
+    ///     text: the file's content.
+    ///     base_dir: folder against which relative mesh paths resolve (default: the current
+    ///         folder).
+    ///     source: name of the text in error messages.
+    #[staticmethod]
+    #[pyo3(signature = (text, base_dir = None, source = "<string>"))]
+    fn from_toml_str(
+        py: Python<'_>,
+        text: &str,
+        base_dir: Option<PathBuf>,
+        source: &str,
+    ) -> PyResult<Problem> {
+        let base = base_dir.unwrap_or_else(|| PathBuf::from("."));
+        let loaded = py
+            .detach(|| contactdd_ddm::load_str(text, source, Path::new(&base)))
+            .map_err(setup_error)?;
+        Problem::from_loaded(loaded, Some("problem"))
+    }
+
+    /// Defines a linear elastic isotropic material.
+    ///
+    /// Args:
+    ///     name: the name bodies refer to.
+    ///     young: Young's modulus E > 0.
+    ///     poisson: Poisson's ratio ν in (-1, 0.5).
+    #[pyo3(signature = (name, young, poisson))]
+    fn add_material(&mut self, name: &str, young: f64, poisson: f64) -> PyResult<()> {
+        if self.materials.contains_key(name) {
+            return Err(setup_error(SetupError::Material {
+                material: name.to_string(),
+                message: "is already defined".into(),
+            }));
+        }
+        let mat = Material::new(young, poisson).map_err(|e| {
+            let key = match e {
+                MaterialError::YoungModulus(_) => "young",
+                MaterialError::PoissonRatio(_) => "poisson",
+            };
+            setup_error(SetupError::Material {
+                material: name.to_string(),
+                message: format!("{key}: {e}"),
+            })
+        })?;
+        self.materials.insert(name.to_string(), mat);
+        Ok(())
+    }
+
+    /// Adds a body on a triangle mesh given as arrays.
+    ///
+    /// Args:
+    ///     name: unique body name.
+    ///     nodes: ``(n, 2)`` node coordinates.
+    ///     triangles: ``(m, 3)`` (P1) or ``(m, 6)`` (P2: vertices, then the mid-side nodes of edges
+    ///         (0,1), (1,2), (2,0)) node indices, counter-clockwise.
+    ///     boundaries: named boundary edge sets, ``{name: (k, 2) array of node pairs}`` (a
+    ///         third column with P2 mid-side nodes is accepted and ignored).
+    ///     material: name of a material added with :meth:`add_material`.
+    ///     supports: list of ``{"boundary": str, "component": "x"|"y"|"both"|"normal",
+    ///         "value": float = 0}``.
+    ///     loads: list of ``{"kind": "pressure", "boundary": str, "value": float}``,
+    ///         ``{"kind": "traction", "boundary": str, "value": [tx, ty]}`` or
+    ///         ``{"kind": "body-force", "value": [fx, fy]}``.
+    ///     node_sets: named node sets, ``{name: array of node indices}``, usable as a support's
+    ///         ``boundary``.
+    #[pyo3(signature = (name, nodes, triangles, boundaries, material, supports = None, loads = None, node_sets = None))]
+    #[allow(clippy::too_many_arguments)]
+    fn add_body(
+        &mut self,
+        name: &str,
+        nodes: PyArrayLike2<'_, f64, AllowTypeChange>,
+        triangles: PyArrayLike2<'_, i64, AllowTypeChange>,
+        boundaries: &Bound<'_, PyDict>,
+        material: &str,
+        supports: Option<&Bound<'_, PyAny>>,
+        loads: Option<&Bound<'_, PyAny>>,
+        node_sets: Option<&Bound<'_, PyDict>>,
+    ) -> PyResult<()> {
+        self.check_new_body_name(name)?;
+        let mesh_error = |message: String| setup_error(body_error(name, "mesh", message));
+        let [n, dim] = [nodes.shape()[0], nodes.shape()[1]];
+        if dim != 2 {
+            return Err(mesh_error(format!(
+                "nodes must have shape (n, 2), got ({n}, {dim})"
+            )));
+        }
+        let points: Vec<[f64; 2]> = nodes
+            .as_array()
+            .rows()
+            .into_iter()
+            .map(|r| [r[0], r[1]])
+            .collect();
+        let order = match triangles.shape()[1] {
+            3 => Order::P1,
+            6 => Order::P2,
+            c => {
+                return Err(mesh_error(format!(
+                    "triangles must have 3 (P1) or 6 (P2) columns, got {c}"
+                )))
+            }
+        };
+        let cells = indices(&triangles, &format!("body '{name}': mesh: triangles"))?;
+        let mut edge_sets = BTreeMap::new();
+        for (key, value) in boundaries.iter() {
+            let bname: String = key.extract()?;
+            let what = format!("body '{name}': mesh: boundaries['{bname}']");
+            let arr: PyArrayLike2<'_, i64, AllowTypeChange> = value.extract()?;
+            let cols = arr.shape()[1];
+            if cols != 2 && cols != 3 {
+                return Err(mesh_error(format!(
+                    "boundaries['{bname}'] must have shape (k, 2) or (k, 3), got {:?}",
+                    arr.shape()
+                )));
+            }
+            let flat = indices(&arr, &what)?;
+            let edges: Vec<Edge> = flat.chunks(cols).map(|e| Edge::new(e[0], e[1])).collect();
+            edge_sets.insert(bname, edges);
+        }
+        let mut sets = BTreeMap::new();
+        if let Some(node_sets) = node_sets {
+            for (key, value) in node_sets.iter() {
+                let sname: String = key.extract()?;
+                let ids: Vec<i64> = value.extract()?;
+                let ids = ids
+                    .into_iter()
+                    .map(|v| {
+                        usize::try_from(v).map_err(|_| {
+                            mesh_error(format!("node_sets['{sname}']: node index {v} is negative"))
+                        })
+                    })
+                    .collect::<PyResult<Vec<usize>>>()?;
+                sets.insert(sname, ids);
+            }
+        }
+        let mesh = Mesh::new(points, order, cells, edge_sets, sets)
+            .map_err(|e| mesh_error(e.to_string()))?;
+        self.push_body(name, mesh, material, supports, loads)
+    }
+
+    /// Adds a body meshed as a structured rectangle ``x[0] ≤ x ≤ x[1]``, ``y[0] ≤ y ≤ y[1]`` with
+    /// ``nx × ny`` cells of two triangles each; its boundaries are ``left``, ``right``,
+    /// ``bottom`` and ``top``.
+    ///
+    /// Args:
+    ///     diagonal: cell diagonal, ``"right"`` ("/"), ``"left"`` ("\\") or ``"alternate"``.
+    ///     mirror: mirror the mesh about its horizontal centre line (for the upper body of a
+    ///         stack, so that the two meshes are mirror images).
+    ///     order: ``"p1"`` or ``"p2"``.
+    ///     supports, loads: as for :meth:`add_body`.
+    #[pyo3(signature = (name, x, y, nx, ny, material, diagonal = "right", mirror = false, order = "p1", supports = None, loads = None))]
+    #[allow(clippy::too_many_arguments)]
+    fn add_rectangle_body(
+        &mut self,
+        name: &str,
+        x: (f64, f64),
+        y: (f64, f64),
+        nx: usize,
+        ny: usize,
+        material: &str,
+        diagonal: &str,
+        mirror: bool,
+        order: &str,
+        supports: Option<&Bound<'_, PyAny>>,
+        loads: Option<&Bound<'_, PyAny>>,
+    ) -> PyResult<()> {
+        self.check_new_body_name(name)?;
+        let err = |key: &str, m: String| setup_error(body_error(name, key, m));
+        let diagonal: Diagonal = from_name(diagonal).map_err(|e| err("mesh.diagonal", e))?;
+        let order: Order = from_name(order).map_err(|e| err("mesh.order", e))?;
+        for (key, n) in [("mesh.nx", nx), ("mesh.ny", ny)] {
+            if n == 0 {
+                return Err(err(key, "must be at least 1, got 0".into()));
+            }
+        }
+        if !matches!(nx.checked_mul(ny), Some(c) if c <= MAX_RECTANGLE_CELLS) {
+            return Err(err(
+                "mesh",
+                format!("{nx} × {ny} cells is more than the limit of {MAX_RECTANGLE_CELLS}"),
+            ));
+        }
+        for (key, r) in [("mesh.x", x), ("mesh.y", y)] {
+            if !(r.0.is_finite() && r.1.is_finite() && r.0 < r.1) {
+                return Err(err(
+                    key,
+                    format!(
+                        "need a finite range [min, max] with min < max, got [{}, {}]",
+                        r.0, r.1
+                    ),
+                ));
+            }
+        }
+        let mesh = Rectangle {
+            origin: [x.0, y.0],
+            corner: [x.1, y.1],
+            nx,
+            ny,
+            diagonal,
+            mirror,
+            order,
+        }
+        .mesh()
+        .map_err(|e| err("mesh", e.to_string()))?;
+        self.push_body(name, mesh, material, supports, loads)
+    }
+
+    /// Adds a contact pair: boundary ``boundaries[0]`` of body ``bodies[0]`` may touch boundary
+    /// ``boundaries[1]`` of body ``bodies[1]``.
+    ///
+    /// The penalty is either the rod model θ = c·h·(1/E*₁ + 1/E*₂) (give ``c`` and ``h``) or
+    /// ``theta`` itself.
+    ///
+    /// Args:
+    ///     gap: an optional prescribed gap profile added to the geometric gap:
+    ///         ``{"kind": "notch", "r0": float, "b": float, "centre": float, "power": 1.5,
+    ///         "along": "x"}`` or ``{"kind": "uniform", "value": float}``.
+    ///     name: pair name (default ``"<body0>-<body1>"``).
+    #[pyo3(signature = (bodies, boundaries, c = None, h = None, theta = None, gap = None, name = None))]
+    #[allow(clippy::too_many_arguments)]
+    fn add_contact(
+        &mut self,
+        bodies: (String, String),
+        boundaries: (String, String),
+        c: Option<f64>,
+        h: Option<f64>,
+        theta: Option<f64>,
+        gap: Option<&Bound<'_, PyAny>>,
+        name: Option<String>,
+    ) -> PyResult<()> {
+        let names = [bodies.0, bodies.1];
+        let boundaries = [boundaries.0, boundaries.1];
+        let name = name.unwrap_or_else(|| format!("{}-{}", names[0], names[1]));
+        let perr = |key: &str, m: String| setup_error(pair_error(&name, key, m));
+        let index = self.body_index();
+        let mut ids = [0usize; 2];
+        for (s, body) in names.iter().enumerate() {
+            ids[s] = *index.get(body.as_str()).ok_or_else(|| {
+                let mut known: Vec<&str> = index.keys().copied().collect();
+                known.sort_unstable();
+                perr(
+                    &format!("bodies[{s}]"),
+                    format!("unknown body '{body}' (known: {})", known.join(", ")),
+                )
+            })?;
+        }
+        if ids[0] == ids[1] {
+            return Err(perr(
+                "bodies",
+                format!(
+                    "names body '{}' twice; a contact pair needs two different bodies",
+                    names[0]
+                ),
+            ));
+        }
+        for s in 0..2 {
+            let body = &self.bodies[ids[s]];
+            body.mesh.boundary(&boundaries[s]).map_err(|e| {
+                perr(
+                    &format!("boundaries[{s}]"),
+                    format!("body '{}': {e}", body.name),
+                )
+            })?;
+        }
+        let positive = |key: &str, v: f64| {
+            if v.is_finite() && v > 0.0 {
+                Ok(v)
+            } else {
+                Err(perr(
+                    &format!("penalty.{key}"),
+                    format!("must be a positive finite number, got {v}"),
+                ))
+            }
+        };
+        let penalty = match (theta, c, h) {
+            (Some(t), None, None) => Penalty::Theta(positive("theta", t)?),
+            (None, Some(c), Some(h)) => Penalty::RodModel {
+                c: positive("c", c)?,
+                h: positive("h", h)?,
+            },
+            (Some(_), _, _) => {
+                return Err(perr(
+                    "penalty",
+                    "give either theta, or c and h (rod model), not both".into(),
+                ))
+            }
+            (None, None, None) => {
+                return Err(perr(
+                    "penalty",
+                    "give either theta = θ or c and h (rod model θ = c·h·(1/E*₁ + 1/E*₂))".into(),
+                ))
+            }
+            (None, _, _) => return Err(perr("penalty", "the rod model needs both c and h".into())),
+        };
+        let (a, b) = (&self.bodies[ids[0]], &self.bodies[ids[1]]);
+        let th = penalty.theta(self.plane, &a.material, &b.material);
+        if !(th.is_finite() && th > 0.0) {
+            return Err(perr(
+                "penalty",
+                format!("θ = {th} is not a positive finite number"),
+            ));
+        }
+        let profile = match gap {
+            None => None,
+            Some(g) if g.is_none() => None,
+            Some(g) => {
+                let spec: GapSpec = parse(g, "gap")?.map_err(|message| {
+                    setup_error(SetupError::Pair {
+                        pair: name.clone(),
+                        message,
+                    })
+                })?;
+                Some(gap_profile(&spec).map_err(|(key, m)| perr(&format!("gap.{key}"), m))?)
+            }
+        };
+        if let Some(j) = self.pairs.iter().position(|p| p.name == name) {
+            return Err(perr(
+                "name",
+                format!(
+                    "the name is used by both contact[{j}] and contact[{}]; give each pair its own name",
+                    self.pairs.len()
+                ),
+            ));
+        }
+        self.pairs.push(ContactPair {
+            name: name.clone(),
+            bodies: ids,
+            boundaries,
+            penalty,
+            profile,
+        });
+        Ok(())
+    }
+
+    /// Sets the default solver settings of the problem (the ``[solver]`` table of a problem
+    /// file); arguments left at ``None`` keep their value. :func:`solve` and :func:`sweep` can
+    /// still override each of them.
+    ///
+    /// Args:
+    ///     method: ``"neumann"``, ``"robin"``, ``"active-set"``, ``"newton-chord"`` or
+    ///         ``"newton-kurchatov"``.
+    ///     gamma: relaxation parameter γ > 0, or ``"auto"`` (safeguarded Aitken).
+    ///     tol: stopping tolerance ε_u on every body's relative change.
+    ///     max_iter: iteration cap.
+    ///     u0: initial normal displacement u⁰ₙ on the contact zones.
+    ///     u_prev: initial u⁻¹ₙ of the two-point methods.
+    ///     threads: worker threads (default: all cores).
+    #[pyo3(signature = (method = None, gamma = None, tol = None, max_iter = None, u0 = None, u_prev = None, threads = None))]
+    #[allow(clippy::too_many_arguments)]
+    fn solver(
+        &mut self,
+        method: Option<String>,
+        gamma: Option<GammaArg>,
+        tol: Option<f64>,
+        max_iter: Option<usize>,
+        u0: Option<f64>,
+        u_prev: Option<f64>,
+        threads: Option<usize>,
+    ) -> PyResult<()> {
+        let o = Overrides {
+            method,
+            gamma,
+            tol,
+            max_iter,
+            u0,
+            u_prev,
+            threads,
+        };
+        self.settings = o.apply(&self.settings)?;
+        if threads.is_some() {
+            self.threads = threads;
+        }
+        Ok(())
+    }
+
+    /// The names of the boundaries (and node sets) of a body.
+    fn boundaries(&self, body: &str) -> PyResult<Vec<String>> {
+        let b = self
+            .bodies
+            .iter()
+            .find(|b| b.name == body)
+            .ok_or_else(|| input_error(format!("no body named '{body}'")))?;
+        Ok(b.mesh
+            .boundaries()
+            .keys()
+            .chain(b.mesh.node_sets().keys())
+            .cloned()
+            .collect())
+    }
+
+    /// Problem name.
+    #[getter]
+    fn name(&self) -> String {
+        self.name.clone()
+    }
+
+    /// ``"strain"`` or ``"stress"``.
+    #[getter]
+    fn plane(&self) -> String {
+        name_of(&self.plane)
+    }
+
+    /// Materials: ``{name: {"young": E, "poisson": ν}}``.
+    #[getter]
+    fn materials<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+        let d = PyDict::new(py);
+        for (name, m) in &self.materials {
+            let entry = PyDict::new(py);
+            entry.set_item("young", m.young())?;
+            entry.set_item("poisson", m.poisson())?;
+            d.set_item(name, entry)?;
+        }
+        Ok(d)
+    }
+
+    /// Body names, in order.
+    #[getter]
+    fn bodies(&self) -> Vec<String> {
+        self.bodies.iter().map(|b| b.name.clone()).collect()
+    }
+
+    /// Contact pair names, in order.
+    #[getter]
+    fn contacts(&self) -> Vec<String> {
+        self.pairs.iter().map(|p| p.name.clone()).collect()
+    }
+
+    /// Default solver settings: ``method``, ``gamma``, ``tol``, ``max_iter``, ``u0``,
+    /// ``u_prev``, ``threads``.
+    #[getter]
+    fn settings<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+        let s = &self.settings;
+        let d = PyDict::new(py);
+        d.set_item("method", s.method.name())?;
+        d.set_item("gamma", gamma_to_py(py, s.gamma)?)?;
+        d.set_item("tol", s.tol)?;
+        d.set_item("max_iter", s.max_iter)?;
+        d.set_item("u0", s.u0)?;
+        d.set_item("u_prev", s.u_prev)?;
+        d.set_item("threads", self.threads)?;
+        Ok(d)
+    }
+
+    fn __repr__(&self) -> String {
+        let nodes: usize = self.bodies.iter().map(|b| b.mesh.num_nodes()).sum();
+        format!(
+            "<contactdd.Problem '{}': {} bodies ({} nodes), {} contact pairs, plane {}, method {}, gamma {}>",
+            self.name,
+            self.bodies.len(),
+            nodes,
+            self.pairs.len(),
+            name_of(&self.plane),
+            self.settings.method,
+            self.settings.gamma
+        )
+    }
+}
+
+/// A gap profile from its schema, with the checks of a problem file; errors are (key, message).
+fn gap_profile(spec: &GapSpec) -> Result<GapProfile, (String, String)> {
+    let check = |key: &str, v: f64, positive: bool| {
+        if v.is_finite() && (!positive || v > 0.0) {
+            Ok(v)
+        } else {
+            let what = if positive {
+                "a positive finite number"
+            } else {
+                "finite"
+            };
+            Err((key.to_string(), format!("must be {what}, got {v}")))
+        }
+    };
+    Ok(match *spec {
+        GapSpec::Notch {
+            r0,
+            b,
+            centre,
+            power,
+            along,
+        } => GapProfile::Notch {
+            r0: check("r0", r0, false)?,
+            b: check("b", b, true)?,
+            centre: check("centre", centre, false)?,
+            power: check("power", power, true)?,
+            along,
+        },
+        GapSpec::Uniform { value } => GapProfile::Uniform {
+            value: check("value", value, false)?,
+        },
+    })
+}

@@ -1,0 +1,409 @@
+//! Result objects: `contactdd.Result` (a domain decomposition solve), `contactdd.Body`,
+//! `contactdd.Contact` and `contactdd.MonolithicResult`. The arrays are copied into numpy once,
+//! when the result is made; the Rust [`Solution`] is kept for output files and the summary.
+
+use std::sync::Arc;
+
+use pyo3::prelude::*;
+use pyo3::types::{PyDict, PyList};
+
+use contactdd_ddm::iteration::Stop;
+use contactdd_ddm::output::point_status;
+use contactdd_ddm::solution::{BodyResult, PairResult};
+use contactdd_ddm::{Model, MonolithicSolution, Solution};
+
+use crate::convert::{array1, array2, name_of};
+use crate::error::input_error;
+use crate::problem::gamma_to_py;
+
+/// The fields of one body.
+#[pyclass(module = "contactdd", name = "Body", frozen)]
+pub struct Body {
+    /// Body name.
+    #[pyo3(get)]
+    name: String,
+    /// Element order, ``"p1"`` or ``"p2"``.
+    #[pyo3(get)]
+    order: String,
+    /// ``(n, 2)`` node coordinates (undeformed).
+    #[pyo3(get)]
+    nodes: Py<PyAny>,
+    /// ``(m, 3)`` (P1) or ``(m, 6)`` (P2) node indices of the triangles.
+    #[pyo3(get)]
+    triangles: Py<PyAny>,
+    /// ``(n, 2)`` displacement.
+    #[pyo3(get)]
+    displacement: Py<PyAny>,
+    /// ``(n, 4)`` nodal (averaged) stress ``[σ_xx, σ_yy, σ_xy, σ_zz]``.
+    #[pyo3(get)]
+    stress: Py<PyAny>,
+    /// ``(n,)`` nodal von Mises stress.
+    #[pyo3(get)]
+    von_mises: Py<PyAny>,
+    /// ``(n,)`` contact pressure σ_n (≤ 0, compressive) at contact nodes, 0 elsewhere.
+    #[pyo3(get)]
+    contact_pressure: Py<PyAny>,
+}
+
+#[pymethods]
+impl Body {
+    fn __repr__(&self, py: Python<'_>) -> PyResult<String> {
+        let n: usize = self.nodes.bind(py).len()?;
+        let m: usize = self.triangles.bind(py).len()?;
+        Ok(format!(
+            "<contactdd.Body '{}': {} nodes, {} {} triangles>",
+            self.name, n, m, self.order
+        ))
+    }
+}
+
+impl Body {
+    fn new(py: Python<'_>, b: &BodyResult) -> PyResult<Body> {
+        let mesh = &b.mesh;
+        let npc = mesh.order().nodes_per_cell();
+        let nodes: Vec<f64> = mesh.nodes().iter().flatten().copied().collect();
+        let cells: Vec<i64> = mesh.cells().iter().map(|&v| v as i64).collect();
+        let stress: Vec<f64> = b.stress.iter().flatten().copied().collect();
+        Ok(Body {
+            name: b.name.clone(),
+            order: name_of(&mesh.order()),
+            nodes: array2(py, nodes, 2)?.unbind(),
+            triangles: array2(py, cells, npc)?.unbind(),
+            displacement: array2(py, b.displacement.clone(), 2)?.unbind(),
+            stress: array2(py, stress, 4)?.unbind(),
+            von_mises: array1(py, b.von_mises.clone()).unbind(),
+            contact_pressure: array1(py, b.contact_pressure.clone()).unbind(),
+        })
+    }
+}
+
+/// The contact quantities of one contact pair: one entry per contact point of either side
+/// (a contact point is a node of a contact boundary).
+#[pyclass(module = "contactdd", name = "Contact", frozen)]
+pub struct Contact {
+    /// Pair name.
+    #[pyo3(get)]
+    name: String,
+    /// The two body names.
+    #[pyo3(get)]
+    bodies: (String, String),
+    /// Side (0 or 1) of each point: which of the two bodies it belongs to.
+    #[pyo3(get)]
+    side: Py<PyAny>,
+    /// Node index of each point in its body.
+    #[pyo3(get)]
+    node: Py<PyAny>,
+    /// Undeformed x coordinate.
+    #[pyo3(get)]
+    x: Py<PyAny>,
+    /// Undeformed y coordinate.
+    #[pyo3(get)]
+    y: Py<PyAny>,
+    /// Gap after deformation d − s (negative: penetration of the penalty solution; ``inf`` where
+    /// the normal misses the other body).
+    #[pyo3(get)]
+    gap: Py<PyAny>,
+    /// Normal contact stress σ_n = (d − s)⁻/θ (≤ 0).
+    #[pyo3(get)]
+    pressure: Py<PyAny>,
+    /// True where the point is closed (d − s < 0).
+    #[pyo3(get)]
+    closed: Py<PyAny>,
+    /// Status of each point as in ``summary.json``: ``"closed"``, ``"open"`` or
+    /// ``"no-partner"`` (the normal misses the other body).
+    #[pyo3(get)]
+    status: Vec<&'static str>,
+    /// Nodal quadrature weight (length) of each point.
+    #[pyo3(get)]
+    weight: Py<PyAny>,
+    /// ``(k, 2)`` outward unit normal of each point.
+    #[pyo3(get)]
+    normal: Py<PyAny>,
+    /// Total contact force on each side, ``((fx, fy), (fx, fy))``: Σ w σ_n n over the side's
+    /// points (the force the other body exerts).
+    #[pyo3(get)]
+    forces: ((f64, f64), (f64, f64)),
+}
+
+#[pymethods]
+impl Contact {
+    fn __repr__(&self, py: Python<'_>) -> PyResult<String> {
+        Ok(format!(
+            "<contactdd.Contact '{}' ({} / {}): {} points>",
+            self.name,
+            self.bodies.0,
+            self.bodies.1,
+            self.x.bind(py).len()?
+        ))
+    }
+}
+
+impl Contact {
+    fn new(py: Python<'_>, p: &PairResult) -> PyResult<Contact> {
+        let [b0, b1] = p.bodies.clone();
+        let normal: Vec<f64> = p.nx.iter().zip(&p.ny).flat_map(|(&a, &b)| [a, b]).collect();
+        let force = |s| {
+            let f = p.force_on(s);
+            (f[0], f[1])
+        };
+        Ok(Contact {
+            name: p.name.clone(),
+            bodies: (b0, b1),
+            side: array1(py, p.side.iter().map(|&v| v as i64).collect()).unbind(),
+            node: array1(py, p.node.iter().map(|&v| v as i64).collect()).unbind(),
+            x: array1(py, p.x.clone()).unbind(),
+            y: array1(py, p.y.clone()).unbind(),
+            gap: array1(py, p.gap.clone()).unbind(),
+            pressure: array1(py, p.pressure.clone()).unbind(),
+            closed: array1(py, p.closed.clone()).unbind(),
+            status: (0..p.x.len()).map(|i| point_status(p, i)).collect(),
+            weight: array1(py, p.weight.clone()).unbind(),
+            normal: array2(py, normal, 2)?.unbind(),
+            forces: (force(0), force(1)),
+        })
+    }
+}
+
+fn bodies_list(py: Python<'_>, bodies: &[BodyResult]) -> PyResult<Py<PyList>> {
+    let items = bodies
+        .iter()
+        .map(|b| Py::new(py, Body::new(py, b)?))
+        .collect::<PyResult<Vec<_>>>()?;
+    Ok(PyList::new(py, items)?.unbind())
+}
+
+fn contact_list(py: Python<'_>, pairs: &[PairResult]) -> PyResult<Py<PyList>> {
+    let items = pairs
+        .iter()
+        .map(|p| Py::new(py, Contact::new(py, p)?))
+        .collect::<PyResult<Vec<_>>>()?;
+    Ok(PyList::new(py, items)?.unbind())
+}
+
+/// A JSON value as Python data (through Python's `json` module).
+fn json_to_py<'py>(py: Python<'py>, value: &serde_json::Value) -> PyResult<Bound<'py, PyAny>> {
+    let text = serde_json::to_string(value)
+        .map_err(|e| input_error(format!("cannot serialize the summary: {e}")))?;
+    py.import("json")?.call_method1("loads", (text,))
+}
+
+/// The name of how an iteration ended.
+fn stop_name(stop: &Stop) -> &'static str {
+    match stop {
+        Stop::Converged => "converged",
+        Stop::MaxIterations => "max-iterations",
+        Stop::Diverged { .. } => "diverged",
+        Stop::Interrupted => "interrupted",
+    }
+}
+
+/// The result of a domain decomposition solve (also the partial result of a failed one, see
+/// :class:`ConvergenceError`).
+#[pyclass(module = "contactdd", name = "Result", frozen)]
+pub struct SolveResult {
+    /// True if every body met the tolerance.
+    #[pyo3(get)]
+    converged: bool,
+    /// How the iteration ended: ``"converged"``, ``"max-iterations"``, ``"diverged"`` or
+    /// ``"interrupted"``.
+    #[pyo3(get)]
+    stop: &'static str,
+    /// Iterations taken (m).
+    #[pyo3(get)]
+    iterations: usize,
+    /// Why the solve did not converge (``None`` when it did).
+    #[pyo3(get)]
+    message: Option<String>,
+    /// The method used.
+    #[pyo3(get)]
+    method: String,
+    /// The γ used: a float, or ``"auto"``.
+    #[pyo3(get)]
+    gamma: Py<PyAny>,
+    /// Penalty θ of each contact pair.
+    #[pyo3(get)]
+    theta: Vec<f64>,
+    /// Per-iteration history: ``k`` (m,), ``gamma`` (m,), and per body ``rel_change``,
+    /// ``active`` (closed points) and ``contact_force`` (Σ w |σ_n|), each (m, number of bodies).
+    #[pyo3(get)]
+    history: Py<PyDict>,
+    /// Per-body fields (:class:`Body`), in problem order.
+    #[pyo3(get)]
+    bodies: Py<PyList>,
+    /// Per-pair contact results (:class:`Contact`), in problem order.
+    #[pyo3(get)]
+    contact: Py<PyList>,
+    /// Wall time per phase in seconds.
+    #[pyo3(get)]
+    timing: Py<PyDict>,
+    model: Arc<Model>,
+    solution: Arc<Solution>,
+}
+
+impl SolveResult {
+    /// Converts a solution of `model`.
+    pub fn new(py: Python<'_>, model: Arc<Model>, sol: Solution) -> PyResult<SolveResult> {
+        let nb = model.bodies.len();
+        let h = &sol.history;
+        let history = PyDict::new(py);
+        history.set_item("k", array1(py, h.iter().map(|r| r.k as i64).collect()))?;
+        history.set_item("gamma", array1(py, h.iter().map(|r| r.gamma).collect()))?;
+        let per_body = |f: &dyn Fn(&contactdd_ddm::Record) -> Vec<f64>| -> Vec<f64> {
+            h.iter().flat_map(f).collect()
+        };
+        history.set_item(
+            "rel_change",
+            array2(py, per_body(&|r| r.rel_change.clone()), nb)?,
+        )?;
+        let active: Vec<i64> = h
+            .iter()
+            .flat_map(|r| r.active.iter().map(|&a| a as i64))
+            .collect();
+        history.set_item("active", array2(py, active, nb)?)?;
+        history.set_item(
+            "contact_force",
+            array2(py, per_body(&|r| r.contact_force.clone()), nb)?,
+        )?;
+        let timing = PyDict::new(py);
+        for (k, v) in &sol.timing {
+            timing.set_item(k, v)?;
+        }
+        Ok(SolveResult {
+            converged: sol.converged,
+            stop: stop_name(&sol.stop),
+            iterations: sol.iterations,
+            message: sol.message.clone(),
+            method: sol.method.name().to_string(),
+            gamma: gamma_to_py(py, sol.gamma)?,
+            theta: sol.theta.clone(),
+            history: history.unbind(),
+            bodies: bodies_list(py, &sol.bodies)?,
+            contact: contact_list(py, &sol.contact)?,
+            timing: timing.unbind(),
+            model,
+            solution: Arc::new(sol),
+        })
+    }
+
+    /// The message of a non-converged solve.
+    pub fn failure_message(&self) -> String {
+        self.message
+            .clone()
+            .unwrap_or_else(|| "the solve did not converge".into())
+    }
+
+    /// True if converged.
+    pub fn is_converged(&self) -> bool {
+        self.converged
+    }
+}
+
+#[pymethods]
+impl SolveResult {
+    /// Writes the VTU files of every body and the summary JSON into ``directory`` (created if
+    /// needed), exactly as ``contactdd solve --output`` does.
+    ///
+    /// Returns:
+    ///     The paths of the files written.
+    fn write_vtu(&self, py: Python<'_>, directory: std::path::PathBuf) -> PyResult<Vec<String>> {
+        let (model, sol) = (self.model.clone(), self.solution.clone());
+        let paths = py
+            .detach(move || contactdd_ddm::output::write_results(&directory, &model, &sol))
+            .map_err(|e| input_error(format!("cannot write results: {e}")))?;
+        Ok(paths.iter().map(|p| p.display().to_string()).collect())
+    }
+
+    /// The summary of the solve as a dict: the content of the ``summary.json`` file the command
+    /// line writes.
+    fn summary<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        json_to_py(
+            py,
+            &contactdd_ddm::output::summary_json(&self.model, &self.solution),
+        )
+    }
+
+    fn __repr__(&self, py: Python<'_>) -> PyResult<String> {
+        Ok(format!(
+            "<contactdd.Result: {} after {} iterations ({}, gamma {})>",
+            self.stop,
+            self.iterations,
+            self.method,
+            self.gamma.bind(py).str()?
+        ))
+    }
+}
+
+/// The monolithic reference solution (semismooth Newton on all bodies at once).
+#[pyclass(module = "contactdd", name = "MonolithicResult", frozen)]
+pub struct MonolithicResult {
+    /// Newton steps taken.
+    #[pyo3(get)]
+    newton_steps: usize,
+    /// Rigid modes of the assembled problem that were fixed by a zero-mean constraint.
+    #[pyo3(get)]
+    rigid_modes: Vec<String>,
+    /// Per-body fields (:class:`Body`).
+    #[pyo3(get)]
+    bodies: Py<PyList>,
+    /// Per-pair contact results (:class:`Contact`).
+    #[pyo3(get)]
+    contact: Py<PyList>,
+    /// Wall time in seconds.
+    #[pyo3(get)]
+    seconds: f64,
+    model: Arc<Model>,
+    solution: Arc<MonolithicSolution>,
+}
+
+impl MonolithicResult {
+    /// Converts a monolithic solution.
+    pub fn new(
+        py: Python<'_>,
+        model: Arc<Model>,
+        sol: MonolithicSolution,
+    ) -> PyResult<MonolithicResult> {
+        Ok(MonolithicResult {
+            newton_steps: sol.newton_steps,
+            rigid_modes: sol.rigid_modes.clone(),
+            bodies: bodies_list(py, &sol.bodies)?,
+            contact: contact_list(py, &sol.contact)?,
+            seconds: sol.seconds,
+            model,
+            solution: Arc::new(sol),
+        })
+    }
+}
+
+#[pymethods]
+impl MonolithicResult {
+    /// Writes ``summary.json``, ``contact.csv`` and one VTU file per body into ``directory``, as
+    /// ``contactdd monolithic --output`` does.
+    ///
+    /// Returns:
+    ///     The paths of the files written.
+    fn write_vtu(&self, py: Python<'_>, directory: std::path::PathBuf) -> PyResult<Vec<String>> {
+        let (model, sol) = (self.model.clone(), self.solution.clone());
+        let paths = py
+            .detach(move || {
+                contactdd_ddm::output::write_monolithic_results(&directory, &model, &sol)
+            })
+            .map_err(|e| input_error(format!("cannot write results: {e}")))?;
+        Ok(paths.iter().map(|p| p.display().to_string()).collect())
+    }
+
+    /// The summary as a dict (the ``summary.json`` of a monolithic solve).
+    fn summary<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        json_to_py(
+            py,
+            &contactdd_ddm::output::monolithic_summary_json(&self.model, &self.solution),
+        )
+    }
+
+    fn __repr__(&self) -> String {
+        format!(
+            "<contactdd.MonolithicResult: {} Newton steps, rigid modes fixed: [{}]>",
+            self.newton_steps,
+            self.rigid_modes.join(", ")
+        )
+    }
+}

@@ -1,0 +1,55 @@
+"""Frictionless contact between elastic bodies by penalty Robin domain decomposition.
+
+contactdd solves two-dimensional (plane strain or plane stress) contact problems of several
+linear elastic bodies with the penalty Robin–Robin domain decomposition methods of Prokopyshyn &
+Shakhno: every body solves its own linear elasticity problem with a Robin condition on its
+contact zones, the bodies in parallel, followed by a relaxation with parameter γ.
+
+Quick start::
+
+    import contactdd
+
+    problem = contactdd.Problem.from_toml("examples/notch.toml")
+    result = contactdd.solve(problem, method="active-set", gamma=0.5)
+    print(result.iterations, result.contact[0].forces)
+
+    records = contactdd.sweep(problem, gammas=[0.1, 0.3, 0.5])
+    contactdd.plot.sweep_curves(records)
+
+The numerics run in Rust (the ``contactdd._contactdd`` extension); this package is a thin layer
+that converts numpy arrays and runs the solves with the GIL released.
+"""
+
+from ._contactdd import (
+    METHODS,
+    Body,
+    Contact,
+    ContactddError,
+    ConvergenceError,
+    MonolithicResult,
+    Problem,
+    Result,
+    __version__,
+    monolithic,
+    notch_benchmark,
+    solve,
+    sweep,
+)
+from . import plot
+
+__all__ = [
+    "METHODS",
+    "Body",
+    "Contact",
+    "ContactddError",
+    "ConvergenceError",
+    "MonolithicResult",
+    "Problem",
+    "Result",
+    "__version__",
+    "monolithic",
+    "notch_benchmark",
+    "plot",
+    "solve",
+    "sweep",
+]

@@ -1,0 +1,299 @@
+"""Type stubs of the contactdd extension module (``contactdd._contactdd``)."""
+
+from os import PathLike
+from typing import Any, Literal, Mapping, Optional, Sequence, Tuple, TypedDict, Union, final
+
+import numpy as np
+import numpy.typing as npt
+
+__version__: str
+__all__ = [
+    "Problem",
+    "Result",
+    "Body",
+    "Contact",
+    "MonolithicResult",
+    "solve",
+    "sweep",
+    "monolithic",
+    "notch_benchmark",
+    "ContactddError",
+    "ConvergenceError",
+    "METHODS",
+    "__version__",
+]
+METHODS: list[str]
+"""The method names: neumann, robin, active-set, newton-chord, newton-kurchatov."""
+
+# One of METHODS: "neumann", "robin", "active-set", "newton-chord", "newton-kurchatov".
+_MethodName = str
+_GammaValue = Union[float, Literal["auto"]]
+_StrPath = Union[str, "PathLike[str]"]
+_ArrayLikeFloat = npt.ArrayLike
+_ArrayLikeInt = npt.ArrayLike
+
+class ContactddError(ValueError):
+    """Bad input: a problem file, array, name or setting that contactdd cannot use."""
+
+class ConvergenceError(RuntimeError):
+    """The domain decomposition iteration did not converge; ``result`` holds the partial result."""
+
+    result: Result
+
+class _SupportDict(TypedDict, total=False):
+    boundary: str
+    component: Literal["x", "y", "both", "normal"]
+    value: float
+
+class _LoadDict(TypedDict, total=False):
+    kind: Literal["pressure", "traction", "body-force"]
+    boundary: str
+    value: Union[float, Sequence[float]]
+
+class _GapDict(TypedDict, total=False):
+    kind: Literal["notch", "uniform"]
+    r0: float
+    b: float
+    centre: float
+    power: float
+    along: Literal["x", "y"]
+    value: float
+
+class _SettingsDict(TypedDict):
+    method: str
+    gamma: _GammaValue
+    tol: float
+    max_iter: int
+    u0: float
+    u_prev: float
+    threads: Optional[int]
+
+class _SweepRecord(TypedDict):
+    method: str
+    gamma: _GammaValue
+    iterations: int
+    converged: bool
+    reason: str
+
+class _MaterialDict(TypedDict):
+    young: float
+    poisson: float
+
+@final
+class Problem:
+    """A contact problem: materials, bodies, contact pairs and default solver settings."""
+
+    def __new__(cls, name: str = "problem", plane: Literal["strain", "stress"] = "strain") -> Problem:
+        """An empty problem."""
+    @staticmethod
+    def from_toml(path: _StrPath) -> Problem:
+        """Reads a TOML problem file (the format of the command line tool)."""
+    @staticmethod
+    def from_toml_str(text: str, base_dir: Optional[_StrPath] = None, source: str = "<string>") -> Problem:
+        """Parses the text of a TOML problem file."""
+    def add_material(self, name: str, young: float, poisson: float) -> None:
+        """Defines a linear elastic isotropic material."""
+    def add_body(
+        self,
+        name: str,
+        nodes: _ArrayLikeFloat,
+        triangles: _ArrayLikeInt,
+        boundaries: Mapping[str, _ArrayLikeInt],
+        material: str,
+        supports: Optional[Sequence[_SupportDict]] = None,
+        loads: Optional[Sequence[_LoadDict]] = None,
+        node_sets: Optional[Mapping[str, _ArrayLikeInt]] = None,
+    ) -> None:
+        """Adds a body on a triangle mesh given as arrays ((n, 2) nodes, (m, 3|6) triangles)."""
+    def add_rectangle_body(
+        self,
+        name: str,
+        x: Tuple[float, float],
+        y: Tuple[float, float],
+        nx: int,
+        ny: int,
+        material: str,
+        diagonal: Literal["right", "left", "alternate"] = "right",
+        mirror: bool = False,
+        order: Literal["p1", "p2"] = "p1",
+        supports: Optional[Sequence[_SupportDict]] = None,
+        loads: Optional[Sequence[_LoadDict]] = None,
+    ) -> None:
+        """Adds a body meshed as a structured rectangle (boundaries left, right, bottom, top)."""
+    def add_contact(
+        self,
+        bodies: Tuple[str, str],
+        boundaries: Tuple[str, str],
+        c: Optional[float] = None,
+        h: Optional[float] = None,
+        theta: Optional[float] = None,
+        gap: Optional[_GapDict] = None,
+        name: Optional[str] = None,
+    ) -> None:
+        """Adds a contact pair; penalty by the rod model (c, h) or theta directly."""
+    def solver(
+        self,
+        method: Optional[_MethodName] = None,
+        gamma: Optional[_GammaValue] = None,
+        tol: Optional[float] = None,
+        max_iter: Optional[int] = None,
+        u0: Optional[float] = None,
+        u_prev: Optional[float] = None,
+        threads: Optional[int] = None,
+    ) -> None:
+        """Sets the default solver settings (None keeps a value)."""
+    def boundaries(self, body: str) -> list[str]:
+        """The names of the boundaries (and node sets) of a body."""
+    @property
+    def name(self) -> str: ...
+    @property
+    def plane(self) -> str: ...
+    @property
+    def materials(self) -> dict[str, _MaterialDict]: ...
+    @property
+    def bodies(self) -> list[str]: ...
+    @property
+    def contacts(self) -> list[str]: ...
+    @property
+    def settings(self) -> _SettingsDict: ...
+
+@final
+class Body:
+    """The fields of one body."""
+
+    @property
+    def name(self) -> str: ...
+    @property
+    def order(self) -> Literal["p1", "p2"]: ...
+    @property
+    def nodes(self) -> npt.NDArray[np.float64]:
+        """(n, 2) node coordinates (undeformed)."""
+    @property
+    def triangles(self) -> npt.NDArray[np.int64]:
+        """(m, 3) or (m, 6) node indices."""
+    @property
+    def displacement(self) -> npt.NDArray[np.float64]:
+        """(n, 2) displacement."""
+    @property
+    def stress(self) -> npt.NDArray[np.float64]:
+        """(n, 4) nodal stress [σ_xx, σ_yy, σ_xy, σ_zz]."""
+    @property
+    def von_mises(self) -> npt.NDArray[np.float64]:
+        """(n,) nodal von Mises stress."""
+    @property
+    def contact_pressure(self) -> npt.NDArray[np.float64]:
+        """(n,) contact pressure σ_n ≤ 0 at contact nodes, 0 elsewhere."""
+
+@final
+class Contact:
+    """The contact quantities of one pair, one entry per contact point of either side."""
+
+    @property
+    def name(self) -> str: ...
+    @property
+    def bodies(self) -> Tuple[str, str]: ...
+    @property
+    def side(self) -> npt.NDArray[np.int64]: ...
+    @property
+    def node(self) -> npt.NDArray[np.int64]: ...
+    @property
+    def x(self) -> npt.NDArray[np.float64]: ...
+    @property
+    def y(self) -> npt.NDArray[np.float64]: ...
+    @property
+    def gap(self) -> npt.NDArray[np.float64]: ...
+    @property
+    def pressure(self) -> npt.NDArray[np.float64]: ...
+    @property
+    def closed(self) -> npt.NDArray[np.bool_]: ...
+    @property
+    def status(self) -> list[Literal["closed", "open", "no-partner"]]: ...
+    @property
+    def weight(self) -> npt.NDArray[np.float64]: ...
+    @property
+    def normal(self) -> npt.NDArray[np.float64]: ...
+    @property
+    def forces(self) -> Tuple[Tuple[float, float], Tuple[float, float]]:
+        """Total contact force (fx, fy) on side 0 and on side 1."""
+
+@final
+class Result:
+    """The result of a domain decomposition solve."""
+
+    @property
+    def converged(self) -> bool: ...
+    @property
+    def stop(self) -> Literal["converged", "max-iterations", "diverged", "interrupted"]: ...
+    @property
+    def iterations(self) -> int: ...
+    @property
+    def message(self) -> Optional[str]: ...
+    @property
+    def method(self) -> str: ...
+    @property
+    def gamma(self) -> _GammaValue: ...
+    @property
+    def theta(self) -> list[float]: ...
+    @property
+    def history(self) -> dict[str, npt.NDArray[Any]]:
+        """k, gamma (m,); rel_change, active, contact_force (m, number of bodies)."""
+    @property
+    def bodies(self) -> list[Body]: ...
+    @property
+    def contact(self) -> list[Contact]: ...
+    @property
+    def timing(self) -> dict[str, float]: ...
+    def write_vtu(self, directory: _StrPath) -> list[str]:
+        """Writes summary.json, contact.csv, history.csv and one VTU file per body."""
+    def summary(self) -> dict[str, Any]:
+        """The content of the summary.json file the command line writes."""
+
+@final
+class MonolithicResult:
+    """The monolithic reference solution."""
+
+    @property
+    def newton_steps(self) -> int: ...
+    @property
+    def rigid_modes(self) -> list[str]: ...
+    @property
+    def bodies(self) -> list[Body]: ...
+    @property
+    def contact(self) -> list[Contact]: ...
+    @property
+    def seconds(self) -> float: ...
+    def write_vtu(self, directory: _StrPath) -> list[str]:
+        """Writes summary.json, contact.csv and one VTU file per body."""
+    def summary(self) -> dict[str, Any]:
+        """The summary.json of a monolithic solve."""
+
+def solve(
+    problem: Problem,
+    method: Optional[_MethodName] = None,
+    gamma: Optional[_GammaValue] = None,
+    tol: Optional[float] = None,
+    max_iter: Optional[int] = None,
+    u0: Optional[float] = None,
+    u_prev: Optional[float] = None,
+    threads: Optional[int] = None,
+    check: bool = True,
+) -> Result:
+    """Solves a contact problem by the penalty Robin domain decomposition (GIL released)."""
+
+def sweep(
+    problem: Problem,
+    methods: Optional[Sequence[_MethodName]] = None,
+    gammas: Optional[Sequence[_GammaValue]] = None,
+    tol: Optional[float] = None,
+    max_iter: Optional[int] = None,
+    u0: Optional[float] = None,
+    u_prev: Optional[float] = None,
+    threads: Optional[int] = None,
+) -> list[_SweepRecord]:
+    """Runs every method with every γ on one preparation of the problem."""
+
+def monolithic(problem: Problem) -> MonolithicResult:
+    """Solves the same penalty problem monolithically (semismooth Newton)."""
+
+def notch_benchmark(nx: int = 32, ny: int = 16, order: Literal["p1", "p2"] = "p1") -> Problem:
+    """The paper's two-body notch benchmark as a Problem."""
