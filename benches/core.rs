@@ -7,7 +7,9 @@
 use contactdd_core::assembly::Pattern;
 use contactdd_core::factor::FactoredBody;
 use contactdd_core::loads::load_vector;
-use contactdd_core::{Component, Constraints, Diagonal, Load, Material, Mesh, Order, Plane, Rectangle};
+use contactdd_core::{
+    Component, Constraints, Diagonal, Load, Material, Mesh, Order, Plane, Rectangle,
+};
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion};
 
 fn square(n: usize) -> Mesh {
@@ -43,8 +45,17 @@ fn phases(c: &mut Criterion) {
         let mut group = c.benchmark_group(format!("core/{dofs}dofs"));
         group.sample_size(10);
         let mut constraints = Constraints::new(mesh.num_nodes());
-        constraints.fix(&mesh, "left", Component::Both, 0.0).expect("boundary");
-        let load = load_vector(&mesh, &[Load::Pressure { boundary: "right".into(), value: 1.0 }]).expect("boundary");
+        constraints
+            .fix(&mesh, "left", Component::Both, 0.0)
+            .expect("boundary");
+        let load = load_vector(
+            &mesh,
+            &[Load::Pressure {
+                boundary: "right".into(),
+                value: 1.0,
+            }],
+        )
+        .expect("boundary");
         group.bench_function(BenchmarkId::new("assembly", dofs), |b| {
             b.iter(|| Pattern::new(&mesh).stiffness(&mesh, &d))
         });
@@ -58,7 +69,9 @@ fn phases(c: &mut Criterion) {
             b.iter(|| op.factorize(&[]).expect("numeric"))
         });
         op.factorize(&[]).expect("numeric");
-        group.bench_function(BenchmarkId::new("solve", dofs), |b| b.iter(|| op.solve(&load).expect("solve")));
+        group.bench_function(BenchmarkId::new("solve", dofs), |b| {
+            b.iter(|| op.solve(&load).expect("solve"))
+        });
         group.finish();
     }
 }

@@ -3,10 +3,14 @@
 //!
 //! Run: `cargo bench --bench ddm`.
 
-use contactdd_core::{Component, Constraints, Diagonal, ElasticBody, Load, Material, Order, Plane, Rectangle};
+use contactdd_core::{
+    Component, Constraints, Diagonal, ElasticBody, Load, Material, Order, Plane, Rectangle,
+};
 use contactdd_ddm::benchmark::Notch;
 use contactdd_ddm::iteration::iterate;
-use contactdd_ddm::{prepare, solve, sweep, ContactPair, Gamma, Hooks, Method, Model, Penalty, Settings};
+use contactdd_ddm::{
+    prepare, solve, sweep, ContactPair, Gamma, Hooks, Method, Model, Penalty, Settings,
+};
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion};
 
 fn settings(method: Method, gamma: f64) -> Settings {
@@ -41,17 +45,31 @@ fn stack(n: usize, cells: usize) -> Model {
             .mesh()
             .expect("mesh");
             let mut constraints = Constraints::new(mesh.num_nodes());
-            constraints.fix(&mesh, "left", Component::X, 0.0).expect("left");
+            constraints
+                .fix(&mesh, "left", Component::X, 0.0)
+                .expect("left");
             if i == 0 {
-                constraints.fix(&mesh, "bottom", Component::Y, 0.0).expect("bottom");
+                constraints
+                    .fix(&mesh, "bottom", Component::Y, 0.0)
+                    .expect("bottom");
             }
             let loads = if i + 1 == n {
-                vec![Load::Pressure { boundary: "top".into(), value: 5.0 }]
+                vec![Load::Pressure {
+                    boundary: "top".into(),
+                    value: 5.0,
+                }]
             } else {
                 vec![]
             };
             let load = contactdd_core::loads::load_vector(&mesh, &loads).expect("load");
-            ElasticBody { name: format!("b{i}"), mesh, material, plane: Plane::Strain, constraints, load }
+            ElasticBody {
+                name: format!("b{i}"),
+                mesh,
+                material,
+                plane: Plane::Strain,
+                constraints,
+                load,
+            }
         })
         .collect();
     let pairs = (1..n)
@@ -63,7 +81,12 @@ fn stack(n: usize, cells: usize) -> Model {
             profile: None,
         })
         .collect();
-    Model { name: "stack".into(), plane: Plane::Strain, bodies, pairs }
+    Model {
+        name: "stack".into(),
+        plane: Plane::Strain,
+        bodies,
+        pairs,
+    }
 }
 
 fn notch(c: &mut Criterion) {
@@ -71,19 +94,48 @@ fn notch(c: &mut Criterion) {
     let mut group = c.benchmark_group("notch");
     group.bench_function("prepare", |b| b.iter(|| prepare(&model).expect("prepare")));
     let prepared = prepare(&model).expect("prepare");
-    let one = Settings { max_iter: 1, ..settings(Method::NewtonKurchatov, 0.5) };
+    let one = Settings {
+        max_iter: 1,
+        ..settings(Method::NewtonKurchatov, 0.5)
+    };
     group.bench_function("one_iteration", |b| {
-        b.iter(|| iterate(&prepared.interface, &prepared.bodies, &prepared.scale, &one, Hooks::default()))
+        b.iter(|| {
+            iterate(
+                &prepared.interface,
+                &prepared.bodies,
+                &prepared.scale,
+                &one,
+                Hooks::default(),
+            )
+        })
     });
-    for (method, gamma) in [(Method::ActiveSet, 0.5), (Method::NewtonChord, 0.3), (Method::NewtonKurchatov, 0.5)] {
+    for (method, gamma) in [
+        (Method::ActiveSet, 0.5),
+        (Method::NewtonChord, 0.3),
+        (Method::NewtonKurchatov, 0.5),
+    ] {
         group.bench_function(BenchmarkId::new("solve", method.name()), |b| {
-            b.iter(|| solve(&model, &prepared, &settings(method, gamma), Hooks::default()).expect("solve"))
+            b.iter(|| {
+                solve(
+                    &model,
+                    &prepared,
+                    &settings(method, gamma),
+                    Hooks::default(),
+                )
+                .expect("solve")
+            })
         });
     }
-    let methods = [Method::ActiveSet, Method::NewtonChord, Method::NewtonKurchatov];
+    let methods = [
+        Method::ActiveSet,
+        Method::NewtonChord,
+        Method::NewtonKurchatov,
+    ];
     let gammas = gamma_grid();
     let base = settings(Method::ActiveSet, 0.5);
-    group.bench_function("sweep_45_runs", |b| b.iter(|| sweep(&model, &prepared, &methods, &gammas, &base)));
+    group.bench_function("sweep_45_runs", |b| {
+        b.iter(|| sweep(&model, &prepared, &methods, &gammas, &base))
+    });
     group.finish();
 }
 
@@ -92,12 +144,21 @@ fn threads(c: &mut Criterion) {
     let mut group = c.benchmark_group("stack8");
     group.sample_size(10);
     for t in [1, 2] {
-        let pool = rayon::ThreadPoolBuilder::new().num_threads(t).build().expect("pool");
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(t)
+            .build()
+            .expect("pool");
         group.bench_function(BenchmarkId::new("prepare_and_solve", t), |b| {
             b.iter(|| {
                 pool.install(|| {
                     let prepared = prepare(&model).expect("prepare");
-                    solve(&model, &prepared, &settings(Method::ActiveSet, 0.5), Hooks::default()).expect("solve")
+                    solve(
+                        &model,
+                        &prepared,
+                        &settings(Method::ActiveSet, 0.5),
+                        Hooks::default(),
+                    )
+                    .expect("solve")
                 })
             })
         });

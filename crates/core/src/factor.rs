@@ -105,8 +105,19 @@ impl FactoredBody {
             .iter()
             .filter_map(|&d| (reduced[d] != NONE).then_some(reduced[d]))
             .collect();
-        let perm = last_ordering(&lower, &interface).map_err(|e| fail(format!("{e:?}")))?;
+        // With no interface faer's own AMD is the ordering; otherwise AMD on the interior and the
+        // interface last.
+        let perm = if interface.is_empty() {
+            Vec::new()
+        } else {
+            last_ordering(&lower, &interface).map_err(|e| fail(format!("{e:?}")))?
+        };
         let inv = inverse(&perm);
+        let ordering = if interface.is_empty() {
+            SymmetricOrdering::Amd
+        } else {
+            SymmetricOrdering::Custom(faer::perm::PermRef::new_checked(&perm, &inv, n))
+        };
         let params = CholeskySymbolicParams {
             // The Schur factor is read off supernodes; small bodies would otherwise go simplicial.
             supernodal_flop_ratio_threshold: if interface.is_empty() {
@@ -116,13 +127,8 @@ impl FactoredBody {
             },
             ..Default::default()
         };
-        let symbolic = factorize_symbolic_cholesky(
-            lower.as_ref(),
-            Side::Lower,
-            SymmetricOrdering::Custom(faer::perm::PermRef::new_checked(&perm, &inv, n)),
-            params,
-        )
-        .map_err(|e| fail(format!("{e:?}")))?;
+        let symbolic = factorize_symbolic_cholesky(lower.as_ref(), Side::Lower, ordering, params)
+            .map_err(|e| fail(format!("{e:?}")))?;
         let l_values = vec![0.0; symbolic.len_val()];
         let values = vec![0.0; gather.len()];
         Ok(FactoredBody {
