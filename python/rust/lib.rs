@@ -178,7 +178,8 @@ fn solve(
 }
 
 /// Runs a γ study: every method with every γ, on one preparation of the problem (assembly and
-/// factorisation are done once; the runs execute in parallel).
+/// factorisation are done once; the runs execute in parallel). Releases the GIL and can be
+/// interrupted with Ctrl-C (``KeyboardInterrupt``).
 ///
 /// Args:
 ///     problem: the :class:`Problem`.
@@ -234,21 +235,14 @@ fn sweep<'py>(
     let (out, interrupt) = run_interruptible(py, |cancel| {
         with_threads(threads, || {
             let prepared = contactdd_ddm::prepare(&model)?;
-            // γ by γ, so that Ctrl-C stops the study between two values.
-            let mut runs = Vec::with_capacity(methods.len() * gammas.len());
-            for g in &gammas {
-                if cancel.load(Ordering::Relaxed) {
-                    break;
-                }
-                runs.extend(contactdd_ddm::sweep(
-                    &model,
-                    &prepared,
-                    &methods,
-                    std::slice::from_ref(g),
-                    &base,
-                ));
-            }
-            Ok(runs)
+            Ok(contactdd_ddm::sweep::sweep_with_cancel(
+                &model,
+                &prepared,
+                &methods,
+                &gammas,
+                &base,
+                Some(cancel),
+            ))
         })
     })?;
     if let Some(e) = interrupt {

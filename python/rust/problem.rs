@@ -1,13 +1,13 @@
 //! `contactdd.Problem`: a contact problem read from a TOML file or built in code.
 //!
 //! The problem holds resolved solver input (the bodies, contact pairs and iteration settings of a
-//! [`Model`]), built with the same core constructors as `contactdd_ddm::setup` (`Mesh::new`,
-//! `Constraints::fix`, `loads::load_vector`, `Material::new`) and checked with the same rules, so a
-//! bad value gets the message a problem file would get. Supports, loads and gap profiles are
-//! Python dicts deserialized into the problem-file schema (`contactdd_ddm::problem`): the same
-//! keys, kinds and defaults as the TOML tables.
+//! [`Model`]), built and checked by the functions of `contactdd_ddm::setup` that resolve a problem
+//! file (`material`, `mesh`, `body_on_mesh`, `pair`, `settings`, `check_floating`), so a bad value
+//! gets the message a problem file would get. Supports, loads and gap profiles are Python dicts
+//! deserialized into the problem-file schema (`contactdd_ddm::problem`): the same keys, kinds and
+//! defaults as the TOML tables.
 
-use std::collections::{BTreeMap, HashMap};
+use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
 use numpy::{AllowTypeChange, PyArrayLike2, PyUntypedArrayMethods};
@@ -16,15 +16,12 @@ use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use serde::de::DeserializeOwned;
 
-use contactdd_core::{
-    BodyError, Constraints, Diagonal, Edge, ElasticBody, Load, Material, MaterialError, Mesh,
-    Order, Plane, Rectangle,
+use contactdd_core::{Diagonal, Edge, ElasticBody, Material, Mesh, Order, Plane};
+use contactdd_ddm::problem::{
+    ContactSpec, GammaSpec, GapSpec, LoadSpec, MeshSpec, PenaltySpec, SolverSpec, SupportSpec,
 };
-use contactdd_ddm::problem::{GapSpec, LoadSpec, SupportSpec};
-use contactdd_ddm::setup::MAX_RECTANGLE_CELLS;
-use contactdd_ddm::{
-    ContactPair, Gamma, GapProfile, Loaded, Method, Model, Penalty, Settings, SetupError,
-};
+use contactdd_ddm::setup;
+use contactdd_ddm::{ContactPair, Gamma, Loaded, Method, Model, Settings, SetupError};
 
 use crate::convert::{from_name, name_of, to_json, Bad};
 use crate::error::{input_error, setup_error};
@@ -57,60 +54,38 @@ fn solver_error(key: &str, message: impl std::fmt::Display) -> PyErr {
 impl Overrides {
     /// Applies the overrides to `base`, with the checks of a `[solver]` table.
     pub fn apply(&self, base: &Settings) -> PyResult<Settings> {
-        let mut s = base.clone();
-        if let Some(m) = &self.method {
-            s.method = m.parse::<Method>().map_err(|e| solver_error("method", e))?;
-        }
-        if let Some(g) = &self.gamma {
-            s.gamma = gamma(g)?;
-        }
-        if let Some(tol) = self.tol {
-            if !(tol.is_finite() && tol > 0.0) {
-                return Err(solver_error(
-                    "tol",
-                    format!("must be a positive number, got {tol}"),
-                ));
-            }
-            s.tol = tol;
-        }
-        if let Some(n) = self.max_iter {
-            if n == 0 {
-                return Err(solver_error("max-iter", "must be at least 1, got 0"));
-            }
-            s.max_iter = n;
-        }
-        for (key, v, slot) in [
-            ("u0", self.u0, &mut s.u0),
-            ("u-prev", self.u_prev, &mut s.u_prev),
-        ] {
-            if let Some(v) = v {
-                if !v.is_finite() {
-                    return Err(solver_error(key, format!("must be finite, got {v}")));
-                }
-                *slot = v;
-            }
-        }
-        if self.threads == Some(0) {
-            return Err(solver_error("threads", "must be at least 1, got 0"));
-        }
-        Ok(s)
+        let method = match &self.method {
+            Some(m) => Some(m.parse::<Method>().map_err(|e| solver_error("method", e))?),
+            None => None,
+        };
+        let spec = SolverSpec {
+            method,
+            gamma: self.gamma.as_ref().map(gamma_spec).transpose()?,
+            tol: self.tol,
+            max_iter: self.max_iter,
+            u0: self.u0,
+            u_prev: self.u_prev,
+            threads: self.threads,
+        };
+        setup::settings(&spec, base).map_err(setup_error)
     }
 }
 
-/// A γ argument as a γ rule.
-pub fn gamma(g: &GammaArg) -> PyResult<Gamma> {
+/// A γ argument as the `gamma` value of a `[solver]` table (a name must be `"auto"`).
+fn gamma_spec(g: &GammaArg) -> PyResult<GammaSpec> {
     match g {
-        GammaArg::Value(v) if v.is_finite() && *v > 0.0 => Ok(Gamma::Constant(*v)),
-        GammaArg::Name(s) if s == "auto" => Ok(Gamma::Auto),
-        GammaArg::Value(v) => Err(solver_error(
-            "gamma",
-            format!("must be a positive number or \"auto\", got {v}"),
-        )),
+        GammaArg::Value(v) => Ok(GammaSpec::Value(*v)),
+        GammaArg::Name(s) if s == "auto" => Ok(GammaSpec::Auto),
         GammaArg::Name(s) => Err(solver_error(
             "gamma",
             format!("must be a positive number or \"auto\", got \"{s}\""),
         )),
     }
+}
+
+/// A γ argument as a γ rule.
+pub fn gamma(g: &GammaArg) -> PyResult<Gamma> {
+    setup::gamma(gamma_spec(g)?).map_err(setup_error)
 }
 
 /// A γ rule as a Python value: a float, or `"auto"`.
@@ -164,12 +139,7 @@ impl Problem {
     fn from_loaded(loaded: Loaded, default_name: Option<&str>) -> PyResult<Problem> {
         let mut materials = BTreeMap::new();
         for (name, m) in &loaded.problem.materials {
-            let mat = Material::new(m.young, m.poisson).map_err(|e| {
-                setup_error(SetupError::Material {
-                    material: name.clone(),
-                    message: e.to_string(),
-                })
-            })?;
+            let mat = setup::material(name, m.young, m.poisson).map_err(setup_error)?;
             materials.insert(name.clone(), mat);
         }
         let name = match (&loaded.problem.name, default_name) {
@@ -198,63 +168,19 @@ impl Problem {
                     .into(),
             }));
         }
-        for (b, body) in self.bodies.iter().enumerate() {
-            if self.pairs.iter().any(|p| p.bodies.contains(&b)) {
-                continue;
-            }
-            if body.constraints.fixed().next().is_none() {
-                return Err(setup_error(SetupError::Floating {
-                    body: body.name.clone(),
-                }));
-            }
-            if let Err(BodyError::Floating {
-                modes, description, ..
-            }) = body.check_held(&[])
-            {
-                return Err(setup_error(body_error(
-                    &body.name,
-                    "supports",
-                    format!(
-                        "the body has no contact pair and its supports leave {modes} rigid-body \
-                         mode(s) free ({description}): it would float"
-                    ),
-                )));
-            }
-        }
-        Ok(Model {
+        let model = Model {
             name: self.name.clone(),
             plane: self.plane,
             bodies: self.bodies.clone(),
             pairs: self.pairs.clone(),
-        })
-    }
-
-    fn body_index(&self) -> HashMap<&str, usize> {
-        self.bodies
-            .iter()
-            .enumerate()
-            .map(|(i, b)| (b.name.as_str(), i))
-            .collect()
+        };
+        setup::check_floating(&model).map_err(setup_error)?;
+        Ok(model)
     }
 
     fn check_new_body_name(&self, name: &str) -> PyResult<()> {
-        if name.trim().is_empty() {
-            return Err(setup_error(SetupError::Invalid {
-                key: format!("bodies[{}].name", self.bodies.len()),
-                message: "a body name must not be empty".into(),
-            }));
-        }
-        if let Some(j) = self.bodies.iter().position(|b| b.name == name) {
-            return Err(setup_error(body_error(
-                name,
-                "name",
-                format!(
-                    "the name is used by both bodies[{j}] and bodies[{}]",
-                    self.bodies.len()
-                ),
-            )));
-        }
-        Ok(())
+        setup::check_body_name(name, self.bodies.iter().map(|b| b.name.as_str()))
+            .map_err(setup_error)
     }
 
     /// Adds a body on a built mesh: material lookup, supports and loads as in `setup`.
@@ -281,55 +207,9 @@ impl Problem {
         })?;
         let supports: Vec<SupportSpec> = specs(name, "supports", supports)?;
         let loads: Vec<LoadSpec> = specs(name, "loads", loads)?;
-        let mut constraints = Constraints::new(mesh.num_nodes());
-        for (i, s) in supports.iter().enumerate() {
-            constraints
-                .fix(&mesh, &s.boundary, s.component, s.value)
-                .map_err(|e| setup_error(body_error(name, &format!("supports[{i}]"), e)))?;
-        }
-        let mut resolved = Vec::with_capacity(loads.len());
-        for (i, l) in loads.iter().enumerate() {
-            let key = format!("loads[{i}]");
-            let (load, values): (Load, Vec<f64>) = match l {
-                LoadSpec::Pressure { boundary, value } => (
-                    Load::Pressure {
-                        boundary: boundary.clone(),
-                        value: *value,
-                    },
-                    vec![*value],
-                ),
-                LoadSpec::Traction { boundary, value } => (
-                    Load::Traction {
-                        boundary: boundary.clone(),
-                        value: *value,
-                    },
-                    value.to_vec(),
-                ),
-                LoadSpec::BodyForce { value } => (Load::BodyForce(*value), value.to_vec()),
-            };
-            if let Some(v) = values.iter().find(|v| !v.is_finite()) {
-                return Err(setup_error(body_error(
-                    name,
-                    &format!("{key}.value"),
-                    format!("must be finite, got {v}"),
-                )));
-            }
-            if let LoadSpec::Pressure { boundary, .. } | LoadSpec::Traction { boundary, .. } = l {
-                mesh.boundary(boundary)
-                    .map_err(|e| setup_error(body_error(name, &format!("{key}.boundary"), e)))?;
-            }
-            resolved.push(load);
-        }
-        let load = contactdd_core::loads::load_vector(&mesh, &resolved)
-            .map_err(|e| setup_error(body_error(name, "loads", e)))?;
-        self.bodies.push(ElasticBody {
-            name: name.to_string(),
-            mesh,
-            material: mat,
-            plane: self.plane,
-            constraints,
-            load,
-        });
+        let body = setup::body_on_mesh(name, mesh, mat, self.plane, &supports, &loads)
+            .map_err(setup_error)?;
+        self.bodies.push(body);
         Ok(())
     }
 }
@@ -337,13 +217,6 @@ impl Problem {
 fn body_error(body: &str, key: &str, message: impl std::fmt::Display) -> SetupError {
     SetupError::Body {
         body: body.to_string(),
-        message: format!("{key}: {message}"),
-    }
-}
-
-fn pair_error(pair: &str, key: &str, message: impl std::fmt::Display) -> SetupError {
-    SetupError::Pair {
-        pair: pair.to_string(),
         message: format!("{key}: {message}"),
     }
 }
@@ -466,16 +339,7 @@ impl Problem {
                 message: "is already defined".into(),
             }));
         }
-        let mat = Material::new(young, poisson).map_err(|e| {
-            let key = match e {
-                MaterialError::YoungModulus(_) => "young",
-                MaterialError::PoissonRatio(_) => "poisson",
-            };
-            setup_error(SetupError::Material {
-                material: name.to_string(),
-                message: format!("{key}: {e}"),
-            })
-        })?;
+        let mat = setup::material(name, young, poisson).map_err(setup_error)?;
         self.materials.insert(name.to_string(), mat);
         Ok(())
     }
@@ -601,39 +465,16 @@ impl Problem {
         let err = |key: &str, m: String| setup_error(body_error(name, key, m));
         let diagonal: Diagonal = from_name(diagonal).map_err(|e| err("mesh.diagonal", e))?;
         let order: Order = from_name(order).map_err(|e| err("mesh.order", e))?;
-        for (key, n) in [("mesh.nx", nx), ("mesh.ny", ny)] {
-            if n == 0 {
-                return Err(err(key, "must be at least 1, got 0".into()));
-            }
-        }
-        if !matches!(nx.checked_mul(ny), Some(c) if c <= MAX_RECTANGLE_CELLS) {
-            return Err(err(
-                "mesh",
-                format!("{nx} × {ny} cells is more than the limit of {MAX_RECTANGLE_CELLS}"),
-            ));
-        }
-        for (key, r) in [("mesh.x", x), ("mesh.y", y)] {
-            if !(r.0.is_finite() && r.1.is_finite() && r.0 < r.1) {
-                return Err(err(
-                    key,
-                    format!(
-                        "need a finite range [min, max] with min < max, got [{}, {}]",
-                        r.0, r.1
-                    ),
-                ));
-            }
-        }
-        let mesh = Rectangle {
-            origin: [x.0, y.0],
-            corner: [x.1, y.1],
+        let spec = MeshSpec::Rectangle {
+            x: [x.0, x.1],
+            y: [y.0, y.1],
             nx,
             ny,
             diagonal,
             mirror,
             order,
-        }
-        .mesh()
-        .map_err(|e| err("mesh", e.to_string()))?;
+        };
+        let mesh = setup::mesh(name, &spec, Path::new("")).map_err(setup_error)?;
         self.push_body(name, mesh, material, supports, loads)
     }
 
@@ -660,107 +501,26 @@ impl Problem {
         gap: Option<&Bound<'_, PyAny>>,
         name: Option<String>,
     ) -> PyResult<()> {
-        let names = [bodies.0, bodies.1];
-        let boundaries = [boundaries.0, boundaries.1];
-        let name = name.unwrap_or_else(|| format!("{}-{}", names[0], names[1]));
-        let perr = |key: &str, m: String| setup_error(pair_error(&name, key, m));
-        let index = self.body_index();
-        let mut ids = [0usize; 2];
-        for (s, body) in names.iter().enumerate() {
-            ids[s] = *index.get(body.as_str()).ok_or_else(|| {
-                let mut known: Vec<&str> = index.keys().copied().collect();
-                known.sort_unstable();
-                perr(
-                    &format!("bodies[{s}]"),
-                    format!("unknown body '{body}' (known: {})", known.join(", ")),
-                )
-            })?;
-        }
-        if ids[0] == ids[1] {
-            return Err(perr(
-                "bodies",
-                format!(
-                    "names body '{}' twice; a contact pair needs two different bodies",
-                    names[0]
-                ),
-            ));
-        }
-        for s in 0..2 {
-            let body = &self.bodies[ids[s]];
-            body.mesh.boundary(&boundaries[s]).map_err(|e| {
-                perr(
-                    &format!("boundaries[{s}]"),
-                    format!("body '{}': {e}", body.name),
-                )
-            })?;
-        }
-        let positive = |key: &str, v: f64| {
-            if v.is_finite() && v > 0.0 {
-                Ok(v)
-            } else {
-                Err(perr(
-                    &format!("penalty.{key}"),
-                    format!("must be a positive finite number, got {v}"),
-                ))
-            }
+        let name = name.unwrap_or_else(|| format!("{}-{}", bodies.0, bodies.1));
+        let gap: Option<GapSpec> = match gap {
+            Some(g) if !g.is_none() => Some(parse(g, "gap")?.map_err(|message| {
+                setup_error(SetupError::Pair {
+                    pair: name.clone(),
+                    message,
+                })
+            })?),
+            _ => None,
         };
-        let penalty = match (theta, c, h) {
-            (Some(t), None, None) => Penalty::Theta(positive("theta", t)?),
-            (None, Some(c), Some(h)) => Penalty::RodModel {
-                c: positive("c", c)?,
-                h: positive("h", h)?,
-            },
-            (Some(_), _, _) => {
-                return Err(perr(
-                    "penalty",
-                    "give either theta, or c and h (rod model), not both".into(),
-                ))
-            }
-            (None, None, None) => {
-                return Err(perr(
-                    "penalty",
-                    "give either theta = θ or c and h (rod model θ = c·h·(1/E*₁ + 1/E*₂))".into(),
-                ))
-            }
-            (None, _, _) => return Err(perr("penalty", "the rod model needs both c and h".into())),
+        let spec = ContactSpec {
+            name: Some(name),
+            bodies: [bodies.0, bodies.1],
+            boundaries: [boundaries.0, boundaries.1],
+            penalty: PenaltySpec { c, h, theta },
+            gap,
         };
-        let (a, b) = (&self.bodies[ids[0]], &self.bodies[ids[1]]);
-        let th = penalty.theta(self.plane, &a.material, &b.material);
-        if !(th.is_finite() && th > 0.0) {
-            return Err(perr(
-                "penalty",
-                format!("θ = {th} is not a positive finite number"),
-            ));
-        }
-        let profile = match gap {
-            None => None,
-            Some(g) if g.is_none() => None,
-            Some(g) => {
-                let spec: GapSpec = parse(g, "gap")?.map_err(|message| {
-                    setup_error(SetupError::Pair {
-                        pair: name.clone(),
-                        message,
-                    })
-                })?;
-                Some(gap_profile(&spec).map_err(|(key, m)| perr(&format!("gap.{key}"), m))?)
-            }
-        };
-        if let Some(j) = self.pairs.iter().position(|p| p.name == name) {
-            return Err(perr(
-                "name",
-                format!(
-                    "the name is used by both contact[{j}] and contact[{}]; give each pair its own name",
-                    self.pairs.len()
-                ),
-            ));
-        }
-        self.pairs.push(ContactPair {
-            name: name.clone(),
-            bodies: ids,
-            boundaries,
-            penalty,
-            profile,
-        });
+        let pair =
+            setup::pair(&spec, &self.bodies, &self.pairs, self.plane).map_err(setup_error)?;
+        self.pairs.push(pair);
         Ok(())
     }
 
@@ -886,38 +646,4 @@ impl Problem {
             self.settings.gamma
         )
     }
-}
-
-/// A gap profile from its schema, with the checks of a problem file; errors are (key, message).
-fn gap_profile(spec: &GapSpec) -> Result<GapProfile, (String, String)> {
-    let check = |key: &str, v: f64, positive: bool| {
-        if v.is_finite() && (!positive || v > 0.0) {
-            Ok(v)
-        } else {
-            let what = if positive {
-                "a positive finite number"
-            } else {
-                "finite"
-            };
-            Err((key.to_string(), format!("must be {what}, got {v}")))
-        }
-    };
-    Ok(match *spec {
-        GapSpec::Notch {
-            r0,
-            b,
-            centre,
-            power,
-            along,
-        } => GapProfile::Notch {
-            r0: check("r0", r0, false)?,
-            b: check("b", b, true)?,
-            centre: check("centre", centre, false)?,
-            power: check("power", power, true)?,
-            along,
-        },
-        GapSpec::Uniform { value } => GapProfile::Uniform {
-            value: check("value", value, false)?,
-        },
-    })
 }

@@ -5,13 +5,15 @@
 //! Cholesky factorisation (faer) per body.
 //!
 //! Modules follow the data flow: [`mesh`] (and [`rectangle`], [`gmsh`]) → [`element`] →
-//! [`material`] → [`assembly`] / [`loads`] → [`supports`] → [`factor`] → [`post`] / [`vtu`].
+//! [`material`] → [`assembly`] / [`loads`] → [`supports`] → [`factor`] → [`post`] / [`vtu`];
+//! [`atomic`] writes files without ever leaving a half-written one.
 //! [`body::ElasticBody::solve`] runs all stages in one call.
 //!
 //! The weak form per body is `a(u, v) = ∫ ε(v) : C : ε(u) dA = ∫ f·v dA + ∫_Γσ t·v ds`, with
 //! prescribed components of `u` eliminated from the system.
 
 pub mod assembly;
+pub mod atomic;
 pub mod body;
 pub mod element;
 pub mod error;

@@ -16,10 +16,10 @@
 //! reader and `meshio` accept, NaN and infinities included.
 
 use std::fmt::Write as _;
-use std::io::{Error, ErrorKind, Write as _};
+use std::io::{Error, ErrorKind};
 use std::path::Path;
-use std::sync::atomic::{AtomicUsize, Ordering};
 
+use crate::atomic::write_atomic;
 use crate::mesh::{Mesh, Order};
 
 /// A nodal field to write: `components` values per node, node-major
@@ -37,9 +37,8 @@ pub struct PointField<'a> {
 /// Writes `mesh` as a `.vtu` file at `path`, with an optional nodal `displacement`
 /// (2 values per node, written as the 3-component vector field `"displacement"`) and nodal `fields`.
 ///
-/// The file is written to a temporary file in the same folder, then renamed to `path`, so that a
-/// reader never sees a half-written file. Mismatched field lengths are
-/// [`ErrorKind::InvalidInput`] errors; see [`vtu_string`].
+/// The file is written by [`write_atomic`], so that a reader never sees a half-written file.
+/// Mismatched field lengths are [`ErrorKind::InvalidInput`] errors; see [`vtu_string`].
 pub fn write_vtu(
     path: &Path,
     mesh: &Mesh,
@@ -47,34 +46,7 @@ pub fn write_vtu(
     fields: &[PointField<'_>],
 ) -> std::io::Result<()> {
     let text = vtu_string(mesh, displacement, fields)?;
-    let file_name = path.file_name().ok_or_else(|| {
-        Error::new(
-            ErrorKind::InvalidInput,
-            format!("'{}' is not a file path", path.display()),
-        )
-    })?;
-    // Unique per process and call, so that concurrent writers never share a temporary file.
-    static COUNTER: AtomicUsize = AtomicUsize::new(0);
-    let mut temp_name = std::ffi::OsString::from(".");
-    temp_name.push(file_name);
-    temp_name.push(format!(
-        ".{}-{}.tmp",
-        std::process::id(),
-        COUNTER.fetch_add(1, Ordering::Relaxed)
-    ));
-    let temp = path.with_file_name(temp_name);
-    let result = (|| {
-        let mut file = std::fs::File::create(&temp)?;
-        file.write_all(text.as_bytes())?;
-        file.sync_all()?;
-        drop(file);
-        std::fs::rename(&temp, path)
-    })();
-    if result.is_err() {
-        // Best effort: the original error is the one worth reporting.
-        let _ = std::fs::remove_file(&temp);
-    }
-    result
+    write_atomic(path, text.as_bytes())
 }
 
 /// The text of the `.vtu` file that [`write_vtu`] writes.

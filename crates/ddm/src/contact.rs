@@ -13,7 +13,7 @@ use std::collections::HashMap;
 use std::ops::Range;
 
 use contactdd_core::element::{edge_nodal_weights, edge_shape};
-use contactdd_core::{Edge, Mesh};
+use contactdd_core::{Edge, Mesh, Order};
 
 use crate::error::SetupError;
 use crate::model::Model;
@@ -70,6 +70,7 @@ impl Interface {
         }
         let mut sides = Vec::new();
         for (p, pair) in model.pairs.iter().enumerate() {
+            let mut zone = Vec::with_capacity(2);
             for s in 0..2 {
                 let b = pair.bodies[s];
                 let body = model.bodies.get(b).ok_or_else(|| SetupError::Pair {
@@ -83,7 +84,13 @@ impl Interface {
                             pair: pair.name.clone(),
                             message: format!("body '{}': {e}", body.name),
                         })?;
-                let (nodes, normals, weights) = nodal_quadrature(&body.mesh, edges);
+                zone.push((b, &body.mesh, edges));
+            }
+            for s in 0..2 {
+                let (b, mesh, edges) = zone[s];
+                let (_, other_mesh, other_edges) = zone[1 - s];
+                let (nodes, normals, weights) =
+                    nodal_quadrature(mesh, edges, other_mesh, other_edges);
                 sides.push(Side {
                     body: b,
                     pair: p,
@@ -191,12 +198,23 @@ impl Interface {
 }
 
 /// Nodes of a boundary with their nodal normals and quadrature weights.
-fn nodal_quadrature(mesh: &Mesh, edges: &[Edge]) -> (Vec<usize>, Vec<[f64; 2]>, Vec<f64>) {
+///
+/// The weights are the integrals of the edge shape functions over the part of each edge that faces
+/// the partner boundary: trapezoid (P1) and Simpson (P2) weights for edges facing it entirely (the
+/// usual case), and a share of the covered part for an edge that sticks out past the end of the
+/// partner, so that a short body on a long one is loaded over its own length only.
+fn nodal_quadrature(
+    mesh: &Mesh,
+    edges: &[Edge],
+    partner: &Mesh,
+    partner_edges: &[Edge],
+) -> (Vec<usize>, Vec<[f64; 2]>, Vec<f64>) {
     let mut index: HashMap<usize, usize> = HashMap::new();
     let (mut nodes, mut normals, mut weights) = (Vec::new(), Vec::new(), Vec::new());
     for e in edges {
         let (n, len) = mesh.edge_normal(e);
-        let w = edge_nodal_weights(mesh.order(), len);
+        let (t0, t1) = covered_part(mesh, e, n, partner, partner_edges);
+        let w = partial_edge_weights(mesh.order(), len, t0, t1);
         for (k, v) in e.nodes().enumerate() {
             let i = *index.entry(v).or_insert_with(|| {
                 nodes.push(v);
@@ -216,6 +234,89 @@ fn nodal_quadrature(mesh: &Mesh, edges: &[Edge]) -> (Vec<usize>, Vec<[f64; 2]>, 
         }
     }
     (nodes, normals, weights)
+}
+
+/// The parameter interval [t0, t1] ⊂ [0, 1] of edge `e` whose normal rays hit the partner
+/// boundary (empty as t0 = t1 = 0). Found by sampling and bisection.
+fn covered_part(
+    mesh: &Mesh,
+    e: &Edge,
+    n: [f64; 2],
+    partner: &Mesh,
+    partner_edges: &[Edge],
+) -> (f64, f64) {
+    const SAMPLES: usize = 8;
+    let (a, b) = (mesh.nodes()[e.a], mesh.nodes()[e.b]);
+    let hits = |t: f64| {
+        let x = [a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1])];
+        project(x, n, partner, partner_edges).is_some()
+    };
+    let covered: Vec<bool> = (0..=SAMPLES)
+        .map(|i| hits(i as f64 / SAMPLES as f64))
+        .collect();
+    if covered.iter().all(|&c| c) {
+        return (0.0, 1.0);
+    }
+    let (Some(first), Some(last)) = (
+        covered.iter().position(|&c| c),
+        covered.iter().rposition(|&c| c),
+    ) else {
+        return (0.0, 0.0);
+    };
+    // Bisect between the last uncovered and first covered sample (and vice versa at the end).
+    let refine = |mut lo: f64, mut hi: f64, covered_hi: bool| {
+        for _ in 0..40 {
+            let mid = 0.5 * (lo + hi);
+            if hits(mid) == covered_hi {
+                hi = mid;
+            } else {
+                lo = mid;
+            }
+        }
+        hi
+    };
+    let step = 1.0 / SAMPLES as f64;
+    let t0 = if first == 0 {
+        0.0
+    } else {
+        refine((first - 1) as f64 * step, first as f64 * step, true)
+    };
+    let t1 = if last == SAMPLES {
+        1.0
+    } else {
+        refine((last + 1) as f64 * step, last as f64 * step, true)
+    };
+    (t0, t1.max(t0))
+}
+
+/// Integrals of the edge shape functions (order `a, b, [mid]`) over [t0, t1] of an edge of length
+/// `len`: trapezoid / Simpson weights for [0, 1]. Negative P2 vertex shares of a partial edge are
+/// dropped and the rest rescaled to the covered length.
+fn partial_edge_weights(order: Order, len: f64, t0: f64, t1: f64) -> [f64; 3] {
+    if t0 == 0.0 && t1 == 1.0 {
+        return edge_nodal_weights(order, len);
+    }
+    let integral = |f: &dyn Fn(f64) -> f64| len * (f(t1) - f(t0));
+    let w = match order {
+        Order::P1 => [
+            integral(&|t| t - 0.5 * t * t),
+            integral(&|t| 0.5 * t * t),
+            0.0,
+        ],
+        Order::P2 => [
+            integral(&|t| t - 1.5 * t * t + 2.0 / 3.0 * t.powi(3)),
+            integral(&|t| 2.0 / 3.0 * t.powi(3) - 0.5 * t * t),
+            integral(&|t| 2.0 * t * t - 4.0 / 3.0 * t.powi(3)),
+        ],
+    };
+    let positive = w.map(|x| x.max(0.0));
+    let sum: f64 = positive.iter().sum();
+    let covered = len * (t1 - t0);
+    if sum > 0.0 {
+        positive.map(|x| x * covered / sum)
+    } else {
+        [0.0; 3]
+    }
 }
 
 fn cross(a: [f64; 2], b: [f64; 2]) -> f64 {

@@ -2,9 +2,10 @@
 //! plus the CSV table of a γ sweep.
 //!
 //! The text builders ([`summary_json`], [`contact_csv`], [`history_csv`], [`sweep_csv`]) only
-//! format; [`write_results`] writes a whole result folder. Every file is written to a temporary
-//! file in the target folder and then renamed, so a reader (or a crash mid-write) never leaves a
-//! half-written file behind.
+//! format; [`write_results`] writes a whole result folder. Every file is written by
+//! [`write_atomic`] (re-exported from `contactdd_core::atomic`): to a temporary file in the target
+//! folder, then renamed, so a reader (or a crash mid-write) never leaves a half-written file
+//! behind.
 //!
 //! Non-finite numbers: JSON has no NaN or infinity, so every non-finite value in `summary.json`
 //! becomes `null` (e.g. the gap of a contact point whose normal ray misses the partner body, or the
@@ -34,12 +35,12 @@
 //! contact force `[fx, fy]` on each of the two bodies.
 
 use std::fmt::Write as _;
-use std::io::{Error, ErrorKind, Write as _};
+use std::io::Error;
 use std::path::{Path, PathBuf};
-use std::sync::atomic::{AtomicUsize, Ordering};
 
 use serde_json::{json, Value};
 
+pub use contactdd_core::atomic::write_atomic;
 use contactdd_core::vtu::{write_vtu, PointField};
 use contactdd_core::Order;
 
@@ -347,39 +348,6 @@ pub fn safe_file_name(name: &str) -> String {
     } else {
         s
     }
-}
-
-/// Writes `bytes` to `path` through a temporary file in the same folder and a rename, so that
-/// `path` is either the old file or the complete new one.
-pub fn write_atomic(path: &Path, bytes: &[u8]) -> std::io::Result<()> {
-    let file_name = path.file_name().ok_or_else(|| {
-        Error::new(
-            ErrorKind::InvalidInput,
-            format!("'{}' is not a file path", path.display()),
-        )
-    })?;
-    // Unique per process and call, so that concurrent writers never share a temporary file.
-    static COUNTER: AtomicUsize = AtomicUsize::new(0);
-    let mut temp_name = std::ffi::OsString::from(".");
-    temp_name.push(file_name);
-    temp_name.push(format!(
-        ".{}-{}.tmp",
-        std::process::id(),
-        COUNTER.fetch_add(1, Ordering::Relaxed)
-    ));
-    let temp = path.with_file_name(temp_name);
-    let result = (|| {
-        let mut file = std::fs::File::create(&temp)?;
-        file.write_all(bytes)?;
-        file.sync_all()?;
-        drop(file);
-        std::fs::rename(&temp, path)
-    })();
-    if result.is_err() {
-        // Best effort: the original error is the one worth reporting.
-        let _ = std::fs::remove_file(&temp);
-    }
-    result
 }
 
 fn pretty(value: &Value) -> std::io::Result<String> {

@@ -19,8 +19,12 @@
 //!   value), all loads of a body form one load vector ([`contactdd_core::loads::load_vector`]);
 //! - a penalty `{ c, h }` is the rod model θ = c·h·(1/E*₁ + 1/E*₂), `{ theta }` is θ itself;
 //! - absent `[solver]` keys take the values of [`Settings::default`].
+//!
+//! The checks of single entries are public ([`material`], [`check_body_name`], [`mesh`],
+//! [`body_on_mesh`], [`pair`], [`settings`], [`gamma`], [`check_floating`]) so that a problem
+//! built in code (the Python module) gets the same validation and the same messages as a file.
 
-use std::collections::{BTreeMap, HashMap};
+use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
 use contactdd_core::{
@@ -32,7 +36,8 @@ use crate::error::SetupError;
 use crate::iteration::Settings;
 use crate::model::{ContactPair, Model, Penalty};
 use crate::problem::{
-    BodySpec, ContactSpec, GammaSpec, GapSpec, LoadSpec, MeshSpec, PenaltySpec, Problem, SolverSpec,
+    BodySpec, ContactSpec, GammaSpec, GapSpec, LoadSpec, MeshSpec, PenaltySpec, Problem,
+    SolverSpec, SupportSpec,
 };
 use crate::profile::GapProfile;
 use crate::relaxation::Gamma;
@@ -92,29 +97,23 @@ fn resolve_named(
     base_dir: &Path,
     default_name: &str,
 ) -> Result<Loaded, SetupError> {
-    let (settings, threads) = settings(&problem.solver)?;
+    let settings = settings(&problem.solver, &Settings::default())?;
     if problem.bodies.is_empty() {
         return Err(SetupError::Invalid {
             key: "bodies".into(),
             message: "the problem has no bodies (add a [[bodies]] table)".into(),
         });
     }
-    let materials = materials(&problem)?;
-    let mut index: HashMap<&str, usize> = HashMap::new();
+    let materials = problem
+        .materials
+        .iter()
+        .map(|(name, m)| Ok((name.clone(), material(name, m.young, m.poisson)?)))
+        .collect::<Result<BTreeMap<_, _>, SetupError>>()?;
     for (i, body) in problem.bodies.iter().enumerate() {
-        if body.name.trim().is_empty() {
-            return Err(SetupError::Invalid {
-                key: format!("bodies[{i}].name"),
-                message: "a body name must not be empty".into(),
-            });
-        }
-        if let Some(j) = index.insert(&body.name, i) {
-            return Err(body_error(
-                &body.name,
-                "name",
-                format!("the name is used by both bodies[{j}] and bodies[{i}]"),
-            ));
-        }
+        check_body_name(
+            &body.name,
+            problem.bodies[..i].iter().map(|b| b.name.as_str()),
+        )?;
     }
     let bodies = problem
         .bodies
@@ -122,58 +121,25 @@ fn resolve_named(
         .map(|spec| body(spec, &materials, problem.plane, base_dir))
         .collect::<Result<Vec<_>, _>>()?;
     let mut pairs: Vec<ContactPair> = Vec::with_capacity(problem.contact.len());
-    for (i, spec) in problem.contact.iter().enumerate() {
-        let pair = pair(spec, &index, &bodies, problem.plane)?;
-        if let Some(j) = pairs.iter().position(|p| p.name == pair.name) {
-            return Err(pair_error(
-                &pair.name,
-                "name",
-                format!(
-                    "the name is used by both contact[{j}] and contact[{i}]; give each pair its \
-                     own name"
-                ),
-            ));
-        }
+    for spec in &problem.contact {
+        let pair = pair(spec, &bodies, &pairs, problem.plane)?;
         pairs.push(pair);
-    }
-    for (b, (spec, body)) in problem.bodies.iter().zip(&bodies).enumerate() {
-        let in_contact = pairs.iter().any(|p| p.bodies.contains(&b));
-        if in_contact {
-            continue;
-        }
-        if spec.supports.is_empty() {
-            return Err(SetupError::Floating {
-                body: spec.name.clone(),
-            });
-        }
-        // Without contact the supports alone must hold the body.
-        if let Err(BodyError::Floating {
-            modes, description, ..
-        }) = body.check_held(&[])
-        {
-            return Err(body_error(
-                &spec.name,
-                "supports",
-                format!(
-                    "the body has no contact pair and its supports leave {modes} rigid-body \
-                     mode(s) free ({description}): it would float"
-                ),
-            ));
-        }
     }
     let name = problem
         .name
         .clone()
         .unwrap_or_else(|| default_name.to_string());
+    let model = Model {
+        name,
+        plane: problem.plane,
+        bodies,
+        pairs,
+    };
+    check_floating(&model)?;
     Ok(Loaded {
-        model: Model {
-            name,
-            plane: problem.plane,
-            bodies,
-            pairs,
-        },
+        model,
         settings,
-        threads,
+        threads: problem.solver.threads,
         problem,
     })
 }
@@ -196,74 +162,133 @@ fn solver_error(key: &str, message: impl std::fmt::Display) -> SetupError {
     SetupError::Solver(format!("{key}: {message}"))
 }
 
-/// `[solver]` → settings and thread count.
-fn settings(spec: &SolverSpec) -> Result<(Settings, Option<usize>), SetupError> {
-    let defaults = Settings::default();
-    let gamma = match spec.gamma {
-        None => defaults.gamma,
-        Some(GammaSpec::Auto) => Gamma::Auto,
-        Some(GammaSpec::Value(g)) => {
-            if !(g.is_finite() && g > 0.0) {
-                return Err(solver_error(
-                    "gamma",
-                    format!("must be a positive number or \"auto\", got {g}"),
-                ));
-            }
-            Gamma::Constant(g)
+/// A `[solver]` table applied to `base`: every key given is checked and replaces the value of
+/// `base`, absent keys keep it. `threads` is checked (≥ 1) but is not part of [`Settings`]; read
+/// it from `spec`.
+pub fn settings(spec: &SolverSpec, base: &Settings) -> Result<Settings, SetupError> {
+    let mut s = base.clone();
+    if let Some(method) = spec.method {
+        s.method = method;
+    }
+    if let Some(g) = spec.gamma {
+        s.gamma = gamma(g)?;
+    }
+    if let Some(tol) = spec.tol {
+        if !(tol.is_finite() && tol > 0.0) {
+            return Err(solver_error(
+                "tol",
+                format!("must be a positive number, got {tol}"),
+            ));
         }
-    };
-    let tol = spec.tol.unwrap_or(defaults.tol);
-    if !(tol.is_finite() && tol > 0.0) {
-        return Err(solver_error(
-            "tol",
-            format!("must be a positive number, got {tol}"),
-        ));
+        s.tol = tol;
     }
-    let max_iter = spec.max_iter.unwrap_or(defaults.max_iter);
-    if max_iter == 0 {
-        return Err(solver_error("max-iter", "must be at least 1, got 0"));
+    if let Some(max_iter) = spec.max_iter {
+        if max_iter == 0 {
+            return Err(solver_error("max-iter", "must be at least 1, got 0"));
+        }
+        s.max_iter = max_iter;
     }
-    let u0 = spec.u0.unwrap_or(defaults.u0);
-    let u_prev = spec.u_prev.unwrap_or(defaults.u_prev);
-    for (key, v) in [("u0", u0), ("u-prev", u_prev)] {
-        if !v.is_finite() {
-            return Err(solver_error(key, format!("must be finite, got {v}")));
+    for (key, v, slot) in [
+        ("u0", spec.u0, &mut s.u0),
+        ("u-prev", spec.u_prev, &mut s.u_prev),
+    ] {
+        if let Some(v) = v {
+            if !v.is_finite() {
+                return Err(solver_error(key, format!("must be finite, got {v}")));
+            }
+            *slot = v;
         }
     }
     if spec.threads == Some(0) {
         return Err(solver_error("threads", "must be at least 1, got 0"));
     }
-    let settings = Settings {
-        method: spec.method.unwrap_or(defaults.method),
-        gamma,
-        tol,
-        max_iter,
-        u0,
-        u_prev,
-    };
-    Ok((settings, spec.threads))
+    Ok(s)
 }
 
-/// `[materials]` → validated materials.
-fn materials(problem: &Problem) -> Result<BTreeMap<String, Material>, SetupError> {
-    problem
-        .materials
-        .iter()
-        .map(|(name, m)| {
-            Material::new(m.young, m.poisson)
-                .map(|mat| (name.clone(), mat))
-                .map_err(|e| {
-                    let key = match e {
-                        MaterialError::YoungModulus(_) => "young",
-                        MaterialError::PoissonRatio(_) => "poisson",
-                    };
-                    SetupError::Material {
-                        material: name.clone(),
-                        message: format!("{key}: {e}"),
-                    }
-                })
-        })
-        .collect()
+/// A `gamma` value → a γ rule: `"auto"`, or a constant γ > 0.
+pub fn gamma(spec: GammaSpec) -> Result<Gamma, SetupError> {
+    match spec {
+        GammaSpec::Auto => Ok(Gamma::Auto),
+        GammaSpec::Value(g) if g.is_finite() && g > 0.0 => Ok(Gamma::Constant(g)),
+        GammaSpec::Value(g) => Err(solver_error(
+            "gamma",
+            format!("must be a positive number or \"auto\", got {g}"),
+        )),
+    }
+}
+
+/// A `[materials.NAME]` table → a validated material (errors name the material and the key).
+pub fn material(name: &str, young: f64, poisson: f64) -> Result<Material, SetupError> {
+    Material::new(young, poisson).map_err(|e| {
+        let key = match e {
+            MaterialError::YoungModulus(_) => "young",
+            MaterialError::PoissonRatio(_) => "poisson",
+        };
+        SetupError::Material {
+            material: name.to_string(),
+            message: format!("{key}: {e}"),
+        }
+    })
+}
+
+/// Checks the name of the next body, `bodies[i]` where i is the number of `earlier` names: not
+/// empty, and not one of them.
+pub fn check_body_name<'a>(
+    name: &str,
+    earlier: impl IntoIterator<Item = &'a str>,
+) -> Result<(), SetupError> {
+    let mut i = 0;
+    let mut duplicate = None;
+    for other in earlier {
+        if duplicate.is_none() && other == name {
+            duplicate = Some(i);
+        }
+        i += 1;
+    }
+    if name.trim().is_empty() {
+        return Err(SetupError::Invalid {
+            key: format!("bodies[{i}].name"),
+            message: "a body name must not be empty".into(),
+        });
+    }
+    match duplicate {
+        Some(j) => Err(body_error(
+            name,
+            "name",
+            format!("the name is used by both bodies[{j}] and bodies[{i}]"),
+        )),
+        None => Ok(()),
+    }
+}
+
+/// Checks that every body is held: a body without a contact pair needs supports, and they must
+/// remove all its rigid-body modes.
+pub fn check_floating(model: &Model) -> Result<(), SetupError> {
+    for (b, body) in model.bodies.iter().enumerate() {
+        if model.pairs.iter().any(|p| p.bodies.contains(&b)) {
+            continue;
+        }
+        if body.constraints.fixed().next().is_none() {
+            return Err(SetupError::Floating {
+                body: body.name.clone(),
+            });
+        }
+        // Without contact the supports alone must hold the body.
+        if let Err(BodyError::Floating {
+            modes, description, ..
+        }) = body.check_held(&[])
+        {
+            return Err(body_error(
+                &body.name,
+                "supports",
+                format!(
+                    "the body has no contact pair and its supports leave {modes} rigid-body \
+                     mode(s) free ({description}): it would float"
+                ),
+            ));
+        }
+    }
+    Ok(())
 }
 
 /// One `[[bodies]]` entry → an elastic body.
@@ -286,14 +311,27 @@ fn body(
         )
     })?;
     let mesh = mesh(name, &spec.mesh, base_dir)?;
+    body_on_mesh(name, mesh, material, plane, &spec.supports, &spec.loads)
+}
+
+/// Body `name` on a built mesh: supports applied in order ([`Constraints::fix`]), loads checked
+/// (finite values, known boundaries) and summed into one load vector.
+pub fn body_on_mesh(
+    name: &str,
+    mesh: Mesh,
+    material: Material,
+    plane: Plane,
+    supports: &[SupportSpec],
+    loads: &[LoadSpec],
+) -> Result<ElasticBody, SetupError> {
     let mut constraints = Constraints::new(mesh.num_nodes());
-    for (i, s) in spec.supports.iter().enumerate() {
+    for (i, s) in supports.iter().enumerate() {
         constraints
             .fix(&mesh, &s.boundary, s.component, s.value)
             .map_err(|e| body_error(name, &format!("supports[{i}]"), e))?;
     }
-    let mut loads = Vec::with_capacity(spec.loads.len());
-    for (i, l) in spec.loads.iter().enumerate() {
+    let mut resolved = Vec::with_capacity(loads.len());
+    for (i, l) in loads.iter().enumerate() {
         let key = format!("loads[{i}]");
         let (load, values): (Load, Vec<f64>) = match l {
             LoadSpec::Pressure { boundary, value } => (
@@ -323,9 +361,9 @@ fn body(
             mesh.boundary(boundary)
                 .map_err(|e| body_error(name, &format!("{key}.boundary"), e))?;
         }
-        loads.push(load);
+        resolved.push(load);
     }
-    let load = contactdd_core::loads::load_vector(&mesh, &loads)
+    let load = contactdd_core::loads::load_vector(&mesh, &resolved)
         .map_err(|e| body_error(name, "loads", e))?;
     Ok(ElasticBody {
         name: name.to_string(),
@@ -337,8 +375,9 @@ fn body(
     })
 }
 
-/// A body's `mesh` table → a validated mesh.
-fn mesh(body: &str, spec: &MeshSpec, base_dir: &Path) -> Result<Mesh, SetupError> {
+/// The `mesh` table of body `body` → a validated mesh; a relative Gmsh path resolves against
+/// `base_dir`.
+pub fn mesh(body: &str, spec: &MeshSpec, base_dir: &Path) -> Result<Mesh, SetupError> {
     match spec {
         MeshSpec::Rectangle {
             x,
@@ -440,11 +479,12 @@ fn mesh(body: &str, spec: &MeshSpec, base_dir: &Path) -> Result<Mesh, SetupError
     }
 }
 
-/// One `[[contact]]` entry → a contact pair.
-fn pair(
+/// One `[[contact]]` entry → a contact pair between two of `bodies`, whose name must differ from
+/// those of the `earlier` pairs (this one is `contact[earlier.len()]`).
+pub fn pair(
     spec: &ContactSpec,
-    index: &HashMap<&str, usize>,
     bodies: &[ElasticBody],
+    earlier: &[ContactPair],
     plane: Plane,
 ) -> Result<ContactPair, SetupError> {
     let name = spec
@@ -453,8 +493,8 @@ fn pair(
         .unwrap_or_else(|| format!("{}-{}", spec.bodies[0], spec.bodies[1]));
     let mut ids = [0usize; 2];
     for (s, body) in spec.bodies.iter().enumerate() {
-        ids[s] = *index.get(body.as_str()).ok_or_else(|| {
-            let mut names: Vec<&str> = index.keys().copied().collect();
+        ids[s] = bodies.iter().position(|b| b.name == *body).ok_or_else(|| {
+            let mut names: Vec<&str> = bodies.iter().map(|b| b.name.as_str()).collect();
             names.sort_unstable();
             pair_error(
                 &name,
@@ -498,6 +538,17 @@ fn pair(
         .as_ref()
         .map(|g| gap_profile(&name, g))
         .transpose()?;
+    if let Some(j) = earlier.iter().position(|p| p.name == name) {
+        return Err(pair_error(
+            &name,
+            "name",
+            format!(
+                "the name is used by both contact[{j}] and contact[{}]; give each pair its own \
+                 name",
+                earlier.len()
+            ),
+        ));
+    }
     Ok(ContactPair {
         name,
         bodies: ids,

@@ -1,6 +1,9 @@
 //! The γ sweep: methods × γ values → iterations, converged or why not (the paper's Fig. 3 /
 //! Table 1). Everything that does not depend on γ (assembly, factorisation, condensation) is
 //! prepared once; each run only iterates on the interface, and runs execute in parallel.
+//! [`sweep_with_cancel`] takes a cancel flag (Ctrl-C in the Python module).
+
+use std::sync::atomic::{AtomicBool, Ordering};
 
 use rayon::prelude::*;
 
@@ -26,6 +29,8 @@ pub struct SweepRun {
 }
 
 /// Runs every method with every γ; `base` supplies the tolerance, cap and initial values.
+/// Runs are returned γ by γ, method by method. See [`sweep_with_cancel`] for a sweep that can be
+/// stopped.
 pub fn sweep(
     model: &Model,
     prepared: &Prepared,
@@ -33,33 +38,57 @@ pub fn sweep(
     gammas: &[Gamma],
     base: &Settings,
 ) -> Vec<SweepRun> {
+    sweep_with_cancel(model, prepared, methods, gammas, base, None)
+}
+
+/// [`sweep`] with a cancel flag: once `cancel` is set, runs not yet started are skipped and
+/// running ones stop at their next iteration (the flag is their [`Hooks::cancel`]). Every run is
+/// still reported; those that did not complete have reason `"interrupted"` (`iterations` is 0 for a
+/// skipped run).
+pub fn sweep_with_cancel(
+    model: &Model,
+    prepared: &Prepared,
+    methods: &[Method],
+    gammas: &[Gamma],
+    base: &Settings,
+    cancel: Option<&AtomicBool>,
+) -> Vec<SweepRun> {
     let jobs: Vec<(Method, Gamma)> = gammas
         .iter()
         .flat_map(|&g| methods.iter().map(move |&m| (m, g)))
         .collect();
     jobs.par_iter()
         .map(|&(method, gamma)| {
-            let settings = Settings {
-                method,
-                gamma,
-                ..base.clone()
+            let (iterations, stop) = if cancel.is_some_and(|c| c.load(Ordering::Relaxed)) {
+                (0, Stop::Interrupted)
+            } else {
+                let settings = Settings {
+                    method,
+                    gamma,
+                    ..base.clone()
+                };
+                let hooks = Hooks {
+                    on_iteration: None,
+                    cancel,
+                };
+                let out = iterate(
+                    &prepared.interface,
+                    &prepared.bodies,
+                    &prepared.scale,
+                    &settings,
+                    hooks,
+                );
+                (out.iterations, out.stop)
             };
-            let out = iterate(
-                &prepared.interface,
-                &prepared.bodies,
-                &prepared.scale,
-                &settings,
-                Hooks::default(),
-            );
             SweepRun {
                 method,
                 gamma: match gamma {
                     Gamma::Constant(g) => Some(g),
                     Gamma::Auto => None,
                 },
-                iterations: out.iterations,
-                converged: out.stop == Stop::Converged,
-                reason: short_reason(model, &out.stop),
+                iterations,
+                converged: stop == Stop::Converged,
+                reason: short_reason(model, &stop),
             }
         })
         .collect()
@@ -90,6 +119,41 @@ pub fn short_reason(model: &Model, stop: &Stop) -> String {
                 Breakdown::Growth => "growth",
             };
             format!("{}: {what} at iteration {iteration}", name(*body))
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::benchmark::Notch;
+    use crate::solver::prepare;
+
+    #[test]
+    fn a_cancelled_sweep_reports_every_run_as_interrupted() {
+        let notch = Notch {
+            nx: 8,
+            ny: 4,
+            ..Notch::default()
+        };
+        let model = notch.model().unwrap();
+        let prepared = prepare(&model).unwrap();
+        let methods = [Method::ActiveSet, Method::NewtonKurchatov];
+        let gammas = [Gamma::Constant(0.5), Gamma::Auto];
+        let base = Settings {
+            tol: 1e-3,
+            ..Settings::default()
+        };
+        let free = sweep_with_cancel(&model, &prepared, &methods, &gammas, &base, None);
+        assert_eq!(free, sweep(&model, &prepared, &methods, &gammas, &base));
+        assert!(free.iter().all(|r| r.converged), "{free:?}");
+        let cancel = AtomicBool::new(true);
+        let stopped = sweep_with_cancel(&model, &prepared, &methods, &gammas, &base, Some(&cancel));
+        assert_eq!(stopped.len(), methods.len() * gammas.len());
+        for (s, f) in stopped.iter().zip(&free) {
+            assert_eq!((s.method, s.gamma), (f.method, f.gamma));
+            assert_eq!((s.iterations, s.converged), (0, false));
+            assert_eq!(s.reason, "interrupted");
         }
     }
 }

@@ -454,3 +454,70 @@ fn hertz_half_disc_on_block_matches_analytic_solution() {
         );
     }
 }
+
+/// A short block on a long one whose mesh does not line up with the short block's ends. The short
+/// block is held by the contact only, so its side carries the applied load exactly; the long
+/// block's side integrates its own nodal pressures (only over the part of its zone facing the
+/// short block) and must approach the same force as the meshes are refined.
+#[test]
+fn short_body_on_long_body_balances_forces() {
+    let material = Material::new(1000.0, 0.3).unwrap();
+    for order in [Order::P1, Order::P2] {
+        let mut mismatch = Vec::new();
+        for refine in [1, 4, 16] {
+            let base = body(
+                "base",
+                rect([0.0, 4.0], [0.0, 1.0], 7 * refine, 3 * refine, false, order),
+                material,
+                Plane::Strain,
+                &[("bottom", Component::Both, 0.0)],
+                &[],
+            );
+            let top = body(
+                "top",
+                rect([1.0, 3.0], [1.0, 2.0], 5 * refine, 3 * refine, true, order),
+                material,
+                Plane::Strain,
+                &[("left", Component::X, 0.0)],
+                &[Load::Pressure {
+                    boundary: "top".into(),
+                    value: 2.0,
+                }],
+            );
+            let model = Model {
+                name: "step".into(),
+                plane: Plane::Strain,
+                bodies: vec![base, top],
+                pairs: vec![ContactPair {
+                    name: "step".into(),
+                    bodies: [0, 1],
+                    boundaries: ["top".into(), "bottom".into()],
+                    penalty: Penalty::RodModel { c: 0.05, h: 1.0 },
+                    profile: None,
+                }],
+            };
+            let prepared = prepare(&model).unwrap();
+            let sol = solve(
+                &model,
+                &prepared,
+                &settings(Method::ActiveSet, 0.5, 1e-12),
+                Hooks::default(),
+            )
+            .unwrap();
+            assert!(sol.converged, "{order:?}: {:?}", sol.message);
+            let (base_force, top_force) = (sol.contact[0].force_on(0), sol.contact[0].force_on(1));
+            println!("{order:?} ×{refine}: base {base_force:?}, top {top_force:?}");
+            assert!(
+                (top_force[1] - 4.0).abs() < 1e-8,
+                "{order:?}: top {top_force:?}"
+            );
+            mismatch.push((base_force[1] + 4.0).abs() / 4.0);
+        }
+        println!("{order:?}: relative mismatch {mismatch:?}");
+        assert!(
+            mismatch.windows(2).all(|w| w[1] < w[0]),
+            "{order:?}: {mismatch:?}"
+        );
+        assert!(mismatch[2] < 0.005, "{order:?}: {mismatch:?}");
+    }
+}

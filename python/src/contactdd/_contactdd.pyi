@@ -290,7 +290,8 @@ def sweep(
     u_prev: Optional[float] = None,
     threads: Optional[int] = None,
 ) -> list[_SweepRecord]:
-    """Runs every method with every γ on one preparation of the problem."""
+    """Runs every method with every γ on one preparation of the problem, in parallel (GIL
+    released; Ctrl-C raises KeyboardInterrupt)."""
 
 def monolithic(problem: Problem) -> MonolithicResult:
     """Solves the same penalty problem monolithically (semismooth Newton)."""
