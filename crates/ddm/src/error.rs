@@ -2,7 +2,7 @@
 
 use thiserror::Error;
 
-use contactdd_core::{BodyError, GmshError, MaterialError, MeshError, SupportError};
+use contactdd_core::{BodyError, GmshError};
 
 /// A problem description that cannot be turned into a model, or a body that cannot be factorised.
 #[derive(Debug, Error)]
@@ -90,23 +90,5 @@ impl SetupError {
             body: body.to_string(),
             message: e.to_string(),
         }
-    }
-}
-
-impl From<MeshError> for SetupError {
-    fn from(e: MeshError) -> Self {
-        SetupError::Toml(e.to_string())
-    }
-}
-
-impl From<MaterialError> for SetupError {
-    fn from(e: MaterialError) -> Self {
-        SetupError::Toml(e.to_string())
-    }
-}
-
-impl From<SupportError> for SetupError {
-    fn from(e: SupportError) -> Self {
-        SetupError::Toml(e.to_string())
     }
 }
