@@ -1,5 +1,5 @@
 //! One elastic body and the easy one-call linear solve (the explicit stages are
-//! [`Pattern`](crate::assembly::Pattern) → [`FactoredBody`] → solve).
+//! [`Pattern`] → [`FactoredBody`] → solve).
 
 use crate::assembly::Pattern;
 use crate::error::BodyError;
