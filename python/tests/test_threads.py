@@ -1,10 +1,12 @@
-"""The solve releases the GIL, and Ctrl-C interrupts it."""
+"""The solve releases the GIL, and Ctrl-C interrupts a solve or a sweep."""
 
 import subprocess
 import sys
 import textwrap
 import threading
 import time
+
+import pytest
 
 import contactdd
 
@@ -35,16 +37,26 @@ def test_gil_released():
     assert len(middle) >= 5, (len(middle), end - start, count)
 
 
-def test_ctrl_c_interrupts():
+@pytest.mark.parametrize(
+    "call",
+    [
+        "contactdd.solve(problem, gamma=1e-4, tol=1e-14, max_iter=10**9)",
+        # Every run of the sweep is endless, so only a cancel inside the runs stops it.
+        "contactdd.sweep(problem, methods=['active-set', 'robin'], gammas=[1e-4, 2e-4],"
+        " tol=1e-14, max_iter=10**9)",
+    ],
+    ids=["solve", "sweep"],
+)
+def test_ctrl_c_interrupts(call):
     script = textwrap.dedent(
-        """
+        f"""
         import os, signal, threading, time
         import contactdd
         problem = contactdd.notch_benchmark()
         threading.Timer(0.5, lambda: os.kill(os.getpid(), signal.SIGINT)).start()
         t = time.perf_counter()
         try:
-            contactdd.solve(problem, gamma=1e-4, tol=1e-14, max_iter=10**9)
+            {call}
             print("finished")
         except KeyboardInterrupt:
             print("interrupted", time.perf_counter() - t)

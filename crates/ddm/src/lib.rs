@@ -36,4 +36,4 @@ pub use relaxation::Gamma;
 pub use setup::{load_file, load_str, Loaded};
 pub use solution::Solution;
 pub use solver::{prepare, solve, Prepared};
-pub use sweep::{sweep, SweepRun};
+pub use sweep::{sweep, sweep_with_cancel, SweepRun};
