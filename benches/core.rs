@@ -2,6 +2,9 @@
 //! symbolic analysis, numeric factorisation and one solve, at about 1e4 and 1e5 DOFs, and 1e6 DOFs
 //! when `CONTACTDD_BENCH_LARGE=1` is set.
 //!
+//! Each phase is also measured for faer's own high-level sparse Cholesky on the same matrix
+//! (`faer_symbolic`, `faer_numeric`, `faer_solve`), the baseline the core must stay within 20 % of.
+//!
 //! Run: `cargo bench --bench core` (add `CONTACTDD_BENCH_LARGE=1` for the 1e6 case).
 
 use contactdd_core::assembly::Pattern;
@@ -10,7 +13,11 @@ use contactdd_core::loads::load_vector;
 use contactdd_core::{
     Component, Constraints, Diagonal, Load, Material, Mesh, Order, Plane, Rectangle,
 };
-use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion};
+use criterion::{criterion_group, criterion_main, BatchSize, BenchmarkId, Criterion};
+use faer::prelude::Solve;
+use faer::sparse::linalg::solvers::{Llt, SymbolicLlt};
+use faer::sparse::SparseColMat;
+use faer::{Mat, Side};
 
 fn square(n: usize) -> Mesh {
     Rectangle {
@@ -33,6 +40,23 @@ fn sizes() -> Vec<usize> {
         s.push(706);
     }
     s
+}
+
+/// `k` with the constrained rows and columns replaced by identity rows.
+fn identity_rows(
+    k: &SparseColMat<usize, f64>,
+    constraints: &Constraints,
+) -> SparseColMat<usize, f64> {
+    let (cp, ri) = (k.symbolic().col_ptr(), k.symbolic().row_idx());
+    let mut val = k.val().to_vec();
+    for j in 0..k.ncols() {
+        for p in cp[j]..cp[j + 1] {
+            if constraints.get(j).is_some() || constraints.get(ri[p]).is_some() {
+                val[p] = if ri[p] == j { 1.0 } else { 0.0 };
+            }
+        }
+    }
+    SparseColMat::new(k.symbolic().to_owned().expect("pattern"), val)
 }
 
 fn phases(c: &mut Criterion) {
@@ -60,8 +84,13 @@ fn phases(c: &mut Criterion) {
             b.iter(|| Pattern::new(&mesh).stiffness(&mesh, &d))
         });
         let k = Pattern::new(&mesh).stiffness(&mesh, &d);
+        // The operator takes the matrix by value: clone it outside the timed part.
         group.bench_function(BenchmarkId::new("symbolic", dofs), |b| {
-            b.iter(|| FactoredBody::new("b", k.clone(), &constraints, &[]).expect("symbolic"))
+            b.iter_batched(
+                || k.clone(),
+                |k| FactoredBody::new("b", k, &constraints, &[]).expect("symbolic"),
+                BatchSize::LargeInput,
+            )
         });
         let mut op = FactoredBody::new("b", k.clone(), &constraints, &[]).expect("symbolic");
         op.set_parallelism(faer::Par::rayon(0));
@@ -71,6 +100,26 @@ fn phases(c: &mut Criterion) {
         op.factorize(&[]).expect("numeric");
         group.bench_function(BenchmarkId::new("solve", dofs), |b| {
             b.iter(|| op.solve(&load).expect("solve"))
+        });
+
+        // The plain-faer reference on the same matrix: supports as identity rows, faer's
+        // high-level SymbolicLlt / Llt, so each phase above has a ratio measured in the same run.
+        let plain = identity_rows(&k, &constraints);
+        group.bench_function(BenchmarkId::new("faer_symbolic", dofs), |b| {
+            b.iter(|| SymbolicLlt::try_new(plain.symbolic(), Side::Lower).expect("symbolic"))
+        });
+        let symbolic = SymbolicLlt::try_new(plain.symbolic(), Side::Lower).expect("symbolic");
+        group.bench_function(BenchmarkId::new("faer_numeric", dofs), |b| {
+            b.iter(|| {
+                Llt::try_new_with_symbolic(symbolic.clone(), plain.as_ref(), Side::Lower)
+                    .expect("numeric")
+            })
+        });
+        let llt =
+            Llt::try_new_with_symbolic(symbolic, plain.as_ref(), Side::Lower).expect("numeric");
+        let rhs = Mat::<f64>::from_fn(plain.ncols(), 1, |i, _| load[i]);
+        group.bench_function(BenchmarkId::new("faer_solve", dofs), |b| {
+            b.iter(|| llt.solve(&rhs))
         });
         group.finish();
     }

@@ -55,6 +55,11 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
                     .collect();
                 op.factorize(&springs)?;
                 op.solve(&body.load)?;
+                println!(
+                    "  baseline factor of '{}': {} values",
+                    body.name,
+                    op.factor_len()
+                );
                 Ok(())
             })
             .collect()
@@ -82,6 +87,9 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         "DD prepare: {t_prep:.3} s; iterate + recover + post: {t_solve:.3} s; iterations {}",
         sol.iterations
     );
+    for body in &prepared.bodies {
+        println!("  DD factor: {} values", body.operator().factor_len());
+    }
     for (phase, s) in &sol.timing {
         println!("  {phase}: {s:.3} s");
     }

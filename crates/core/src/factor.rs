@@ -5,7 +5,7 @@
 //! Cholesky factor `L` of `P A Pᵀ` is then the Cholesky factor of the Schur complement of `A` on the
 //! interface, `S = A₂₂ − A₂₁ A₁₁⁻¹ A₁₂ = L₂₂ L₂₂ᵀ`. This is what lets the domain decomposition
 //! iterate on contact quantities only: `(A⁻¹)₂₂ = S⁻¹`, read off the factor at no extra cost.
-//! The interior is ordered by approximate minimum degree (faer's AMD).
+//! The other DOFs keep the order of faer's approximate minimum degree (AMD).
 
 use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::linalg::cholesky::llt::factor::LltRegularization;
@@ -166,6 +166,11 @@ impl FactoredBody {
     /// Number of DOFs (2 per node).
     pub fn num_dofs(&self) -> usize {
         self.reduced.len()
+    }
+
+    /// Number of stored values of the Cholesky factor (a measure of fill-in).
+    pub fn factor_len(&self) -> usize {
+        self.l_values.len()
     }
 
     /// Number of free (unknown) DOFs.
@@ -353,7 +358,9 @@ impl FactoredBody {
     }
 }
 
-/// AMD on the interior DOFs, then the interface DOFs in the given order.
+/// faer's AMD ordering of the whole matrix with the interface DOFs moved to the end (in the given
+/// order), the rest keeping their AMD order. (Measured on a 1e6-DOF body with a 1001-DOF contact
+/// line: 8 % more factor values than plain AMD, where AMD on the interior alone gave 37 % more.)
 fn last_ordering(
     lower: &SymbolicSparseColMat<usize>,
     interface: &[usize],
@@ -363,39 +370,19 @@ fn last_ordering(
     for &r in interface {
         is_interface[r] = true;
     }
-    let interior: Vec<usize> = (0..n).filter(|&r| !is_interface[r]).collect();
-    let mut local = vec![NONE; n];
-    for (k, &r) in interior.iter().enumerate() {
-        local[r] = k;
-    }
-    // Lower pattern of the interior block (AMD wants the pattern of A + Aᵀ; one half is enough).
-    let mut ptr = vec![0usize];
-    let mut rows = Vec::new();
-    for &j in &interior {
-        let (s, e) = (lower.col_ptr()[j], lower.col_ptr()[j + 1]);
-        rows.extend(lower.row_idx()[s..e].iter().filter_map(|&i| {
-            let l = local[i];
-            (l != NONE).then_some(l)
-        }));
-        ptr.push(rows.len());
-    }
-    let ni = interior.len();
-    let mut order = Vec::with_capacity(n);
-    if ni > 0 {
-        let nnz = rows.len();
-        let pattern = SymbolicSparseColMat::new_checked(ni, ni, ptr, None, rows);
-        let (mut fwd, mut inv) = (vec![0usize; ni], vec![0usize; ni]);
-        let mut mem = MemBuffer::try_new(amd::order_maybe_unsorted_scratch::<usize>(ni, nnz))
-            .map_err(|_| faer::sparse::FaerError::OutOfMemory)?;
-        amd::order_maybe_unsorted(
-            &mut fwd,
-            &mut inv,
-            pattern.as_ref(),
-            amd::Control::default(),
-            MemStack::new(&mut mem),
-        )?;
-        order.extend(fwd.iter().map(|&k| interior[k]));
-    }
+    let nnz = lower.row_idx().len();
+    let (mut fwd, mut inv) = (vec![0usize; n], vec![0usize; n]);
+    let mut mem = MemBuffer::try_new(amd::order_maybe_unsorted_scratch::<usize>(n, nnz))
+        .map_err(|_| faer::sparse::FaerError::OutOfMemory)?;
+    // AMD wants the pattern of A + Aᵀ; the lower half is enough.
+    amd::order_maybe_unsorted(
+        &mut fwd,
+        &mut inv,
+        lower.as_ref(),
+        amd::Control::default(),
+        MemStack::new(&mut mem),
+    )?;
+    let mut order: Vec<usize> = fwd.into_iter().filter(|&r| !is_interface[r]).collect();
     order.extend_from_slice(interface);
     Ok(order)
 }
