@@ -153,6 +153,7 @@ pub fn iterate(
         let t0 = body.initial_load(&u_cur[range.clone()]);
         t_load[range].copy_from_slice(&t0);
     }
+    let t_start = t_load.clone();
     let mut caches: Vec<RobinCache> = (0..nb).map(|_| RobinCache::default()).collect();
     let (mut s_prev, mut s_cur, mut s_next) = (vec![0.0; m], vec![0.0; m], vec![0.0; m]);
     interface.sum_normal(&u_prev, &mut s_prev);
@@ -258,7 +259,13 @@ pub fn iterate(
         if let Some(s) = failed {
             // Keep the last good iterate consistent: U^k with its T^k.
             t_load = t_backup;
-            if relax.retreat() {
+            if relax.restart() {
+                // Start over from the initial values with a smaller γ cap.
+                u_prev.fill(settings.u_prev);
+                u_cur.fill(settings.u0);
+                t_load.copy_from_slice(&t_start);
+                interface.sum_normal(&u_prev, &mut s_prev);
+                interface.sum_normal(&u_cur, &mut s_cur);
                 continue;
             }
             stop = s;

@@ -10,7 +10,8 @@
 //!   change);
 //! - when the update grows (‖r^k‖ > 2‖r^{k−1}‖) γ is halved instead;
 //! - when a body breaks down (its contact zone opens completely, or values blow up) the iteration
-//!   goes back to the last iterate and retries with half the γ, down to γ_min;
+//!   restarts from the initial values with γ_max lowered by a factor 0.7 (down to γ_min); the iterations before the
+//!   restart still count;
 //! - convergence is judged as if γ were at least γ₀ (see [`Relaxation::convergence_scale`]), so a
 //!   small step cannot pass for convergence.
 
@@ -46,6 +47,8 @@ pub struct Relaxation {
     rule: Gamma,
     gamma: f64,
     last_update: Option<Vec<f64>>,
+    /// Largest γ allowed (γ_max, times 0.7 at every restart).
+    cap: f64,
 }
 
 impl Relaxation {
@@ -59,6 +62,7 @@ impl Relaxation {
             rule,
             gamma,
             last_update: None,
+            cap: GAMMA_MAX,
         }
     }
 
@@ -76,12 +80,14 @@ impl Relaxation {
         }
     }
 
-    /// After a breakdown with the current γ: halves γ and returns true if the rule may retry
-    /// (only `auto`, and only above γ_min).
-    pub fn retreat(&mut self) -> bool {
+    /// After a breakdown: for `auto`, lowers (×0.7) the largest γ the rule may use from now on and
+    /// restarts it below that cap; returns true if the caller should restart the iteration from
+    /// the initial values (false for a constant γ, or when the cap is already γ_min).
+    pub fn restart(&mut self) -> bool {
         match self.rule {
-            Gamma::Auto if self.gamma > GAMMA_MIN => {
-                self.gamma = (0.5 * self.gamma).max(GAMMA_MIN);
+            Gamma::Auto if self.cap > GAMMA_MIN => {
+                self.cap = (0.7 * self.cap).max(GAMMA_MIN);
+                self.gamma = GAMMA_START.min(self.cap);
                 self.last_update = None;
                 true
             }
@@ -108,7 +114,7 @@ impl Relaxation {
                 GAMMA_START
             };
             self.gamma = if next.is_finite() {
-                next.min(2.0 * g).clamp(GAMMA_MIN, GAMMA_MAX)
+                next.min(2.0 * g).clamp(GAMMA_MIN, self.cap)
             } else {
                 GAMMA_START
             };

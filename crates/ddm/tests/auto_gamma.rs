@@ -25,12 +25,12 @@ fn base() -> Settings {
     }
 }
 
-/// (method, best constant m, auto m) for a model.
-fn compare(model: &Model) -> Vec<(Method, usize, Option<usize>)> {
+/// (method, best constant m, auto m) for a model, with the tolerance and initial values of `base`.
+fn compare(model: &Model, base: &Settings) -> Vec<(Method, usize, Option<usize>)> {
     let prepared = prepare(model).unwrap();
     let gammas: Vec<Gamma> = GRID.iter().map(|&g| Gamma::Constant(g)).collect();
-    let runs = sweep(model, &prepared, &METHODS, &gammas, &base());
-    let auto = sweep(model, &prepared, &METHODS, &[Gamma::Auto], &base());
+    let runs = sweep(model, &prepared, &METHODS, &gammas, base);
+    let auto = sweep(model, &prepared, &METHODS, &[Gamma::Auto], base);
     METHODS
         .iter()
         .map(|&m| {
@@ -47,7 +47,11 @@ fn compare(model: &Model) -> Vec<(Method, usize, Option<usize>)> {
 }
 
 fn check(name: &str, model: &Model) {
-    for (method, best, auto) in compare(model) {
+    check_with(name, model, &base());
+}
+
+fn check_with(name: &str, model: &Model, base: &Settings) {
+    for (method, best, auto) in compare(model, base) {
         println!("{name} {method}: best constant m = {best}, auto m = {auto:?}");
         let auto = auto.unwrap_or_else(|| panic!("{name} {method}: auto did not converge"));
         if best < usize::MAX {
@@ -76,6 +80,20 @@ fn auto_gamma_with_a_ten_times_smaller_penalty() {
         .model()
         .unwrap(),
     );
+}
+
+/// The shipped examples with a chain of floating bodies (slow: thousands of iterations per run).
+#[test]
+fn auto_gamma_on_the_three_body_and_stack_examples() {
+    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples");
+    for name in ["three_bodies", "stack"] {
+        let loaded = contactdd_ddm::setup::load_file(&root.join(format!("{name}.toml"))).unwrap();
+        let base = Settings {
+            max_iter: 20_000,
+            ..loaded.settings
+        };
+        check_with(name, &loaded.model, &base);
+    }
 }
 
 #[test]
