@@ -83,7 +83,7 @@ fn describe(loaded: &Loaded, interface: &Interface) -> String {
     }
     for (p, pair) in model.pairs.iter().enumerate() {
         let (a, b) = (&model.bodies[pair.bodies[0]], &model.bodies[pair.bodies[1]]);
-        let theta = pair.penalty.theta(model.plane, &a.material, &b.material);
+        let theta = model.theta(p);
         let penalty = match pair.penalty {
             Penalty::Theta(_) => "given".to_string(),
             Penalty::RodModel { c, h } => format!("rod model c = {c}, h = {h}"),

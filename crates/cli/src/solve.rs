@@ -159,14 +159,7 @@ pub fn monolithic(args: MonolithicArgs) -> Result<Exit> {
         };
         let written = write_monolithic_results(&out, model, &sol)
             .with_context(|| format!("cannot write the results to '{}'", out.display()))?;
-        let theta: Vec<f64> = model
-            .pairs
-            .iter()
-            .map(|p| {
-                let (a, b) = (&model.bodies[p.bodies[0]], &model.bodies[p.bodies[1]]);
-                p.penalty.theta(model.plane, &a.material, &b.material)
-            })
-            .collect();
+        let theta = model.thetas();
         say!(
             "monolithic reference for {}: {} semismooth Newton steps",
             model.name,

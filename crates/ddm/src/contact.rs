@@ -121,7 +121,7 @@ impl Interface {
             let other = i ^ 1; // sides come in pairs (2p, 2p + 1)
             let partner_side = &sides[other];
             let (a, b) = (&model.bodies[side.body], &model.bodies[partner_side.body]);
-            let theta = pair.penalty.theta(model.plane, &a.material, &b.material);
+            let theta = model.theta(side.pair);
             if !(theta.is_finite() && theta > 0.0) {
                 return Err(SetupError::Pair {
                     pair: pair.name.clone(),

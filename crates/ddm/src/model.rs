@@ -62,3 +62,17 @@ pub struct Model {
     /// The contact pairs.
     pub pairs: Vec<ContactPair>,
 }
+
+impl Model {
+    /// The penalty θ of pair `p`.
+    pub fn theta(&self, p: usize) -> f64 {
+        let pair = &self.pairs[p];
+        let (a, b) = (&self.bodies[pair.bodies[0]], &self.bodies[pair.bodies[1]]);
+        pair.penalty.theta(self.plane, &a.material, &b.material)
+    }
+
+    /// θ of every pair.
+    pub fn thetas(&self) -> Vec<f64> {
+        (0..self.pairs.len()).map(|p| self.theta(p)).collect()
+    }
+}

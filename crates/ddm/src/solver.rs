@@ -106,14 +106,7 @@ pub fn solve(
     timing.insert("iterate".into(), outcome.seconds);
     timing.insert("recover".into(), t_recover);
     timing.insert("post".into(), t_post);
-    let theta = model
-        .pairs
-        .iter()
-        .map(|p| {
-            let (a, b) = (&model.bodies[p.bodies[0]], &model.bodies[p.bodies[1]]);
-            p.penalty.theta(model.plane, &a.material, &b.material)
-        })
-        .collect();
+    let theta = model.thetas();
     Ok(Solution {
         converged: outcome.stop == Stop::Converged,
         message: stop_message(
