@@ -123,13 +123,21 @@ pub struct Hooks<'a> {
     pub cancel: Option<&'a AtomicBool>,
 }
 
-/// Per-body mutable iteration state.
-struct BodyWork<'a> {
-    cache: &'a mut RobinCache,
-    next: &'a mut [f64],
-    t_load: &'a mut [f64],
+/// Per-body buffers, allocated once per solve.
+#[derive(Default)]
+struct Scratch {
+    cache: RobinCache,
+    phi: Vec<f64>,
+    r: Vec<f64>,
     tilde: Vec<f64>,
     t_new: Vec<f64>,
+}
+
+/// One body's share of an iteration: its buffers and its slices of the shared outputs.
+struct BodyWork<'a> {
+    scratch: &'a mut Scratch,
+    next: &'a mut [f64],
+    t_load: &'a mut [f64],
 }
 
 /// Runs the iteration. `bodies[b]` is body b condensed on `interface.of_body(b)`; `scale[b]` is a
@@ -154,7 +162,19 @@ pub fn iterate(
         t_load[range].copy_from_slice(&t0);
     }
     let t_start = t_load.clone();
-    let mut caches: Vec<RobinCache> = (0..nb).map(|_| RobinCache::default()).collect();
+    let mut scratch: Vec<Scratch> = (0..nb)
+        .map(|b| {
+            let len = interface.body_range[b].len();
+            Scratch {
+                phi: vec![0.0; len],
+                r: vec![0.0; len],
+                tilde: vec![0.0; len],
+                t_new: vec![0.0; len],
+                ..Scratch::default()
+            }
+        })
+        .collect();
+    let mut t_backup = t_load.clone();
     let (mut s_prev, mut s_cur, mut s_next) = (vec![0.0; m], vec![0.0; m], vec![0.0; m]);
     interface.sum_normal(&u_prev, &mut s_prev);
     interface.sum_normal(&u_cur, &mut s_cur);
@@ -169,23 +189,21 @@ pub fn iterate(
             break;
         }
         let gamma = relax.gamma();
-        let t_backup = t_load.clone();
+        t_backup.copy_from_slice(&t_load);
         // Split the shared output buffers into per-body slices.
         let mut work = Vec::with_capacity(nb);
         {
             let (mut next_rest, mut t_rest) = (u_next.as_mut_slice(), t_load.as_mut_slice());
-            for (b, cache) in caches.iter_mut().enumerate() {
+            for (b, scratch) in scratch.iter_mut().enumerate() {
                 let len = interface.body_range[b].len();
                 let (next, nr) = next_rest.split_at_mut(len);
                 let (tl, tr) = t_rest.split_at_mut(len);
                 next_rest = nr;
                 t_rest = tr;
                 work.push(BodyWork {
-                    cache,
+                    scratch,
                     next,
                     t_load: tl,
-                    tilde: vec![0.0; len],
-                    t_new: vec![0.0; len],
                 });
             }
         }
@@ -197,12 +215,19 @@ pub fn iterate(
                 let range = interface.body_range[b].clone();
                 let points = &interface.points[range.clone()];
                 let u_own = &u_cur_ref[range.clone()];
-                let mut phi = vec![0.0; points.len()];
-                let mut r = vec![0.0; points.len()];
+                let Scratch {
+                    cache,
+                    phi,
+                    r,
+                    tilde,
+                    t_new,
+                } = &mut *w.scratch;
                 for (j, p) in points.iter().enumerate() {
                     let g = range.start + j;
                     if !p.has_partner() {
-                        continue; // never closes: φ = 0, no contact force
+                        // Never closes: φ = 0, no contact force.
+                        (phi[j], r[j]) = (0.0, 0.0);
+                        continue;
                     }
                     let (s, sp) = (s_cur_ref[g], s_prev_ref[g]);
                     phi[j] = settings.method.phi(p.gap, s, sp);
@@ -210,7 +235,7 @@ pub fn iterate(
                     r[j] = kw * (phi[j] * u_own[j] + (p.gap - s).min(0.0));
                 }
                 bodies[b]
-                    .robin_solve(&phi, &r, w.cache, &mut w.tilde, &mut w.t_new)
+                    .robin_solve(phi, r, cache, tilde, t_new)
                     .map_err(|_| {
                         if phi.iter().all(|&f| f == 0.0) {
                             Breakdown::LostContact
@@ -220,9 +245,9 @@ pub fn iterate(
                     })?;
                 let (mut diff, mut norm) = (0.0, 0.0);
                 for j in 0..points.len() {
-                    let new = gamma * w.tilde[j] + (1.0 - gamma) * u_own[j];
+                    let new = gamma * tilde[j] + (1.0 - gamma) * u_own[j];
                     w.next[j] = new;
-                    w.t_load[j] = gamma * w.t_new[j] + (1.0 - gamma) * w.t_load[j];
+                    w.t_load[j] = gamma * t_new[j] + (1.0 - gamma) * w.t_load[j];
                     diff += (new - u_own[j]).powi(2);
                     norm += new * new;
                 }
@@ -258,7 +283,7 @@ pub fn iterate(
         }
         if let Some(s) = failed {
             // Keep the last good iterate consistent: U^k with its T^k.
-            t_load = t_backup;
+            t_load.copy_from_slice(&t_backup);
             if relax.restart() {
                 // Start over from the initial values with a smaller γ cap.
                 u_prev.fill(settings.u_prev);
