@@ -66,6 +66,22 @@ fn rect(x: [f64; 2], y: [f64; 2], nx: usize, ny: usize, mirror: bool, order: Ord
     .unwrap()
 }
 
+/// Two bodies whose "top" (first body) and "bottom" (second body) boundaries form one contact pair.
+fn two_bodies(name: &str, lower: ElasticBody, upper: ElasticBody, penalty: Penalty) -> Model {
+    Model {
+        name: name.into(),
+        plane: lower.plane,
+        bodies: vec![lower, upper],
+        pairs: vec![ContactPair {
+            name: name.into(),
+            bodies: [0, 1],
+            boundaries: ["top".into(), "bottom".into()],
+            penalty,
+            profile: None,
+        }],
+    }
+}
+
 #[test]
 fn dd_methods_converge_to_the_monolithic_solution_of_the_notch_benchmark() {
     let model = Notch::default().model().unwrap();
@@ -211,18 +227,7 @@ fn flat_non_matching_interface_carries_uniform_pressure() {
                 value: p,
             }],
         );
-        let model = Model {
-            name: "patch".into(),
-            plane: Plane::Strain,
-            bodies: vec![lower, upper],
-            pairs: vec![ContactPair {
-                name: "flat".into(),
-                bodies: [0, 1],
-                boundaries: ["top".into(), "bottom".into()],
-                penalty: Penalty::Theta(1e-4),
-                profile: None,
-            }],
-        };
+        let model = two_bodies("patch", lower, upper, Penalty::Theta(1e-4));
         let prepared = prepare(&model).unwrap();
         let sol = solve(
             &model,
@@ -391,41 +396,34 @@ fn hertz_half_disc_on_block_matches_analytic_solution() {
         // The disc is clamped on its flat side (a frictionless arc cannot stop it rotating about
         // its centre); the block is pushed up against it by a pressure on its bottom and held
         // sideways there. Total load: pressure × block width 6.
-        let model = Model {
-            name: "hertz".into(),
-            plane: Plane::Strain,
-            bodies: vec![
-                body(
-                    "block",
-                    block,
-                    material,
-                    Plane::Strain,
-                    &[("bottom", Component::X, 0.0)],
-                    &[Load::Pressure {
-                        boundary: "bottom".into(),
-                        value: total / 6.0,
-                    }],
-                ),
-                body(
-                    "disc",
-                    disc,
-                    material,
-                    Plane::Strain,
-                    &[
-                        ("left", Component::Both, 0.0),
-                        ("right", Component::Both, 0.0),
-                    ],
-                    &[],
-                ),
-            ],
-            pairs: vec![ContactPair {
-                name: "hertz".into(),
-                bodies: [0, 1],
-                boundaries: ["top".into(), "bottom".into()],
-                penalty: Penalty::Theta(0.005 * a_target / e_star),
-                profile: None,
+        let block = body(
+            "block",
+            block,
+            material,
+            Plane::Strain,
+            &[("bottom", Component::X, 0.0)],
+            &[Load::Pressure {
+                boundary: "bottom".into(),
+                value: total / 6.0,
             }],
-        };
+        );
+        let disc = body(
+            "disc",
+            disc,
+            material,
+            Plane::Strain,
+            &[
+                ("left", Component::Both, 0.0),
+                ("right", Component::Both, 0.0),
+            ],
+            &[],
+        );
+        let model = two_bodies(
+            "hertz",
+            block,
+            disc,
+            Penalty::Theta(0.005 * a_target / e_star),
+        );
         let prepared = prepare(&model).unwrap();
         let sol = solve(
             &model,
@@ -484,18 +482,7 @@ fn short_body_on_long_body_balances_forces() {
                     value: 2.0,
                 }],
             );
-            let model = Model {
-                name: "step".into(),
-                plane: Plane::Strain,
-                bodies: vec![base, top],
-                pairs: vec![ContactPair {
-                    name: "step".into(),
-                    bodies: [0, 1],
-                    boundaries: ["top".into(), "bottom".into()],
-                    penalty: Penalty::RodModel { c: 0.05, h: 1.0 },
-                    profile: None,
-                }],
-            };
+            let model = two_bodies("step", base, top, Penalty::RodModel { c: 0.05, h: 1.0 });
             let prepared = prepare(&model).unwrap();
             let sol = solve(
                 &model,
