@@ -1,8 +1,10 @@
 //! # contactdd
 //!
 //! A facade over the workspace crates: [`fem`] (meshes, P1/P2 elasticity, sparse Cholesky per
-//! body) and [`ddm`] (contact, the penalty Robin domain decomposition, the monolithic reference).
+//! body), [`ddm`] (contact, the penalty Robin domain decomposition, the monolithic reference) and
+//! [`io`] (problem files and result files).
 //! This package also hosts the workspace-level tests and benches.
 
 pub use contactdd_core as fem;
 pub use contactdd_ddm as ddm;
+pub use contactdd_io as io;

@@ -85,9 +85,9 @@ fn auto_gamma_with_a_ten_times_smaller_penalty() {
 /// The shipped examples with a chain of floating bodies (slow: thousands of iterations per run).
 #[test]
 fn auto_gamma_on_the_three_body_and_stack_examples() {
-    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples");
+    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("examples");
     for name in ["three_bodies", "stack"] {
-        let loaded = contactdd_ddm::setup::load_file(&root.join(format!("{name}.toml"))).unwrap();
+        let loaded = contactdd_io::load_file(&root.join(format!("{name}.toml"))).unwrap();
         let base = Settings {
             max_iter: 20_000,
             ..loaded.settings

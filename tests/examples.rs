@@ -14,7 +14,7 @@ use std::path::{Path, PathBuf};
 
 use serde_json::Value;
 
-use contactdd::ddm::{load_file, Loaded};
+use contactdd::io::{load_file, Loaded};
 use contactdd_cli::{run, Exit};
 
 /// Relative tolerance of the action = reaction check between the two sides of a pair whose

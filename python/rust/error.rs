@@ -1,7 +1,7 @@
 //! The Python exceptions of contactdd and the mapping of the Rust errors onto them.
 //!
-//! - every [`SetupError`] (a bad problem file, bad arrays, unknown names, a body that cannot be
-//!   factorised) becomes `contactdd.ContactddError`, a `ValueError`, with the same message the
+//! - every [`SetupError`](contactdd_ddm::SetupError) and [`LoadError`] (a bad problem file, bad
+//!   arrays, unknown names, a body that cannot be factorised) becomes `contactdd.ContactddError`, a `ValueError`, with the same message the
 //!   command line prints;
 //! - a solve that does not converge raises `contactdd.ConvergenceError`, a `RuntimeError`, whose
 //!   `result` attribute holds the partial result (see [`convergence_error`]);
@@ -12,7 +12,7 @@ use pyo3::exceptions::{PyRuntimeError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::{create_exception, PyErr};
 
-use contactdd_ddm::SetupError;
+use contactdd_io::LoadError;
 
 create_exception!(
     contactdd,
@@ -33,9 +33,9 @@ create_exception!(
      exception."
 );
 
-/// A setup error as a `ContactddError`.
-pub fn setup_error(e: SetupError) -> PyErr {
-    ContactddError::new_err(e.to_string())
+/// A setup or load error as a `ContactddError`.
+pub fn setup_error(e: impl Into<LoadError>) -> PyErr {
+    ContactddError::new_err(e.into().to_string())
 }
 
 /// Any displayable input error as a `ContactddError`.

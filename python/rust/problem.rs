@@ -17,11 +17,12 @@ use pyo3::types::PyDict;
 use serde::de::DeserializeOwned;
 
 use contactdd_core::{Diagonal, Edge, ElasticBody, Material, Mesh, Order, Plane};
-use contactdd_ddm::problem::{
+use contactdd_ddm::{ContactPair, Gamma, Method, Model, Settings, SetupError};
+use contactdd_io::problem::{
     ContactSpec, GammaSpec, GapSpec, LoadSpec, MeshSpec, PenaltySpec, SolverSpec, SupportSpec,
 };
-use contactdd_ddm::setup;
-use contactdd_ddm::{ContactPair, Gamma, Loaded, Method, Model, Settings, SetupError};
+use contactdd_io::setup;
+use contactdd_io::Loaded;
 
 use crate::convert::{from_name, name_of, to_json, Bad};
 use crate::error::{input_error, setup_error};
@@ -298,7 +299,7 @@ impl Problem {
     #[staticmethod]
     fn from_toml(py: Python<'_>, path: PathBuf) -> PyResult<Problem> {
         let loaded = py
-            .detach(|| contactdd_ddm::load_file(&path))
+            .detach(|| contactdd_io::load_file(&path))
             .map_err(setup_error)?;
         Problem::from_loaded(loaded, None)
     }
@@ -320,7 +321,7 @@ impl Problem {
     ) -> PyResult<Problem> {
         let base = base_dir.unwrap_or_else(|| PathBuf::from("."));
         let loaded = py
-            .detach(|| contactdd_ddm::load_str(text, source, Path::new(&base)))
+            .detach(|| contactdd_io::load_str(text, source, Path::new(&base)))
             .map_err(setup_error)?;
         Problem::from_loaded(loaded, Some("problem"))
     }

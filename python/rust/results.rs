@@ -8,9 +8,9 @@ use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList};
 
 use contactdd_ddm::iteration::Stop;
-use contactdd_ddm::output::point_status;
 use contactdd_ddm::solution::{BodyResult, PairResult};
 use contactdd_ddm::{Model, MonolithicSolution, Solution};
+use contactdd_io::output::point_status;
 
 use crate::convert::{array1, array2, name_of};
 use crate::error::input_error;
@@ -308,7 +308,7 @@ impl SolveResult {
     fn write_vtu(&self, py: Python<'_>, directory: std::path::PathBuf) -> PyResult<Vec<String>> {
         let (model, sol) = (self.model.clone(), self.solution.clone());
         let paths = py
-            .detach(move || contactdd_ddm::output::write_results(&directory, &model, &sol))
+            .detach(move || contactdd_io::output::write_results(&directory, &model, &sol))
             .map_err(|e| input_error(format!("cannot write results: {e}")))?;
         Ok(paths.iter().map(|p| p.display().to_string()).collect())
     }
@@ -318,7 +318,7 @@ impl SolveResult {
     fn summary<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
         json_to_py(
             py,
-            &contactdd_ddm::output::summary_json(&self.model, &self.solution),
+            &contactdd_io::output::summary_json(&self.model, &self.solution),
         )
     }
 
@@ -385,7 +385,7 @@ impl MonolithicResult {
         let (model, sol) = (self.model.clone(), self.solution.clone());
         let paths = py
             .detach(move || {
-                contactdd_ddm::output::write_monolithic_results(&directory, &model, &sol)
+                contactdd_io::output::write_monolithic_results(&directory, &model, &sol)
             })
             .map_err(|e| input_error(format!("cannot write results: {e}")))?;
         Ok(paths.iter().map(|p| p.display().to_string()).collect())
@@ -395,7 +395,7 @@ impl MonolithicResult {
     fn summary<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
         json_to_py(
             py,
-            &contactdd_ddm::output::monolithic_summary_json(&self.model, &self.solution),
+            &contactdd_io::output::monolithic_summary_json(&self.model, &self.solution),
         )
     }
 

@@ -5,8 +5,9 @@ use anyhow::Result;
 
 use contactdd_core::{Component, Order};
 use contactdd_ddm::contact::Interface;
-use contactdd_ddm::problem::{LoadSpec, MeshSpec};
-use contactdd_ddm::{Gamma, Loaded, Penalty};
+use contactdd_ddm::{Gamma, Penalty};
+use contactdd_io::problem::{LoadSpec, MeshSpec};
+use contactdd_io::Loaded;
 
 use crate::args::CheckArgs;
 use crate::report::{sig, vec2};

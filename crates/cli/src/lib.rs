@@ -115,8 +115,8 @@ where
 }
 
 /// Loads a problem file; the setup error's message already names the file, body and key.
-fn load(path: &std::path::Path) -> Result<contactdd_ddm::Loaded> {
+fn load(path: &std::path::Path) -> Result<contactdd_io::Loaded> {
     // `to_string` rather than `?`: the message already contains the cause, so a `{:#}` chain
     // would repeat it.
-    contactdd_ddm::load_file(path).map_err(|e| anyhow::anyhow!("{e}"))
+    contactdd_io::load_file(path).map_err(|e| anyhow::anyhow!("{e}"))
 }

@@ -3,9 +3,9 @@
 use std::fmt::Write as _;
 use std::io::IsTerminal;
 
-use contactdd_ddm::output::applied_load;
 use contactdd_ddm::solution::PairResult;
 use contactdd_ddm::{Model, Record};
+use contactdd_io::output::applied_load;
 
 /// A number with 4 significant digits: fixed notation for moderate magnitudes, else exponent.
 pub fn sig(x: f64) -> String {

@@ -8,8 +8,8 @@ use std::time::Instant;
 use anyhow::{Context, Result};
 
 use contactdd_ddm::contact::Interface;
-use contactdd_ddm::output::{safe_file_name, write_monolithic_results, write_results};
 use contactdd_ddm::{prepare, solve as dd_solve, solve_monolithic, Hooks, Model, Record};
+use contactdd_io::output::{safe_file_name, write_monolithic_results, write_results};
 
 use crate::args::{Common, MonolithicArgs, SolveArgs};
 use crate::report::{applied_loads, pair_report, progress, timing, IterationTable};

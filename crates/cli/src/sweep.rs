@@ -5,9 +5,9 @@ use std::path::PathBuf;
 
 use anyhow::{Context, Result};
 
-use contactdd_ddm::output::{safe_file_name, sweep_csv, write_atomic};
 use contactdd_ddm::sweep::SweepRun;
 use contactdd_ddm::{prepare, sweep as dd_sweep, Gamma, Method};
+use contactdd_io::output::{safe_file_name, sweep_csv, write_atomic};
 
 use crate::args::SweepArgs;
 use crate::report::progress;

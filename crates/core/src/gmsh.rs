@@ -26,6 +26,12 @@
 //! All coordinates must share one `z` (the mesh lies in a plane parallel to `xy`). 6-node
 //! triangles must be straight-sided (gmsh option `Mesh.SecondOrderLinear = 1`): curved ones are
 //! reported as [`GmshError::Unsupported`].
+//!
+//! Why this reader lives in the numerical core while every other file format lives in
+//! `contactdd-io`: it is a mesh source like [`crate::rectangle`], not a front end. It needs no
+//! dependency, builds its result only through the public [`Mesh::new`] (no crate internals), and
+//! reports [`GmshError`]; so an MPI driver, a benchmark or a Rust user can read a Gmsh mesh
+//! without linking the TOML and JSON code. Nothing else in the core reads or writes files.
 
 use std::collections::{BTreeMap, BTreeSet, HashMap};
 use std::path::Path;

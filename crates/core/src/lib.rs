@@ -5,15 +5,15 @@
 //! Cholesky factorisation (faer) per body.
 //!
 //! Modules follow the data flow: [`mesh`] (and [`rectangle`], [`gmsh`]) → [`element`] →
-//! [`material`] → [`assembly`] / [`loads`] → [`supports`] → [`factor`] → [`post`] / [`vtu`];
-//! [`atomic`] writes files without ever leaving a half-written one.
+//! [`material`] → [`assembly`] / [`loads`] → [`supports`] → [`factor`] → [`post`]. Result files
+//! (VTU, JSON, CSV) are written by `contactdd-io`; [`gmsh`] is the one reader of a file format
+//! here, kept because it only builds a [`Mesh`] (see its module docs).
 //! [`body::ElasticBody::solve`] runs all stages in one call.
 //!
 //! The weak form per body is `a(u, v) = ∫ ε(v) : C : ε(u) dA = ∫ f·v dA + ∫_Γσ t·v ds`, with
 //! prescribed components of `u` eliminated from the system.
 
 pub mod assembly;
-pub mod atomic;
 pub mod body;
 pub mod element;
 pub mod error;
@@ -25,7 +25,6 @@ pub mod mesh;
 pub mod post;
 pub mod rectangle;
 pub mod supports;
-pub mod vtu;
 
 pub use body::{ElasticBody, LinearSolution};
 pub use error::{BodyError, GmshError, MaterialError, MeshError, SupportError};

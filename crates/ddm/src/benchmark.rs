@@ -2,7 +2,8 @@
 //! the Python module. `examples/notch.toml` describes the same problem as a file.
 
 use contactdd_core::{
-    Component, Constraints, Diagonal, ElasticBody, Load, Material, Order, Plane, Rectangle,
+    BodyError, Component, Constraints, Diagonal, ElasticBody, Load, Material, MeshError, Order,
+    Plane, Rectangle,
 };
 
 use crate::error::SetupError;
@@ -52,8 +53,8 @@ impl Notch {
 
     /// Builds the model.
     pub fn model(&self) -> Result<Model, SetupError> {
-        let material =
-            Material::new(self.young, self.poisson).map_err(|e| SetupError::body("lower", e))?;
+        let material = Material::new(self.young, self.poisson)
+            .map_err(|e| SetupError::Factor(BodyError::Material(e)))?;
         let q = self.pressure();
         let mut bodies = Vec::new();
         for (name, y0, mirror, loaded) in
@@ -69,11 +70,15 @@ impl Notch {
                 order: self.order,
             }
             .mesh()
-            .map_err(|e| SetupError::body(name, e))?;
+            .map_err(|source| mesh_error(name, source))?;
             let mut constraints = Constraints::new(mesh.num_nodes());
             constraints
                 .fix(&mesh, "right", Component::X, 0.0)
-                .map_err(|e| SetupError::body(name, e))?;
+                .map_err(|source| SetupError::Support {
+                    body: name.into(),
+                    key: String::new(),
+                    source,
+                })?;
             let load = contactdd_core::loads::load_vector(
                 &mesh,
                 &[Load::Pressure {
@@ -81,7 +86,7 @@ impl Notch {
                     value: q,
                 }],
             )
-            .map_err(|e| SetupError::body(name, e))?;
+            .map_err(|source| mesh_error(name, source))?;
             bodies.push(ElasticBody {
                 name: name.into(),
                 mesh,
@@ -109,5 +114,13 @@ impl Notch {
                 }),
             }],
         })
+    }
+}
+
+fn mesh_error(body: &str, source: MeshError) -> SetupError {
+    SetupError::Mesh {
+        body: body.into(),
+        key: String::new(),
+        source,
     }
 }

@@ -1,23 +1,16 @@
 //! Errors of setting up and solving a contact problem.
+//!
+//! Variants that wrap an error of the core keep it as their typed `source`; the others carry a
+//! message for a value that is wrong in itself. Reading files has its own errors in
+//! `contactdd-io`.
 
 use thiserror::Error;
 
-use contactdd_core::{BodyError, GmshError};
+use contactdd_core::{BodyError, MaterialError, MeshError, SupportError};
 
 /// A problem description that cannot be turned into a model, or a body that cannot be factorised.
 #[derive(Debug, Error)]
 pub enum SetupError {
-    /// The problem file could not be read.
-    #[error("cannot read '{path}': {source}")]
-    Io {
-        /// Path.
-        path: String,
-        /// Cause.
-        source: std::io::Error,
-    },
-    /// TOML syntax or schema error (the message names the key and line).
-    #[error("{0}")]
-    Toml(String),
     /// A problem with one body's description.
     #[error("body '{body}': {message}")]
     Body {
@@ -25,6 +18,26 @@ pub enum SetupError {
         body: String,
         /// What is wrong.
         message: String,
+    },
+    /// A body's mesh, boundary or load that the core rejects.
+    #[error("body '{body}': {}{source}", key_prefix(key))]
+    Mesh {
+        /// Body name.
+        body: String,
+        /// The key of the body's description at fault (may be empty).
+        key: String,
+        /// Cause.
+        source: MeshError,
+    },
+    /// A support of a body that cannot be applied.
+    #[error("body '{body}': {}{source}", key_prefix(key))]
+    Support {
+        /// Body name.
+        body: String,
+        /// The key of the body's description at fault (may be empty).
+        key: String,
+        /// Cause.
+        source: SupportError,
     },
     /// A problem with one contact pair.
     #[error("contact pair '{pair}': {message}")]
@@ -37,16 +50,6 @@ pub enum SetupError {
     /// A problem with the solver settings.
     #[error("solver: {0}")]
     Solver(String),
-    /// Gmsh file problem.
-    #[error("body '{body}': mesh file '{path}': {source}")]
-    Gmsh {
-        /// Body name.
-        body: String,
-        /// File.
-        path: String,
-        /// Cause.
-        source: GmshError,
-    },
     /// A body cannot be assembled or factorised.
     #[error(transparent)]
     Factor(#[from] BodyError),
@@ -57,6 +60,14 @@ pub enum SetupError {
         material: String,
         /// What is wrong.
         message: String,
+    },
+    /// Material constants that the core rejects (the message names the key).
+    #[error("material '{material}': {}: {source}", material_key(source))]
+    MaterialValue {
+        /// Material name (key of `[materials]`).
+        material: String,
+        /// Cause.
+        source: MaterialError,
     },
     /// A body with neither supports nor a contact pair.
     #[error("body '{body}' has no supports and no contact pair: it would float")]
@@ -72,23 +83,21 @@ pub enum SetupError {
         /// What is wrong.
         message: String,
     },
-    /// An error found in a problem file: the file name, then the error. (The inner error is part
-    /// of the message, not a `source`, so that `{:#}` chains do not print it twice.)
-    #[error("{file}: {error}")]
-    InFile {
-        /// The file (or source name) the problem was read from.
-        file: String,
-        /// The error.
-        error: Box<SetupError>,
-    },
 }
 
-impl SetupError {
-    /// Wraps a core error as an error of body `body`.
-    pub fn body(body: &str, e: impl std::fmt::Display) -> SetupError {
-        SetupError::Body {
-            body: body.to_string(),
-            message: e.to_string(),
-        }
+/// `"key: "`, or nothing for an empty key.
+fn key_prefix(key: &str) -> String {
+    if key.is_empty() {
+        String::new()
+    } else {
+        format!("{key}: ")
+    }
+}
+
+/// The key of a material table that `e` is about.
+fn material_key(e: &MaterialError) -> &'static str {
+    match e {
+        MaterialError::YoungModulus(_) => "young",
+        MaterialError::PoissonRatio(_) => "poisson",
     }
 }

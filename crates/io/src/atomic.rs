@@ -1,7 +1,6 @@
 //! Atomic file writes: a file is written to a temporary file in its folder and then renamed over
 //! the target, so a reader (or a crash mid-write) sees either the old file or the complete new one,
-//! never a half-written one. Used for the `.vtu` files here and every result file of
-//! `contactdd-ddm`.
+//! never a half-written one. Every result file of contactdd is written this way.
 
 use std::io::{Error, ErrorKind, Write as _};
 use std::path::Path;

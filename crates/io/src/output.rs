@@ -3,7 +3,7 @@
 //!
 //! The text builders ([`summary_json`], [`contact_csv`], [`history_csv`], [`sweep_csv`]) only
 //! format; [`write_results`] writes a whole result folder. Every file is written by
-//! [`write_atomic`] (re-exported from `contactdd_core::atomic`): to a temporary file in the target
+//! [`write_atomic`] (re-exported from [`crate::atomic`]): to a temporary file in the target
 //! folder, then renamed, so a reader (or a crash mid-write) never leaves a half-written file
 //! behind.
 //!
@@ -40,15 +40,14 @@ use std::path::{Path, PathBuf};
 
 use serde_json::{json, Value};
 
-pub use contactdd_core::atomic::write_atomic;
-use contactdd_core::vtu::{write_vtu, PointField};
 use contactdd_core::Order;
+use contactdd_ddm::solution::{BodyResult, PairResult, Solution};
+use contactdd_ddm::sweep::SweepRun;
+use contactdd_ddm::{Gamma, Model, MonolithicSolution};
 
-use crate::model::Model;
-use crate::monolithic::MonolithicSolution;
-use crate::relaxation::Gamma;
-use crate::solution::{BodyResult, PairResult, Solution};
-use crate::sweep::SweepRun;
+pub use crate::atomic::write_atomic;
+use crate::number::format_f64 as num;
+use crate::vtu::{write_vtu, PointField};
 
 /// A JSON number, or `null` for NaN and ±infinity (which JSON cannot represent).
 pub fn json_number(x: f64) -> Value {
@@ -356,17 +355,6 @@ fn pretty(value: &Value) -> std::io::Result<String> {
     Ok(text)
 }
 
-/// A float for CSV: the shortest text that reads back to the same value, with an exponent for very
-/// small or large magnitudes; `inf`, `-inf`, `NaN` for non-finite values.
-fn num(x: f64) -> String {
-    let m = x.abs();
-    if x == 0.0 || !x.is_finite() || (1e-4..1e15).contains(&m) {
-        format!("{x}")
-    } else {
-        format!("{x:e}")
-    }
-}
-
 /// A CSV field, quoted when it holds a comma, quote or line break.
 fn csv_field(s: &str) -> String {
     if s.contains([',', '"', '\n', '\r']) {
@@ -390,11 +378,7 @@ mod tests {
     }
 
     #[test]
-    fn csv_numbers_and_fields() {
-        assert_eq!(num(0.25), "0.25");
-        assert_eq!(num(-2.5e-7), "-2.5e-7");
-        assert_eq!(num(f64::INFINITY), "inf");
-        assert_eq!("-2.5e-7".parse::<f64>(), Ok(-2.5e-7));
+    fn csv_fields() {
         assert_eq!(csv_field("a,b"), "\"a,b\"");
         assert_eq!(csv_field("say \"x\""), "\"say \"\"x\"\"\"");
         assert_eq!(csv_field("plain"), "plain");

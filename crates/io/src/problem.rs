@@ -2,7 +2,7 @@
 //!
 //! These types only describe; they check nothing beyond the shape of the data (types, required
 //! keys, no unknown keys). [`crate::setup::resolve`] turns a [`Problem`] into solver input
-//! ([`Model`](crate::Model) + [`Settings`](crate::Settings)), validating every value and naming the
+//! (`Model` + `Settings` of `contactdd_ddm`), validating every value and naming the
 //! key and the body or pair when something is wrong. Solver state never derives `Deserialize`.
 //!
 //! Keys are kebab-case and use the names of `method.md`. A complete file:
@@ -44,9 +44,8 @@ use serde::{Deserialize, Serialize, Serializer};
 
 use contactdd_core::{Component, Diagonal, Order, Plane};
 
-use crate::method::Method;
-use crate::profile::Along;
-use crate::relaxation::Gamma;
+use contactdd_ddm::profile::Along;
+use contactdd_ddm::{Gamma, Method};
 
 /// A whole problem file.
 #[derive(Clone, Debug, PartialEq, Deserialize, Serialize)]
@@ -252,7 +251,7 @@ fn default_power() -> f64 {
     1.5
 }
 
-/// The `[solver]` table; absent keys take the defaults of [`crate::Settings`].
+/// The `[solver]` table; absent keys take the defaults of `contactdd_ddm::Settings`.
 #[derive(Clone, Debug, Default, PartialEq, Deserialize, Serialize)]
 #[serde(deny_unknown_fields, rename_all = "kebab-case")]
 pub struct SolverSpec {

@@ -3,10 +3,10 @@
 //! [`load_file`] reads a TOML file, [`load_str`] parses text, and both hand the parsed
 //! [`Problem`] to [`resolve`], which validates every value and builds the [`Model`] (meshes,
 //! materials, supports, load vectors, contact pairs) and the iteration [`Settings`]. Nothing is
-//! solved or factorised here; [`crate::prepare`] does that.
+//! solved or factorised here; `contactdd_ddm::prepare` does that.
 //!
 //! Every error names what it is about: the file (for [`load_file`] and [`load_str`], wrapped in
-//! [`SetupError::InFile`]), the body, pair or material, and the key, e.g.
+//! [`LoadError::InFile`]), the body, pair or material, and the key, e.g.
 //! `problem.toml: body 'lower': supports[0]: no boundary named 'rigth' (known: bottom, left,
 //! right, top)`. Parse errors carry the toml crate's message with line, column and the offending
 //! line. No input makes this module panic.
@@ -28,19 +28,16 @@ use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
 use contactdd_core::{
-    BodyError, Constraints, ElasticBody, Load, Material, MaterialError, Mesh, Order, Plane,
-    Rectangle,
+    BodyError, Constraints, ElasticBody, Load, Material, Mesh, MeshError, Order, Plane, Rectangle,
 };
 
-use crate::error::SetupError;
-use crate::iteration::Settings;
-use crate::model::{ContactPair, Model, Penalty};
+use contactdd_ddm::{ContactPair, Gamma, GapProfile, Model, Penalty, Settings, SetupError};
+
+use crate::error::LoadError;
 use crate::problem::{
     BodySpec, ContactSpec, GammaSpec, GapSpec, LoadSpec, MeshSpec, PenaltySpec, Problem,
     SolverSpec, SupportSpec,
 };
-use crate::profile::GapProfile;
-use crate::relaxation::Gamma;
 
 /// Largest number of rectangle cells (nx · ny) per body: far beyond what the solver handles, but it
 /// keeps absurd inputs from exhausting memory while allocating the mesh.
@@ -61,8 +58,8 @@ pub struct Loaded {
 
 /// Reads, parses and resolves a TOML problem file. Relative mesh paths resolve against the file's
 /// folder; the default problem name is the file stem.
-pub fn load_file(path: &Path) -> Result<Loaded, SetupError> {
-    let text = std::fs::read_to_string(path).map_err(|source| SetupError::Io {
+pub fn load_file(path: &Path) -> Result<Loaded, LoadError> {
+    let text = std::fs::read_to_string(path).map_err(|source| LoadError::Io {
         path: path.display().to_string(),
         source,
     })?;
@@ -72,15 +69,17 @@ pub fn load_file(path: &Path) -> Result<Loaded, SetupError> {
 
 /// Parses and resolves the text of a problem file. `source` names the file in messages (and its
 /// stem is the default problem name); relative mesh paths resolve against `base_dir`.
-pub fn load_str(text: &str, source: &str, base_dir: &Path) -> Result<Loaded, SetupError> {
-    let problem: Problem = toml::from_str(text)
-        .map_err(|e| SetupError::Toml(format!("{source}: {}", e.to_string().trim_end())))?;
+pub fn load_str(text: &str, source: &str, base_dir: &Path) -> Result<Loaded, LoadError> {
+    let problem: Problem = toml::from_str(text).map_err(|e| LoadError::Toml {
+        file: source.to_string(),
+        source: e,
+    })?;
     let stem = Path::new(source)
         .file_stem()
         .and_then(|s| s.to_str())
         .filter(|s| !s.is_empty())
         .unwrap_or("problem");
-    resolve_named(problem, base_dir, stem).map_err(|error| SetupError::InFile {
+    resolve_named(problem, base_dir, stem).map_err(|error| LoadError::InFile {
         file: source.to_string(),
         error: Box::new(error),
     })
@@ -88,7 +87,7 @@ pub fn load_str(text: &str, source: &str, base_dir: &Path) -> Result<Loaded, Set
 
 /// Validates a parsed problem and builds the model and settings. Relative mesh paths resolve
 /// against `base_dir`; without a `name` the problem is called `"problem"`.
-pub fn resolve(problem: Problem, base_dir: &Path) -> Result<Loaded, SetupError> {
+pub fn resolve(problem: Problem, base_dir: &Path) -> Result<Loaded, LoadError> {
     resolve_named(problem, base_dir, "problem")
 }
 
@@ -96,13 +95,14 @@ fn resolve_named(
     problem: Problem,
     base_dir: &Path,
     default_name: &str,
-) -> Result<Loaded, SetupError> {
+) -> Result<Loaded, LoadError> {
     let settings = settings(&problem.solver, &Settings::default())?;
     if problem.bodies.is_empty() {
         return Err(SetupError::Invalid {
             key: "bodies".into(),
             message: "the problem has no bodies (add a [[bodies]] table)".into(),
-        });
+        }
+        .into());
     }
     let materials = problem
         .materials
@@ -119,7 +119,7 @@ fn resolve_named(
         .bodies
         .iter()
         .map(|spec| body(spec, &materials, problem.plane, base_dir))
-        .collect::<Result<Vec<_>, _>>()?;
+        .collect::<Result<Vec<_>, LoadError>>()?;
     let mut pairs: Vec<ContactPair> = Vec::with_capacity(problem.contact.len());
     for spec in &problem.contact {
         let pair = pair(spec, &bodies, &pairs, problem.plane)?;
@@ -148,6 +148,14 @@ fn body_error(body: &str, key: &str, message: impl std::fmt::Display) -> SetupEr
     SetupError::Body {
         body: body.to_string(),
         message: format!("{key}: {message}"),
+    }
+}
+
+fn mesh_error(body: &str, key: &str, source: MeshError) -> SetupError {
+    SetupError::Mesh {
+        body: body.to_string(),
+        key: key.to_string(),
+        source,
     }
 }
 
@@ -219,15 +227,9 @@ pub fn gamma(spec: GammaSpec) -> Result<Gamma, SetupError> {
 
 /// A `[materials.NAME]` table → a validated material (errors name the material and the key).
 pub fn material(name: &str, young: f64, poisson: f64) -> Result<Material, SetupError> {
-    Material::new(young, poisson).map_err(|e| {
-        let key = match e {
-            MaterialError::YoungModulus(_) => "young",
-            MaterialError::PoissonRatio(_) => "poisson",
-        };
-        SetupError::Material {
-            material: name.to_string(),
-            message: format!("{key}: {e}"),
-        }
+    Material::new(young, poisson).map_err(|source| SetupError::MaterialValue {
+        material: name.to_string(),
+        source,
     })
 }
 
@@ -297,7 +299,7 @@ fn body(
     materials: &BTreeMap<String, Material>,
     plane: Plane,
     base_dir: &Path,
-) -> Result<ElasticBody, SetupError> {
+) -> Result<ElasticBody, LoadError> {
     let name = spec.name.as_str();
     let material = *materials.get(&spec.material).ok_or_else(|| {
         body_error(
@@ -311,7 +313,14 @@ fn body(
         )
     })?;
     let mesh = mesh(name, &spec.mesh, base_dir)?;
-    body_on_mesh(name, mesh, material, plane, &spec.supports, &spec.loads)
+    Ok(body_on_mesh(
+        name,
+        mesh,
+        material,
+        plane,
+        &spec.supports,
+        &spec.loads,
+    )?)
 }
 
 /// Body `name` on a built mesh: supports applied in order ([`Constraints::fix`]), loads checked
@@ -328,7 +337,11 @@ pub fn body_on_mesh(
     for (i, s) in supports.iter().enumerate() {
         constraints
             .fix(&mesh, &s.boundary, s.component, s.value)
-            .map_err(|e| body_error(name, &format!("supports[{i}]"), e))?;
+            .map_err(|source| SetupError::Support {
+                body: name.to_string(),
+                key: format!("supports[{i}]"),
+                source,
+            })?;
     }
     let mut resolved = Vec::with_capacity(loads.len());
     for (i, l) in loads.iter().enumerate() {
@@ -359,12 +372,12 @@ pub fn body_on_mesh(
         }
         if let LoadSpec::Pressure { boundary, .. } | LoadSpec::Traction { boundary, .. } = l {
             mesh.boundary(boundary)
-                .map_err(|e| body_error(name, &format!("{key}.boundary"), e))?;
+                .map_err(|e| mesh_error(name, &format!("{key}.boundary"), e))?;
         }
         resolved.push(load);
     }
     let load = contactdd_core::loads::load_vector(&mesh, &resolved)
-        .map_err(|e| body_error(name, "loads", e))?;
+        .map_err(|e| mesh_error(name, "loads", e))?;
     Ok(ElasticBody {
         name: name.to_string(),
         mesh,
@@ -377,7 +390,7 @@ pub fn body_on_mesh(
 
 /// The `mesh` table of body `body` → a validated mesh; a relative Gmsh path resolves against
 /// `base_dir`.
-pub fn mesh(body: &str, spec: &MeshSpec, base_dir: &Path) -> Result<Mesh, SetupError> {
+pub fn mesh(body: &str, spec: &MeshSpec, base_dir: &Path) -> Result<Mesh, LoadError> {
     match spec {
         MeshSpec::Rectangle {
             x,
@@ -390,7 +403,7 @@ pub fn mesh(body: &str, spec: &MeshSpec, base_dir: &Path) -> Result<Mesh, SetupE
         } => {
             for (key, n) in [("mesh.nx", nx), ("mesh.ny", ny)] {
                 if *n == 0 {
-                    return Err(body_error(body, key, "must be at least 1, got 0"));
+                    return Err(body_error(body, key, "must be at least 1, got 0").into());
                 }
             }
             if !matches!(nx.checked_mul(*ny), Some(c) if c <= MAX_RECTANGLE_CELLS) {
@@ -398,7 +411,8 @@ pub fn mesh(body: &str, spec: &MeshSpec, base_dir: &Path) -> Result<Mesh, SetupE
                     body,
                     "mesh",
                     format!("{nx} × {ny} cells is more than the limit of {MAX_RECTANGLE_CELLS}"),
-                ));
+                )
+                .into());
             }
             for (key, r) in [("mesh.x", x), ("mesh.y", y)] {
                 if !(r[0].is_finite() && r[1].is_finite() && r[0] < r[1]) {
@@ -409,7 +423,8 @@ pub fn mesh(body: &str, spec: &MeshSpec, base_dir: &Path) -> Result<Mesh, SetupE
                             "need a finite range [min, max] with min < max, got [{}, {}]",
                             r[0], r[1]
                         ),
-                    ));
+                    )
+                    .into());
                 }
             }
             Rectangle {
@@ -422,7 +437,7 @@ pub fn mesh(body: &str, spec: &MeshSpec, base_dir: &Path) -> Result<Mesh, SetupE
                 order: *order,
             }
             .mesh()
-            .map_err(|e| body_error(body, "mesh", e))
+            .map_err(|e| mesh_error(body, "mesh", e).into())
         }
         MeshSpec::Gmsh {
             file,
@@ -436,7 +451,8 @@ pub fn mesh(body: &str, spec: &MeshSpec, base_dir: &Path) -> Result<Mesh, SetupE
                     body,
                     "mesh.scale",
                     format!("must be a positive number, got {scale}"),
-                ));
+                )
+                .into());
             }
             let shift = translate.unwrap_or([0.0, 0.0]);
             if !(shift[0].is_finite() && shift[1].is_finite()) {
@@ -444,7 +460,8 @@ pub fn mesh(body: &str, spec: &MeshSpec, base_dir: &Path) -> Result<Mesh, SetupE
                     body,
                     "mesh.translate",
                     format!("must be finite, got [{}, {}]", shift[0], shift[1]),
-                ));
+                )
+                .into());
             }
             let path: PathBuf = if file.is_absolute() {
                 file.clone()
@@ -452,7 +469,7 @@ pub fn mesh(body: &str, spec: &MeshSpec, base_dir: &Path) -> Result<Mesh, SetupE
                 base_dir.join(file)
             };
             let mut mesh =
-                contactdd_core::gmsh::read_msh(&path).map_err(|source| SetupError::Gmsh {
+                contactdd_core::gmsh::read_msh(&path).map_err(|source| LoadError::Gmsh {
                     body: body.to_string(),
                     path: path.display().to_string(),
                     source,
@@ -460,7 +477,7 @@ pub fn mesh(body: &str, spec: &MeshSpec, base_dir: &Path) -> Result<Mesh, SetupE
             if scale != 1.0 || shift != [0.0, 0.0] {
                 mesh = mesh
                     .map_nodes(|p| [scale * p[0] + shift[0], scale * p[1] + shift[1]])
-                    .map_err(|e| body_error(body, "mesh", e))?;
+                    .map_err(|e| mesh_error(body, "mesh", e))?;
             }
             match (order, mesh.order()) {
                 (Some(Order::P2), Order::P1) => Ok(mesh.to_p2()),
@@ -472,7 +489,8 @@ pub fn mesh(body: &str, spec: &MeshSpec, base_dir: &Path) -> Result<Mesh, SetupE
                          leave order out)",
                         path.display()
                     ),
-                )),
+                )
+                .into()),
                 _ => Ok(mesh),
             }
         }

@@ -6,9 +6,10 @@
 use std::path::{Path, PathBuf};
 
 use contactdd_ddm::benchmark::Notch;
-use contactdd_ddm::problem::{GammaSpec, Problem};
-use contactdd_ddm::setup::resolve;
 use contactdd_ddm::*;
+use contactdd_io::problem::{GammaSpec, Problem};
+use contactdd_io::setup::resolve;
+use contactdd_io::*;
 
 /// Examples whose solve takes too long in an unoptimised build; there they are only resolved.
 /// (`hertz.toml` iterates ~6000 times on a 20 000-node block, `stack.toml` ~1200 times over 8

@@ -1,0 +1,25 @@
+//! # contactdd-io
+//!
+//! The file front end of contactdd, shared by the command line and the Python module: the numerical
+//! crates (`contactdd-core`, `contactdd-ddm`) read and write no file format, this crate does.
+//!
+//! Data flow: a TOML problem file → [`problem`] (plain serde types, the file's schema) →
+//! [`setup`] (one resolve step: validated `Model` and `Settings`) → the solver of `contactdd-ddm`
+//! → [`output`] (`summary.json`, `contact.csv`, `history.csv`, the sweep CSV) and [`vtu`] (one
+//! `.vtu` per body). [`atomic`] writes every file without ever leaving a half-written one;
+//! [`number`] is the one float format of the text files.
+//!
+//! Gmsh meshes are read by `contactdd_core::gmsh`, not here: that reader only builds a mesh and
+//! needs no dependency, so pure-numerics users can read meshes without this crate (see that
+//! module's docs).
+
+pub mod atomic;
+pub mod error;
+pub mod number;
+pub mod output;
+pub mod problem;
+pub mod setup;
+pub mod vtu;
+
+pub use error::LoadError;
+pub use setup::{load_file, load_str, resolve, Loaded};
