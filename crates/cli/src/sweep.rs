@@ -6,7 +6,7 @@ use std::path::PathBuf;
 use anyhow::{Context, Result};
 
 use contactdd_ddm::sweep::SweepRun;
-use contactdd_ddm::{prepare, sweep as dd_sweep, Gamma, Method};
+use contactdd_ddm::{prepare, sweep as dd_sweep, Gamma, Method, Stop};
 use contactdd_io::output::{safe_file_name, sweep_csv, write_atomic};
 
 use crate::args::SweepArgs;
@@ -76,15 +76,13 @@ fn table(methods: &[Method], gammas: &[Gamma], runs: &[SweepRun]) -> String {
     s
 }
 
-/// `m` when converged, `max` at the iteration cap, `div@k` when it broke down at iteration k.
+/// `m` when converged, `max` at the iteration cap, `div@k` when it broke down at iteration k,
+/// `int` when interrupted.
 fn cell(run: &SweepRun) -> String {
-    if run.converged {
-        run.iterations.to_string()
-    } else if run.reason.starts_with("max") {
-        "max".into()
-    } else if run.reason == "interrupted" {
-        "int".into()
-    } else {
-        format!("div@{}", run.iterations)
+    match run.stop {
+        Stop::Converged => run.iterations.to_string(),
+        Stop::MaxIterations => "max".into(),
+        Stop::Interrupted => "int".into(),
+        Stop::Diverged { .. } => format!("div@{}", run.iterations),
     }
 }

@@ -96,6 +96,9 @@ pub struct Solution {
     pub timing: BTreeMap<String, f64>,
 }
 
+// The two texts of how an iteration ended: the full message of a solve (`stop_message`) and the
+// short reason of a sweep cell (`short_reason`). Keep them together so that they stay in step.
+
 /// The message for a non-converged outcome.
 pub fn stop_message(
     stop: &Stop,
@@ -104,13 +107,7 @@ pub fn stop_message(
     history: &[Record],
     tol: f64,
 ) -> Option<String> {
-    let body = |b: usize| {
-        model
-            .bodies
-            .get(b)
-            .map_or("?", |x| x.name.as_str())
-            .to_string()
-    };
+    let body = |b: usize| body_name(model, b);
     match stop {
         Stop::Converged => None,
         Stop::MaxIterations => {
@@ -151,6 +148,36 @@ pub fn stop_message(
             ),
         }),
     }
+}
+
+/// A one-line reason for a table cell or CSV field.
+pub fn short_reason(model: &Model, stop: &Stop) -> String {
+    match stop {
+        Stop::Converged => String::new(),
+        Stop::MaxIterations => "max iterations".into(),
+        Stop::Interrupted => "interrupted".into(),
+        Stop::Diverged {
+            body,
+            iteration,
+            reason,
+        } => {
+            let what = match reason {
+                Breakdown::LostContact => "lost all contact",
+                Breakdown::Singular => "singular Robin problem",
+                Breakdown::NonFinite => "non-finite values",
+                Breakdown::Growth => "growth",
+            };
+            format!(
+                "{}: {what} at iteration {iteration}",
+                body_name(model, *body)
+            )
+        }
+    }
+}
+
+/// The name of body `b` in messages (`?` for an index out of range).
+fn body_name(model: &Model, b: usize) -> &str {
+    model.bodies.get(b).map_or("?", |x| x.name.as_str())
 }
 
 /// Per-pair contact results from the final normal displacements.

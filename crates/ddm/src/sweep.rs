@@ -7,10 +7,11 @@ use std::sync::atomic::{AtomicBool, Ordering};
 
 use rayon::prelude::*;
 
-use crate::iteration::{iterate, Breakdown, Hooks, Settings, Stop};
+use crate::iteration::{iterate, Hooks, Settings, Stop};
 use crate::method::Method;
 use crate::model::Model;
 use crate::relaxation::Gamma;
+use crate::solution::short_reason;
 use crate::solver::Prepared;
 
 /// One run of a sweep.
@@ -24,8 +25,11 @@ pub struct SweepRun {
     pub iterations: usize,
     /// True if converged.
     pub converged: bool,
-    /// Why not ("" when converged).
+    /// Why not ("" when converged): [`short_reason`] of `stop`.
     pub reason: String,
+    /// How the run ended.
+    #[serde(skip)]
+    pub stop: Stop,
 }
 
 /// Runs every method with every γ; `base` supplies the tolerance, cap and initial values.
@@ -89,38 +93,10 @@ pub fn sweep_with_cancel(
                 iterations,
                 converged: stop == Stop::Converged,
                 reason: short_reason(model, &stop),
+                stop,
             }
         })
         .collect()
-}
-
-/// A one-line reason for a table cell or CSV field.
-pub fn short_reason(model: &Model, stop: &Stop) -> String {
-    let name = |b: usize| {
-        model
-            .bodies
-            .get(b)
-            .map_or("?", |x| x.name.as_str())
-            .to_string()
-    };
-    match stop {
-        Stop::Converged => String::new(),
-        Stop::MaxIterations => "max iterations".into(),
-        Stop::Interrupted => "interrupted".into(),
-        Stop::Diverged {
-            body,
-            iteration,
-            reason,
-        } => {
-            let what = match reason {
-                Breakdown::LostContact => "lost all contact",
-                Breakdown::Singular => "singular Robin problem",
-                Breakdown::NonFinite => "non-finite values",
-                Breakdown::Growth => "growth",
-            };
-            format!("{}: {what} at iteration {iteration}", name(*body))
-        }
-    }
 }
 
 #[cfg(test)]
