@@ -149,10 +149,13 @@ pub enum BodyError {
         contact: &'static str,
     },
     /// Cholesky failed although the body looked supported.
-    #[error("body '{body}': the stiffness matrix is not positive definite (Cholesky failed); check supports and material")]
+    #[error("body '{body}': the stiffness matrix is not positive definite (Cholesky failed at pivot {pivot}); check supports and material")]
     NotPositiveDefinite {
         /// Body name.
         body: String,
+        /// Where the factorisation failed: the pivot index faer reports, in the factor's
+        /// elimination order.
+        pivot: usize,
     },
     /// A non-finite load or prescribed value.
     #[error("body '{body}': {what} is not finite")]

@@ -173,16 +173,6 @@ impl FactoredBody {
         self.l_values.len()
     }
 
-    /// Number of free (unknown) DOFs.
-    pub fn num_free(&self) -> usize {
-        self.free.len()
-    }
-
-    /// True if DOF `dof` is prescribed.
-    pub fn is_fixed(&self, dof: usize) -> bool {
-        self.reduced[dof] == NONE
-    }
-
     /// Numeric factorisation of `K + Σ additions` where `additions` are `(row, col, value)`
     /// entries (full DOF numbering) inside the stiffness pattern, added symmetrically: an entry with
     /// `row ≠ col` is added at both `(row, col)` and `(col, row)`.
@@ -232,8 +222,13 @@ impl FactoredBody {
                 MemStack::new(&mut mem),
                 Default::default(),
             )
-            .map_err(|_| BodyError::NotPositiveDefinite {
-                body: self.name.clone(),
+            .map_err(|e| match e {
+                faer::linalg::cholesky::llt::factor::LltError::NonPositivePivot { index } => {
+                    BodyError::NotPositiveDefinite {
+                        body: self.name.clone(),
+                        pivot: index,
+                    }
+                }
             })?;
         self.factored = true;
         Ok(())
@@ -268,9 +263,10 @@ impl FactoredBody {
         for &(d, value) in &self.fixed {
             u[d] = value;
         }
-        if u.iter().any(|v| !v.is_finite()) {
-            return Err(BodyError::NotPositiveDefinite {
+        if let Some(d) = u.iter().position(|v| !v.is_finite()) {
+            return Err(BodyError::NonFinite {
                 body: self.name.clone(),
+                what: format!("the solution (DOF {d})"),
             });
         }
         Ok(u)
@@ -316,18 +312,43 @@ impl FactoredBody {
             .collect()
     }
 
-    /// The dense lower Cholesky factor `L₂₂` of the Schur complement on the free interface DOFs
-    /// (ordered as [`FactoredBody::interface_index`] says).
+    /// The dense lower Cholesky factor `L₂₂` of the Schur complement on the free interface DOFs,
+    /// or a zero matrix where [`FactoredBody::schur_factor`] fails.
+    ///
+    /// Kept until its caller in `contactdd-ddm` uses [`FactoredBody::schur_factor`].
     pub fn interface_schur_factor(&self) -> Mat<f64> {
+        let m = self.interface.len();
+        self.schur_factor()
+            .unwrap_or_else(|_| Mat::<f64>::zeros(m, m))
+    }
+
+    /// The dense lower Cholesky factor `L₂₂` of the Schur complement on the free interface DOFs
+    /// (ordered as [`FactoredBody::interface_index`] says); 0 × 0 without interface DOFs.
+    ///
+    /// Errors if the body is not factorised, or if the factor is not supernodal (the Schur factor
+    /// is read off its supernodes; [`FactoredBody::new`] forces that whenever there is an
+    /// interface).
+    pub fn schur_factor(&self) -> Result<Mat<f64>, BodyError> {
         let m = self.interface.len();
         let n = self.free.len();
         let n0 = n - m;
         let mut l22 = Mat::<f64>::zeros(m, m);
-        if m == 0 || !self.factored {
-            return l22;
+        if m == 0 {
+            return Ok(l22);
+        }
+        let fail = |message: &str| BodyError::Factorization {
+            body: self.name.clone(),
+            message: message.into(),
+        };
+        if !self.factored {
+            return Err(fail(
+                "Schur factor requested before a successful factorization",
+            ));
         }
         let SymbolicCholeskyRaw::Supernodal(sym) = self.symbolic.raw() else {
-            return l22;
+            return Err(fail(
+                "the factor is not supernodal; its Schur block cannot be read",
+            ));
         };
         let llt = SupernodalLltRef::new(sym, &self.l_values);
         for s in 0..sym.n_supernodes() {
@@ -354,7 +375,7 @@ impl FactoredBody {
                 }
             }
         }
-        l22
+        Ok(l22)
     }
 }
 

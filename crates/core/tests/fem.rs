@@ -352,8 +352,10 @@ fn schur_factor_equals_dense_schur_complement() {
         .flat_map(|&v| [2 * v, 2 * v + 1])
         .collect();
     let mut op = FactoredBody::new("s", k.clone(), &constraints, &top).unwrap();
+    // Before a factorisation there is no Schur factor: an error, not a zero matrix.
+    assert!(op.schur_factor().is_err());
     op.factorize(&[]).unwrap();
-    let l22 = op.interface_schur_factor();
+    let l22 = op.schur_factor().expect("factorised with an interface");
     let idx = op.interface_index(&top);
     // (K⁻¹)_cc computed column by column with full solves must equal (L22 L22ᵀ)⁻¹: check
     // S · (K⁻¹)_cc = I.
@@ -443,4 +445,32 @@ fn mirrored_rectangle_is_the_reflection() {
         let (n, _) = mirrored.edge_normal(e);
         assert!((n[1] + 1.0).abs() < 1e-14 && mirrored.nodes()[e.a][1] == 1.0);
     }
+}
+
+/// A held body whose factorisation or solve fails says which: the pivot of a matrix that is not
+/// positive definite, a non-finite solution as such.
+#[test]
+fn factor_errors_name_the_pivot_and_non_finite_solutions() {
+    let mesh = unit_square(2, Order::P1, Diagonal::Alternate);
+    let mut constraints = Constraints::new(mesh.num_nodes());
+    constraints
+        .fix(&mesh, "left", Component::Both, 0.0)
+        .unwrap();
+    let k = Pattern::new(&mesh).stiffness(&mesh, &steel().elasticity(Plane::Strain));
+    let mut op = FactoredBody::new("b", k, &constraints, &[]).unwrap();
+    let free = (0..op.num_dofs())
+        .rev()
+        .find(|&d| constraints.get(d).is_none())
+        .unwrap();
+    let err = op.factorize(&[(free, free, -1e12)]).unwrap_err();
+    assert!(
+        matches!(err, contactdd_core::BodyError::NotPositiveDefinite { ref body, .. } if body == "b"),
+        "{err}"
+    );
+    op.factorize(&[]).unwrap();
+    let err = op.solve(&vec![f64::NAN; op.num_dofs()]).unwrap_err();
+    assert!(
+        matches!(err, contactdd_core::BodyError::NonFinite { .. }),
+        "{err}"
+    );
 }
