@@ -153,11 +153,6 @@ impl FactoredBody {
         self.par = par;
     }
 
-    /// The body name used in errors.
-    pub fn name(&self) -> &str {
-        &self.name
-    }
-
     /// The full stiffness matrix (supports not eliminated).
     pub fn stiffness(&self) -> &SparseColMat<usize, f64> {
         &self.k
