@@ -547,14 +547,35 @@ impl RawMsh {
             .unwrap_or_else(|| tag.to_string())
     }
 
-    /// Assembles and validates the mesh.
+    /// Assembles and validates the mesh: the triangles' order and nodes, the nodes renumbered,
+    /// the elements sorted into cells, boundaries and node sets, then [`Mesh::new`].
     fn build(self) -> Result<Mesh, GmshError> {
-        let unknown = |element: &RawElement, tag: u64| GmshError::Parse {
-            line: element.line,
-            message: format!("element refers to node {tag}, which is not in $Nodes"),
-        };
+        let (order, used) = self.triangle_order_and_nodes()?;
+        let (nodes, new_index) = self.renumber_nodes(&used)?;
+        let (cells, boundaries, node_sets) = self.sort_elements(order, &nodes, &new_index)?;
+        Mesh::new(nodes, order, cells, boundaries, node_sets).map_err(|e| match e {
+            MeshError::CurvedEdge { .. } => GmshError::Unsupported(format!(
+                "{e}; mesh with straight-sided 6-node triangles in gmsh \
+                 (-setnumber Mesh.SecondOrderLinear 1)"
+            )),
+            e => GmshError::Mesh(e),
+        })
+    }
 
-        // Triangles: order, nodes in use.
+    /// The index in `coords` of node `tag` of `element`.
+    fn node_position(&self, element: &RawElement, tag: u64) -> Result<usize, GmshError> {
+        self.node_index
+            .get(&tag)
+            .copied()
+            .ok_or_else(|| GmshError::Parse {
+                line: element.line,
+                message: format!("element refers to node {tag}, which is not in $Nodes"),
+            })
+    }
+
+    /// The order of the triangles (all the same) and, per node of `coords`, whether a triangle
+    /// uses it.
+    fn triangle_order_and_nodes(&self) -> Result<(Order, Vec<bool>), GmshError> {
         let mut order = None;
         let mut used = vec![false; self.coords.len()];
         for element in &self.elements {
@@ -572,10 +593,7 @@ impl RawMsh {
                 Some(_) => {}
             }
             for &tag in &element.nodes {
-                let &i = self
-                    .node_index
-                    .get(&tag)
-                    .ok_or_else(|| unknown(element, tag))?;
+                let i = self.node_position(element, tag)?;
                 if let Some(u) = used.get_mut(i) {
                     *u = true;
                 }
@@ -587,13 +605,18 @@ impl RawMsh {
                     .to_string(),
             ));
         };
+        Ok((order, used))
+    }
 
-        // Renumber the nodes in use, in file order, and check that they lie in one xy plane.
+    /// Renumbers the `used` nodes in file order and checks that they lie in one xy plane.
+    /// Returns their xy coordinates and, per node of `coords`, its new index (`usize::MAX` if
+    /// unused).
+    fn renumber_nodes(&self, used: &[bool]) -> Result<(Vec<[f64; 2]>, Vec<usize>), GmshError> {
         let mut new_index = vec![usize::MAX; self.coords.len()];
         let mut nodes = Vec::new();
         let (mut zmin, mut zmax) = (f64::INFINITY, f64::NEG_INFINITY);
         let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
-        for ((&xyz, &u), slot) in self.coords.iter().zip(&used).zip(&mut new_index) {
+        for ((&xyz, &u), slot) in self.coords.iter().zip(used).zip(&mut new_index) {
             if u {
                 *slot = nodes.len();
                 nodes.push([xyz[0], xyz[1]]);
@@ -611,30 +634,42 @@ impl RawMsh {
                 "the mesh is not planar in xy: z ranges from {zmin} to {zmax}"
             )));
         }
-        // Index of a node tag in the new numbering, `None` if no triangle uses it.
-        let node = |element: &RawElement, tag: u64| -> Result<Option<usize>, GmshError> {
-            let &i = self
-                .node_index
-                .get(&tag)
-                .ok_or_else(|| unknown(element, tag))?;
-            Ok(new_index.get(i).copied().filter(|&n| n != usize::MAX))
-        };
-        let off_mesh = |element: &RawElement, tag: u64| GmshError::Parse {
-            line: element.line,
-            message: format!("element refers to node {tag}, which is not a node of any triangle"),
-        };
+        Ok((nodes, new_index))
+    }
 
+    /// Sorts the elements, in the new node numbering, into the flat triangle connectivity
+    /// (clockwise triangles reoriented), the named boundaries (lines) and node sets (points).
+    fn sort_elements(
+        &self,
+        order: Order,
+        nodes: &[[f64; 2]],
+        new_index: &[usize],
+    ) -> Result<
+        (
+            Vec<usize>,
+            BTreeMap<String, Vec<Edge>>,
+            BTreeMap<String, Vec<usize>>,
+        ),
+        GmshError,
+    > {
         let mut cells = Vec::new();
         let mut boundaries: BTreeMap<String, Vec<Edge>> = BTreeMap::new();
         let mut node_sets: BTreeMap<String, BTreeSet<usize>> = BTreeMap::new();
         for element in &self.elements {
             let mut ids = Vec::with_capacity(element.nodes.len());
             for &tag in &element.nodes {
-                ids.push(node(element, tag)?.ok_or_else(|| off_mesh(element, tag))?);
+                let i = self.node_position(element, tag)?;
+                let id = new_index.get(i).copied().filter(|&n| n != usize::MAX);
+                ids.push(id.ok_or_else(|| GmshError::Parse {
+                    line: element.line,
+                    message: format!(
+                        "element refers to node {tag}, which is not a node of any triangle"
+                    ),
+                })?);
             }
             match (element.kind, ids.as_slice()) {
                 (Kind::Triangle(_), &[a, b, c, ref mids @ ..]) => {
-                    if signed_area2(&nodes, a, b, c) < 0.0 {
+                    if signed_area2(nodes, a, b, c) < 0.0 {
                         cells.extend([a, c, b]);
                         // Mid-side nodes of (0,2), (2,1), (1,0).
                         if let &[m01, m12, m20] = mids {
@@ -682,13 +717,7 @@ impl RawMsh {
             .into_iter()
             .map(|(name, set)| (name, set.into_iter().collect()))
             .collect();
-        Mesh::new(nodes, order, cells, boundaries, node_sets).map_err(|e| match e {
-            MeshError::CurvedEdge { .. } => GmshError::Unsupported(format!(
-                "{e}; mesh with straight-sided 6-node triangles in gmsh \
-                 (-setnumber Mesh.SecondOrderLinear 1)"
-            )),
-            e => GmshError::Mesh(e),
-        })
+        Ok((cells, boundaries, node_sets))
     }
 }
 
