@@ -3,10 +3,10 @@
 
 use anyhow::Result;
 
-use contactdd_core::{Component, Order};
+use contactdd_core::{Component, ElasticBody, Order};
 use contactdd_ddm::contact::Interface;
-use contactdd_ddm::{Gamma, Penalty};
-use contactdd_io::problem::{LoadSpec, MeshSpec};
+use contactdd_ddm::{Gamma, Model, Penalty};
+use contactdd_io::problem::{BodySpec, LoadSpec, MeshSpec};
 use contactdd_io::Loaded;
 
 use crate::args::CheckArgs;
@@ -23,8 +23,10 @@ pub fn check(args: CheckArgs) -> Result<Exit> {
     Ok(Exit::Success)
 }
 
+/// The description `contactdd check` prints: the problem, each body, each contact pair, the
+/// solver settings.
 fn describe(loaded: &Loaded, interface: &Interface) -> String {
-    let (model, problem, settings) = (&loaded.model, &loaded.problem, &loaded.settings);
+    let (model, problem) = (&loaded.model, &loaded.problem);
     let mut out = format!(
         "problem {} (plane {}): {}, {}\n",
         model.name,
@@ -39,99 +41,118 @@ fn describe(loaded: &Loaded, interface: &Interface) -> String {
         out += &format!("units: {units}\n");
     }
     for (body, spec) in model.bodies.iter().zip(&problem.bodies) {
-        let nodes = body.mesh.num_nodes();
-        let prescribed = body.constraints.fixed().count();
-        out += &format!(
-            "body {}: {} nodes, {} elements ({}), {} DOFs ({} prescribed), E = {}, ν = {}\n",
-            body.name,
-            nodes,
-            body.mesh.num_cells(),
-            match body.mesh.order() {
-                Order::P1 => "P1",
-                Order::P2 => "P2",
-            },
-            2 * nodes - prescribed.min(2 * nodes),
-            prescribed,
-            sig(body.material.young()),
-            body.material.poisson()
-        );
-        out += &format!("  mesh: {}\n", mesh_text(&spec.mesh));
-        let names: Vec<&str> = body.mesh.boundaries().keys().map(String::as_str).collect();
-        out += &format!("  boundaries: {}\n", names.join(", "));
-        if spec.supports.is_empty() {
-            out += "  supports: none (held by contact only)\n";
-        }
-        for s in &spec.supports {
-            let comp = match s.component {
-                Component::X => "u_x",
-                Component::Y => "u_y",
-                Component::Both => "u_x, u_y",
-                Component::Normal => "u_n (symmetry)",
-            };
-            out += &format!("  support: {comp} = {} on {}\n", sig(s.value), s.boundary);
-        }
-        for l in &spec.loads {
-            out += &match l {
-                LoadSpec::Pressure { boundary, value } => {
-                    format!("  load: pressure {} on {boundary}\n", sig(*value))
-                }
-                LoadSpec::Traction { boundary, value } => {
-                    format!("  load: traction {} on {boundary}\n", vec2(*value))
-                }
-                LoadSpec::BodyForce { value } => format!("  load: body force {}\n", vec2(*value)),
-            };
-        }
+        out += &body_text(body, spec);
     }
-    for (p, pair) in model.pairs.iter().enumerate() {
-        let (a, b) = (&model.bodies[pair.bodies[0]], &model.bodies[pair.bodies[1]]);
-        let theta = model.theta(p);
-        let penalty = match pair.penalty {
-            Penalty::Theta(_) => "given".to_string(),
-            Penalty::RodModel { c, h } => format!("rod model c = {c}, h = {h}"),
+    for p in 0..model.pairs.len() {
+        out += &pair_text(model, p, interface);
+    }
+    out += &solver_text(loaded);
+    out
+}
+
+/// A body: sizes and material, mesh, boundaries, supports and loads.
+fn body_text(body: &ElasticBody, spec: &BodySpec) -> String {
+    let nodes = body.mesh.num_nodes();
+    let prescribed = body.constraints.fixed().count();
+    let mut out = format!(
+        "body {}: {} nodes, {} elements ({}), {} DOFs ({} prescribed), E = {}, ν = {}\n",
+        body.name,
+        nodes,
+        body.mesh.num_cells(),
+        match body.mesh.order() {
+            Order::P1 => "P1",
+            Order::P2 => "P2",
+        },
+        2 * nodes - prescribed.min(2 * nodes),
+        prescribed,
+        sig(body.material.young()),
+        body.material.poisson()
+    );
+    out += &format!("  mesh: {}\n", mesh_text(&spec.mesh));
+    let names: Vec<&str> = body.mesh.boundaries().keys().map(String::as_str).collect();
+    out += &format!("  boundaries: {}\n", names.join(", "));
+    if spec.supports.is_empty() {
+        out += "  supports: none (held by contact only)\n";
+    }
+    for s in &spec.supports {
+        let comp = match s.component {
+            Component::X => "u_x",
+            Component::Y => "u_y",
+            Component::Both => "u_x, u_y",
+            Component::Normal => "u_n (symmetry)",
+        };
+        out += &format!("  support: {comp} = {} on {}\n", sig(s.value), s.boundary);
+    }
+    for l in &spec.loads {
+        out += &match l {
+            LoadSpec::Pressure { boundary, value } => {
+                format!("  load: pressure {} on {boundary}\n", sig(*value))
+            }
+            LoadSpec::Traction { boundary, value } => {
+                format!("  load: traction {} on {boundary}\n", vec2(*value))
+            }
+            LoadSpec::BodyForce { value } => format!("  load: body force {}\n", vec2(*value)),
+        };
+    }
+    out
+}
+
+/// Contact pair `p`: its bodies, boundaries and θ, then the contact points of each side.
+fn pair_text(model: &Model, p: usize, interface: &Interface) -> String {
+    let pair = &model.pairs[p];
+    let (a, b) = (&model.bodies[pair.bodies[0]], &model.bodies[pair.bodies[1]]);
+    let penalty = match pair.penalty {
+        Penalty::Theta(_) => "given".to_string(),
+        Penalty::RodModel { c, h } => format!("rod model c = {c}, h = {h}"),
+    };
+    let mut out = format!(
+        "contact pair {}: {}.{} with {}.{}, θ = {} ({penalty}){}\n",
+        pair.name,
+        a.name,
+        pair.boundaries[0],
+        b.name,
+        pair.boundaries[1],
+        sig(model.theta(p)),
+        if pair.profile.is_some() {
+            ", with a gap profile"
+        } else {
+            ""
+        }
+    );
+    for (side, body) in [a, b].into_iter().enumerate() {
+        let points: Vec<_> = interface
+            .points
+            .iter()
+            .filter(|q| q.pair == p && q.body == pair.bodies[side])
+            .collect();
+        let partnered: Vec<_> = points.iter().filter(|q| q.has_partner()).collect();
+        let min_gap = partnered
+            .iter()
+            .map(|q| q.gap)
+            .fold(f64::INFINITY, f64::min);
+        let gap = if partnered.is_empty() {
+            String::new()
+        } else {
+            format!(", smallest initial gap {}", sig(min_gap))
         };
         out += &format!(
-            "contact pair {}: {}.{} with {}.{}, θ = {} ({penalty}){}\n",
-            pair.name,
-            a.name,
-            pair.boundaries[0],
-            b.name,
-            pair.boundaries[1],
-            sig(theta),
-            if pair.profile.is_some() {
-                ", with a gap profile"
-            } else {
-                ""
-            }
+            "  {}: {} contact points, {} facing {}{gap}\n",
+            body.name,
+            points.len(),
+            partnered.len(),
+            [b, a][side].name
         );
-        for (side, body) in [a, b].into_iter().enumerate() {
-            let points: Vec<_> = interface
-                .points
-                .iter()
-                .filter(|q| q.pair == p && q.body == pair.bodies[side])
-                .collect();
-            let partnered: Vec<_> = points.iter().filter(|q| q.has_partner()).collect();
-            let min_gap = partnered
-                .iter()
-                .map(|q| q.gap)
-                .fold(f64::INFINITY, f64::min);
-            let gap = if partnered.is_empty() {
-                String::new()
-            } else {
-                format!(", smallest initial gap {}", sig(min_gap))
-            };
-            out += &format!(
-                "  {}: {} contact points, {} facing {}{gap}\n",
-                body.name,
-                points.len(),
-                partnered.len(),
-                [b, a][side].name
-            );
-        }
     }
+    out
+}
+
+/// The solver settings line.
+fn solver_text(loaded: &Loaded) -> String {
+    let settings = &loaded.settings;
     let threads = loaded
         .threads
         .map_or("all cores".to_string(), |n| n.to_string());
-    out += &format!(
+    format!(
         "solver: method {}, gamma {}, tol {:e}, max-iter {}, u0 {:e}, u-prev {:e}, threads {threads}\n",
         settings.method,
         match settings.gamma {
@@ -142,8 +163,7 @@ fn describe(loaded: &Loaded, interface: &Interface) -> String {
         settings.max_iter,
         settings.u0,
         settings.u_prev
-    );
-    out
+    )
 }
 
 fn mesh_text(mesh: &MeshSpec) -> String {
