@@ -2,7 +2,8 @@
 # Checks that the command line behaves as it did at a reference git revision: runs `contactdd
 # solve` on every examples/*.toml and the paper's γ sweep with both the reference build and the
 # working tree's build, and compares the outputs byte for byte (summary.json without its timings,
-# contact.csv, history.csv, the VTU files, the sweep CSV) and the exit codes.
+# contact.csv, history.csv, the VTU files, the sweep CSV), the output of `contactdd check` and the
+# exit codes.
 #
 # Usage: bash scripts/same_outputs.sh [REV]      (REV defaults to main)
 #
@@ -58,6 +59,9 @@ run_all() {
     code=0
     "$bin" solve "$file" --out "$dir/$name" --quiet >/dev/null || code=$?
     echo "solve $name: $code" >>"$dir/exit-codes"
+    code=0
+    "$bin" check "$file" >"$dir/$name.check.txt" || code=$?
+    echo "check $name: $code" >>"$dir/exit-codes"
     if [ -f "$dir/$name/summary.json" ]; then
       # Timings differ from run to run: drop the "timing_s" object of the pretty-printed JSON.
       awk '/^  "timing_s": \{/ { skip = 1 } !skip { print } skip && /^  \},?$/ { skip = 0 }' \
