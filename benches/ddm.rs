@@ -19,8 +19,7 @@ fn settings(method: Method, gamma: f64) -> Settings {
         gamma: Gamma::Constant(gamma),
         tol: 1e-3,
         max_iter: 500,
-        u0: 1e-4,
-        u_prev: 2e-4,
+        ..Settings::default()
     }
 }
 

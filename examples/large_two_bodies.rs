@@ -76,8 +76,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         gamma: Gamma::Constant(0.5),
         tol: 1e-3,
         max_iter: 500,
-        u0: 1e-4,
-        u_prev: 2e-4,
+        ..Settings::default()
     };
     let t2 = Instant::now();
     let sol = solve(&model, &prepared, &settings, Hooks::default())?;

@@ -20,8 +20,7 @@ fn base() -> Settings {
         gamma: Gamma::Auto,
         tol: 1e-3,
         max_iter: 1000,
-        u0: 1e-4,
-        u_prev: 2e-4,
+        ..Settings::default()
     }
 }
 

@@ -15,8 +15,7 @@ fn settings(method: Method, gamma: f64, tol: f64) -> Settings {
         gamma: Gamma::Constant(gamma),
         tol,
         max_iter: 20_000,
-        u0: 1e-4,
-        u_prev: 2e-4,
+        ..Settings::default()
     }
 }
 

@@ -82,8 +82,7 @@ fn notch_toml_is_the_benchmark_model() {
             gamma: Gamma::Constant(0.5),
             tol: 1e-3,
             max_iter: 500,
-            u0: 1e-4,
-            u_prev: 2e-4,
+            ..Settings::default()
         }
     );
     assert_eq!(loaded.threads, None);
