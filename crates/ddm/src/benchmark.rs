@@ -1,5 +1,33 @@
-//! The paper's two-body notch benchmark (method.md §5), built in code: used by tests, benches and
-//! the Python module. `examples/notch.toml` describes the same problem as a file.
+//! An example problem built in code: the paper's two-body notch benchmark (method.md §5), the
+//! problem of `examples/notch.toml` without reading a file (a test in `contactdd-io` checks that
+//! both give the same model and solution). Tests, benches, `examples/large_two_bodies.rs` and the
+//! Python module's `notch_benchmark()` use it; it also shows how to build a [`Model`] by hand.
+//!
+//! Two blocks `L` × `H` = 4 × 1 (P1 or P2 rectangles, `nx` × `ny` cells each; the upper mesh is
+//! the mirror image of the lower one so that the contact nodes match) are pressed together by
+//! q = 0.01 E on their outer faces; their right edges are symmetry lines (u_x = 0), nothing else
+//! holds them. Their common face has a notch of depth 0.05 at x = 4, the gap profile
+//! d(x) = 0.05 · {[1 − (x − 4)²]⁺}^{3/2}; the penalty is the rod model with c = 0.05, h = `H`.
+//!
+//! ```text
+//!          q ↓ ↓ ↓ ↓ ↓ ↓ ↓ ↓
+//!   y = 2  +----- top -----+
+//!          |     upper     | right: u_x = 0
+//!   y = 1  +--- bottom ---.+  contact "notch": lower.top / upper.bottom
+//!          +---- top -----'+
+//!          |     lower     | right: u_x = 0
+//!   y = 0  +--- bottom ----+
+//!          q ↑ ↑ ↑ ↑ ↑ ↑ ↑ ↑
+//!        x = 0           x = 4
+//! ```
+//!
+//! ```
+//! use contactdd_ddm::benchmark::Notch;
+//!
+//! let model = Notch { nx: 8, ny: 4, ..Notch::default() }.model()?;
+//! assert_eq!(model.bodies.len(), 2);
+//! # Ok::<(), contactdd_ddm::SetupError>(())
+//! ```
 
 use contactdd_core::{
     BodyError, Component, Constraints, Diagonal, ElasticBody, Load, Material, MeshError, Order,
