@@ -131,19 +131,24 @@ pub fn vtu_string(
     };
     out.push_str("      <Cells>\n");
     out.push_str("        <DataArray type=\"Int64\" Name=\"connectivity\" format=\"ascii\">\n");
-    for cell in mesh.cells().chunks(npc) {
-        out.push_str("         ");
-        for v in cell {
-            let _ = write!(out, " {v}");
-        }
-        out.push('\n');
-    }
+    // One cell per line.
+    write_rows(&mut out, mesh.cells().iter().copied(), npc, push_int);
     out.push_str("        </DataArray>\n");
     out.push_str("        <DataArray type=\"Int64\" Name=\"offsets\" format=\"ascii\">\n");
-    write_rows(&mut out, (1..=mesh.num_cells()).map(|e| e * npc), 12);
+    write_rows(
+        &mut out,
+        (1..=mesh.num_cells()).map(|e| e * npc),
+        12,
+        push_int,
+    );
     out.push_str("        </DataArray>\n");
     out.push_str("        <DataArray type=\"UInt8\" Name=\"types\" format=\"ascii\">\n");
-    write_rows(&mut out, (0..mesh.num_cells()).map(|_| cell_type), 24);
+    write_rows(
+        &mut out,
+        (0..mesh.num_cells()).map(|_| cell_type),
+        24,
+        push_int,
+    );
     out.push_str("        </DataArray>\n");
     out.push_str("      </Cells>\n");
 
@@ -173,22 +178,7 @@ fn float_array(
     if finite {
         // One node per line for vectors, a few values per line for scalars.
         let per_row = if components >= 2 { components } else { 6 };
-        let mut column = 0;
-        for x in values {
-            if column == 0 {
-                out.push_str("         ");
-            }
-            out.push(' ');
-            push_f64(out, x);
-            column += 1;
-            if column == per_row {
-                out.push('\n');
-                column = 0;
-            }
-        }
-        if column != 0 {
-            out.push('\n');
-        }
+        write_rows(out, values, per_row, push_f64);
     } else {
         let mut bytes: Vec<u8> = Vec::new();
         bytes.extend_from_slice(&[0; 8]);
@@ -204,14 +194,20 @@ fn float_array(
     out.push_str("        </DataArray>\n");
 }
 
-/// Writes integers, `per_row` per line.
-fn write_rows(out: &mut String, values: impl Iterator<Item = usize>, per_row: usize) {
+/// Writes `values`, `per_row` per indented line, each preceded by a space and written by `push`.
+fn write_rows<T>(
+    out: &mut String,
+    values: impl Iterator<Item = T>,
+    per_row: usize,
+    push: impl Fn(&mut String, T),
+) {
     let mut column = 0;
     for v in values {
         if column == 0 {
             out.push_str("         ");
         }
-        let _ = write!(out, " {v}");
+        out.push(' ');
+        push(out, v);
         column += 1;
         if column == per_row {
             out.push('\n');
@@ -221,6 +217,10 @@ fn write_rows(out: &mut String, values: impl Iterator<Item = usize>, per_row: us
     if column != 0 {
         out.push('\n');
     }
+}
+
+fn push_int(out: &mut String, v: usize) {
+    let _ = write!(out, "{v}");
 }
 
 /// Escapes the XML special characters of an attribute value.
