@@ -1,6 +1,6 @@
 //! Conversions between Python values and the Rust types: plain Python data (dicts, lists,
 //! numbers, numpy scalars) into `serde_json` values that deserialize into the problem-file schema
-//! of `contactdd_ddm::problem` (so a support dict is checked exactly like a TOML support table),
+//! of `contactdd_io::problem` (so a support dict is checked exactly like a TOML support table),
 //! and flat `Vec`s into numpy arrays.
 
 use numpy::{PyArray1, PyArrayMethods};

@@ -1,10 +1,10 @@
 //! `contactdd.Problem`: a contact problem read from a TOML file or built in code.
 //!
 //! The problem holds resolved solver input (the bodies, contact pairs and iteration settings of a
-//! [`Model`]), built and checked by the functions of `contactdd_ddm::setup` that resolve a problem
+//! [`Model`]), built and checked by the functions of `contactdd_io::setup` that resolve a problem
 //! file (`material`, `mesh`, `body_on_mesh`, `pair`, `settings`, `check_floating`), so a bad value
 //! gets the message a problem file would get. Supports, loads and gap profiles are Python dicts
-//! deserialized into the problem-file schema (`contactdd_ddm::problem`): the same keys, kinds and
+//! deserialized into the problem-file schema (`contactdd_io::problem`): the same keys, kinds and
 //! defaults as the TOML tables.
 
 use std::collections::BTreeMap;
