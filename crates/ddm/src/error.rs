@@ -47,6 +47,18 @@ pub enum SetupError {
         /// What is wrong.
         message: String,
     },
+    /// A boundary of a contact pair that its body's mesh rejects.
+    #[error("contact pair '{pair}': {key}: body '{body}': {source}")]
+    PairBoundary {
+        /// Pair name.
+        pair: String,
+        /// The key of the pair's description at fault.
+        key: String,
+        /// Body name.
+        body: String,
+        /// Cause.
+        source: MeshError,
+    },
     /// A problem with the solver settings.
     #[error("solver: {0}")]
     Solver(String),

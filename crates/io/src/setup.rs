@@ -533,13 +533,14 @@ pub fn pair(
     }
     for s in 0..2 {
         let body = &bodies[ids[s]];
-        body.mesh.boundary(&spec.boundaries[s]).map_err(|e| {
-            pair_error(
-                &name,
-                &format!("boundaries[{s}]"),
-                format!("body '{}': {e}", body.name),
-            )
-        })?;
+        body.mesh
+            .boundary(&spec.boundaries[s])
+            .map_err(|source| SetupError::PairBoundary {
+                pair: name.clone(),
+                key: format!("boundaries[{s}]"),
+                body: body.name.clone(),
+                source,
+            })?;
     }
     let penalty = penalty(&name, &spec.penalty)?;
     let (a, b) = (&bodies[ids[0]], &bodies[ids[1]]);

@@ -738,3 +738,35 @@ fn extreme_numbers_never_panic() {
         let _ = load_str(&text, "odd.toml", &examples_dir());
     }
 }
+
+/// Errors keep the core's error as a typed source, not only as text.
+#[test]
+fn errors_keep_their_typed_cause() {
+    let cause = |text: &str| match load_str(text, "bad.toml", Path::new(".")) {
+        Err(LoadError::InFile { error, .. }) => *error,
+        other => panic!("expected an error in the file, got {other:?}"),
+    };
+    let e = cause(&small_with("boundary = \"bottom\"", "boundary = \"botom\""));
+    assert!(
+        matches!(&e, LoadError::Setup(SetupError::Support { body, key, .. })
+            if body == "lower" && key == "supports[0]"),
+        "{e:?}"
+    );
+    let e = cause(&small_with("young = 1000.0", "young = -1000.0"));
+    assert!(
+        matches!(&e, LoadError::Setup(SetupError::MaterialValue { .. })),
+        "{e:?}"
+    );
+    let e = cause(&small_with(
+        "boundaries = [\"top\", \"bottom\"]",
+        "boundaries = [\"top\", \"botom\"]",
+    ));
+    assert!(
+        matches!(&e, LoadError::Setup(SetupError::PairBoundary { body, .. }) if body == "upper"),
+        "{e:?}"
+    );
+    match load_str("this is not toml\n", "bad.toml", Path::new(".")) {
+        Err(LoadError::Toml { file, .. }) => assert_eq!(file, "bad.toml"),
+        other => panic!("expected a TOML error, got {other:?}"),
+    }
+}
