@@ -24,6 +24,7 @@ pub mod material;
 pub mod mesh;
 pub mod post;
 pub mod rectangle;
+pub mod rigid;
 pub mod supports;
 
 pub use body::{ElasticBody, LinearSolution};
@@ -33,4 +34,5 @@ pub use loads::Load;
 pub use material::{Material, Plane};
 pub use mesh::{Edge, Mesh, Order};
 pub use rectangle::{Diagonal, Rectangle};
+pub use rigid::RigidBasis;
 pub use supports::{Component, Constraints};

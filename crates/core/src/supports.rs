@@ -1,9 +1,8 @@
 //! Prescribed displacements (supports) and the check that a body has no rigid-body modes left.
 
-use nalgebra::{Matrix3, SymmetricEigen};
-
 use crate::error::SupportError;
 use crate::mesh::Mesh;
+use crate::rigid::free_modes;
 
 /// Which displacement component a support prescribes.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
@@ -128,39 +127,10 @@ pub fn free_rigid_modes(
     constraints: &Constraints,
     springs: &[(usize, [f64; 2])],
 ) -> Vec<String> {
-    let p = mesh.nodes();
-    let n = p.len().max(1) as f64;
-    let c = p
-        .iter()
-        .fold([0.0, 0.0], |s, x| [s[0] + x[0] / n, s[1] + x[1] / n]);
-    let h = mesh.bounding_box_diameter().max(f64::MIN_POSITIVE);
-    // Mode values at a node: tx, ty and a rotation scaled to unit size over the body.
-    let mode = |v: usize| -> [[f64; 3]; 2] {
-        let (dx, dy) = ((p[v][0] - c[0]) / h, (p[v][1] - c[1]) / h);
-        [[1.0, 0.0, -dy], [0.0, 1.0, dx]]
-    };
-    let mut gram = Matrix3::<f64>::zeros();
-    let mut add = |row: [f64; 3]| {
-        for i in 0..3 {
-            for j in 0..3 {
-                gram[(i, j)] += row[i] * row[j];
-            }
-        }
-    };
-    for (dof, _) in constraints.fixed() {
-        add(mode(dof / 2)[dof % 2]);
-    }
-    for &(v, dir) in springs {
-        let m = mode(v);
-        add([0, 1, 2].map(|k| dir[0] * m[0][k] + dir[1] * m[1][k]));
-    }
-    let scale = gram.trace().max(1.0);
-    let eig = SymmetricEigen::new(gram);
     let names = ["translation in x", "translation in y", "rotation"];
-    (0..3)
-        .filter(|&k| eig.eigenvalues[k] <= 1e-10 * scale)
-        .map(|k| {
-            let v = eig.eigenvectors.column(k);
+    free_modes(mesh, constraints, springs)
+        .iter()
+        .map(|v| {
             let parts: Vec<&str> = (0..3)
                 .filter(|&i| v[i].abs() > 0.3)
                 .map(|i| names[i])

@@ -1,0 +1,137 @@
+//! Rigid-body motions of a 2D body as a numeric basis: two translations and a rotation about the
+//! centroid of the nodes, scaled so that all three have unit size over the body.
+//!
+//! One basis serves the support check ([`crate::supports::free_rigid_modes`]), the monolithic
+//! reference and the coarse correction of the domain decomposition: a free mode is a combination
+//! `Σ_i v_i R_i` of the basis with coefficient vector `v`.
+
+use nalgebra::{Matrix3, SymmetricEigen};
+
+use crate::mesh::Mesh;
+use crate::supports::Constraints;
+
+/// Number of rigid-body modes in 2D.
+pub const NUM_MODES: usize = 3;
+
+/// The rigid-body basis of one body.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct RigidBasis {
+    center: [f64; 2],
+    size: f64,
+}
+
+impl RigidBasis {
+    /// The basis of a mesh: rotation about the centroid of its nodes, scaled by its bounding box
+    /// diameter.
+    pub fn new(mesh: &Mesh) -> RigidBasis {
+        let p = mesh.nodes();
+        let n = p.len().max(1) as f64;
+        let center = p
+            .iter()
+            .fold([0.0, 0.0], |s, x| [s[0] + x[0] / n, s[1] + x[1] / n]);
+        RigidBasis {
+            center,
+            size: mesh.bounding_box_diameter().max(f64::MIN_POSITIVE),
+        }
+    }
+
+    /// The three modes at point `x`: row `c` holds displacement component `c` of each mode.
+    pub fn at(&self, x: [f64; 2]) -> [[f64; NUM_MODES]; 2] {
+        let (dx, dy) = (
+            (x[0] - self.center[0]) / self.size,
+            (x[1] - self.center[1]) / self.size,
+        );
+        [[1.0, 0.0, -dy], [0.0, 1.0, dx]]
+    }
+
+    /// The displacement at `x` of the combination with coefficients `v`.
+    pub fn motion(&self, x: [f64; 2], v: &[f64; NUM_MODES]) -> [f64; 2] {
+        let m = self.at(x);
+        [0, 1].map(|c| (0..NUM_MODES).map(|i| m[c][i] * v[i]).sum())
+    }
+}
+
+/// The rigid motions that supports and springs (node, unit direction) leave free, as orthonormal
+/// coefficient vectors of the [`RigidBasis`] of `mesh` (empty if the body is held).
+pub fn free_modes(
+    mesh: &Mesh,
+    constraints: &Constraints,
+    springs: &[(usize, [f64; 2])],
+) -> Vec<[f64; NUM_MODES]> {
+    let basis = RigidBasis::new(mesh);
+    let p = mesh.nodes();
+    // Gram matrix of the constrained values: its kernel is the set of free combinations.
+    let mut gram = Matrix3::<f64>::zeros();
+    let mut add = |row: [f64; NUM_MODES]| {
+        for i in 0..NUM_MODES {
+            for j in 0..NUM_MODES {
+                gram[(i, j)] += row[i] * row[j];
+            }
+        }
+    };
+    for (dof, _) in constraints.fixed() {
+        add(basis.at(p[dof / 2])[dof % 2]);
+    }
+    for &(v, dir) in springs {
+        let m = basis.at(p[v]);
+        add([0, 1, 2].map(|k| dir[0] * m[0][k] + dir[1] * m[1][k]));
+    }
+    let scale = gram.trace().max(1.0);
+    let eig = SymmetricEigen::new(gram);
+    (0..NUM_MODES)
+        .filter(|&k| eig.eigenvalues[k] <= 1e-10 * scale)
+        .map(|k| {
+            let v = eig.eigenvectors.column(k);
+            [v[0], v[1], v[2]]
+        })
+        .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::rectangle::{Diagonal, Rectangle};
+    use crate::supports::Component;
+
+    fn square() -> Mesh {
+        Rectangle {
+            origin: [0.0, 0.0],
+            corner: [2.0, 1.0],
+            nx: 4,
+            ny: 2,
+            diagonal: Diagonal::Right,
+            mirror: false,
+            order: crate::mesh::Order::P1,
+        }
+        .mesh()
+        .unwrap()
+    }
+
+    #[test]
+    fn a_free_body_has_three_orthonormal_modes() {
+        let mesh = square();
+        let modes = free_modes(&mesh, &Constraints::new(mesh.num_nodes()), &[]);
+        assert_eq!(modes.len(), 3);
+        for a in &modes {
+            for b in &modes {
+                let d: f64 = (0..3).map(|i| a[i] * b[i]).sum();
+                assert!((d - f64::from(u8::from(a == b))).abs() < 1e-12);
+            }
+        }
+    }
+
+    #[test]
+    fn a_symmetry_line_leaves_only_the_translation_along_it() {
+        let mesh = square();
+        let mut c = Constraints::new(mesh.num_nodes());
+        c.fix(&mesh, "left", Component::Normal, 0.0).unwrap();
+        let modes = free_modes(&mesh, &c, &[]);
+        assert_eq!(modes.len(), 1);
+        // The free motion is a vertical translation: zero x-displacement everywhere.
+        let basis = RigidBasis::new(&mesh);
+        for &x in mesh.nodes() {
+            let u = basis.motion(x, &modes[0]);
+            assert!(u[0].abs() < 1e-12 && (u[1].abs() - 1.0).abs() < 1e-12);
+        }
+    }
+}
