@@ -15,11 +15,9 @@ use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion};
 
 fn settings(method: Method, gamma: f64) -> Settings {
     Settings {
-        method,
-        gamma: Gamma::Constant(gamma),
         tol: 1e-3,
         max_iter: 500,
-        ..Settings::default()
+        ..Settings::paper(method, Gamma::Constant(gamma))
     }
 }
 
@@ -98,15 +96,7 @@ fn notch(c: &mut Criterion) {
         ..settings(Method::NewtonKurchatov, 0.5)
     };
     group.bench_function("one_iteration", |b| {
-        b.iter(|| {
-            iterate(
-                &prepared.interface,
-                &prepared.bodies,
-                &prepared.scale,
-                &one,
-                Hooks::default(),
-            )
-        })
+        b.iter(|| iterate(&prepared, &one, Hooks::default()))
     });
     for (method, gamma) in [
         (Method::ActiveSet, 0.5),

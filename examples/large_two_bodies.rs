@@ -72,11 +72,9 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let prepared = prepare(&model)?;
     let t_prep = t.elapsed().as_secs_f64();
     let settings = Settings {
-        method: Method::NewtonKurchatov,
-        gamma: Gamma::Constant(0.5),
         tol: 1e-3,
         max_iter: 500,
-        ..Settings::default()
+        ..Settings::paper(Method::NewtonKurchatov, Gamma::Constant(0.5))
     };
     let t2 = Instant::now();
     let sol = solve(&model, &prepared, &settings, Hooks::default())?;

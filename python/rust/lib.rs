@@ -115,6 +115,10 @@ fn with_threads<T: Send>(
 ///     threads: worker threads (default: the problem's, else all cores).
 ///     check: raise :class:`ConvergenceError` if the solve does not converge (default); with
 ///         ``False`` the result is returned regardless (see ``Result.converged``).
+///     accelerator: ``"none"`` (relaxation with γ) or ``"anderson"``.
+///     coarse: the rigid-body coarse correction: ``"chains"`` (the default: floating bodies that
+///         touch each other), ``"all"`` or ``"off"``. A constant ``gamma`` alone selects the
+///         paper's one-level iteration (accelerator ``"none"``, coarse ``"off"``).
 ///
 /// Returns:
 ///     A :class:`Result`.
@@ -125,7 +129,7 @@ fn with_threads<T: Send>(
 ///         partial result.
 ///     KeyboardInterrupt: interrupted.
 #[pyfunction]
-#[pyo3(signature = (problem, method = None, gamma = None, tol = None, max_iter = None, u0 = None, u_prev = None, threads = None, check = true))]
+#[pyo3(signature = (problem, method = None, gamma = None, tol = None, max_iter = None, u0 = None, u_prev = None, threads = None, check = true, accelerator = None, coarse = None))]
 #[allow(clippy::too_many_arguments)]
 fn solve(
     py: Python<'_>,
@@ -138,12 +142,16 @@ fn solve(
     u_prev: Option<f64>,
     threads: Option<usize>,
     check: bool,
+    accelerator: Option<String>,
+    coarse: Option<String>,
 ) -> PyResult<Py<SolveResult>> {
     let (model, settings, threads) = {
         let p = problem.borrow();
         let o = Overrides {
             method,
             gamma,
+            accelerator,
+            coarse,
             tol,
             max_iter,
             u0,

@@ -19,7 +19,8 @@ use serde::de::DeserializeOwned;
 use contactdd_core::{Diagonal, Edge, ElasticBody, Material, Mesh, Order, Plane};
 use contactdd_ddm::{ContactPair, Gamma, Method, Model, Settings, SetupError};
 use contactdd_io::problem::{
-    ContactSpec, GammaSpec, GapSpec, LoadSpec, MeshSpec, PenaltySpec, SolverSpec, SupportSpec,
+    AcceleratorSpec, CoarseSpec, ContactSpec, GammaSpec, GapSpec, LoadSpec, MeshSpec, PenaltySpec,
+    SolverSpec, SupportSpec,
 };
 use contactdd_io::setup;
 use contactdd_io::Loaded;
@@ -41,6 +42,8 @@ pub enum GammaArg {
 pub struct Overrides {
     pub method: Option<String>,
     pub gamma: Option<GammaArg>,
+    pub accelerator: Option<String>,
+    pub coarse: Option<String>,
     pub tol: Option<f64>,
     pub max_iter: Option<usize>,
     pub u0: Option<f64>,
@@ -59,9 +62,34 @@ impl Overrides {
             Some(m) => Some(m.parse::<Method>().map_err(|e| solver_error("method", e))?),
             None => None,
         };
+        let accelerator = match self.accelerator.as_deref() {
+            None => None,
+            Some("none") => Some(AcceleratorSpec::None),
+            Some("anderson") => Some(AcceleratorSpec::Anderson),
+            Some(other) => {
+                return Err(solver_error(
+                    "accelerator",
+                    format!("expected \"none\" or \"anderson\", got \"{other}\""),
+                ))
+            }
+        };
+        let coarse = match self.coarse.as_deref() {
+            None => None,
+            Some("off") => Some(CoarseSpec::Off),
+            Some("chains") => Some(CoarseSpec::Chains),
+            Some("all") => Some(CoarseSpec::All),
+            Some(other) => {
+                return Err(solver_error(
+                    "coarse",
+                    format!("expected \"off\", \"chains\" or \"all\", got \"{other}\""),
+                ))
+            }
+        };
         let spec = SolverSpec {
             method,
             gamma: self.gamma.as_ref().map(gamma_spec).transpose()?,
+            accelerator,
+            coarse,
             tol: self.tol,
             max_iter: self.max_iter,
             u0: self.u0,
@@ -538,7 +566,11 @@ impl Problem {
     ///     u0: initial normal displacement u⁰ₙ on the contact zones.
     ///     u_prev: initial u⁻¹ₙ of the two-point methods.
     ///     threads: worker threads (default: all cores).
-    #[pyo3(signature = (method = None, gamma = None, tol = None, max_iter = None, u0 = None, u_prev = None, threads = None))]
+    ///     accelerator: ``"none"`` (relaxation with γ) or ``"anderson"``.
+    ///     coarse: the rigid-body coarse correction: ``"chains"`` (floating bodies that touch
+    ///         each other), ``"all"`` or ``"off"``. A constant ``gamma`` alone selects the
+    ///         paper's one-level iteration (no accelerator, coarse ``"off"``).
+    #[pyo3(signature = (method = None, gamma = None, tol = None, max_iter = None, u0 = None, u_prev = None, threads = None, accelerator = None, coarse = None))]
     #[allow(clippy::too_many_arguments)]
     fn solver(
         &mut self,
@@ -549,10 +581,14 @@ impl Problem {
         u0: Option<f64>,
         u_prev: Option<f64>,
         threads: Option<usize>,
+        accelerator: Option<String>,
+        coarse: Option<String>,
     ) -> PyResult<()> {
         let o = Overrides {
             method,
             gamma,
+            accelerator,
+            coarse,
             tol,
             max_iter,
             u0,

@@ -5,7 +5,8 @@ use std::path::PathBuf;
 
 use clap::{Args, Parser, Subcommand};
 
-use contactdd_ddm::{Gamma, Method};
+use contactdd_ddm::iteration::ANDERSON_DEPTH;
+use contactdd_ddm::{Accelerator, CoarseMode, Gamma, Method};
 
 const EXIT_CODES: &str = "\
 Exit codes:
@@ -65,9 +66,16 @@ pub struct SolveArgs {
     /// Method: neumann, robin, active-set, newton-chord or newton-kurchatov.
     #[arg(long, value_name = "M", value_parser = parse_method)]
     pub method: Option<Method>,
-    /// Relaxation parameter γ > 0, or "auto" (Aitken).
+    /// Relaxation parameter γ > 0, or "auto" (Aitken). A constant γ alone runs the paper's
+    /// one-level iteration (no accelerator, no coarse correction).
     #[arg(long, value_name = "G", value_parser = parse_gamma)]
     pub gamma: Option<Gamma>,
+    /// Accelerator: none (relaxation with γ) or anderson.
+    #[arg(long, value_name = "A", value_parser = parse_accelerator)]
+    pub accelerator: Option<Accelerator>,
+    /// Rigid-body coarse correction: off, chains (floating bodies touching each other) or all.
+    #[arg(long, value_name = "C", value_parser = parse_coarse)]
+    pub coarse: Option<CoarseMode>,
     /// Solver options.
     #[command(flatten)]
     pub common: Common,
@@ -141,6 +149,29 @@ fn parse_positive(s: &str) -> Result<f64, String> {
 
 fn parse_method(s: &str) -> Result<Method, String> {
     s.trim().parse::<Method>().map_err(|e| e.to_string())
+}
+
+fn parse_accelerator(s: &str) -> Result<Accelerator, String> {
+    match s {
+        "none" => Ok(Accelerator::None),
+        "anderson" => Ok(Accelerator::Anderson {
+            depth: ANDERSON_DEPTH,
+        }),
+        _ => Err(format!(
+            "unknown accelerator '{s}' (expected none or anderson)"
+        )),
+    }
+}
+
+fn parse_coarse(s: &str) -> Result<CoarseMode, String> {
+    match s {
+        "off" => Ok(CoarseMode::Off),
+        "chains" => Ok(CoarseMode::Chains),
+        "all" => Ok(CoarseMode::All),
+        _ => Err(format!(
+            "unknown coarse mode '{s}' (expected off, chains or all)"
+        )),
+    }
 }
 
 fn parse_gamma(s: &str) -> Result<Gamma, String> {

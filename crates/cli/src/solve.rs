@@ -8,7 +8,10 @@ use std::time::Instant;
 use anyhow::{Context, Result};
 
 use contactdd_ddm::contact::Interface;
-use contactdd_ddm::{prepare, solve as dd_solve, solve_monolithic, Hooks, Model, Record};
+use contactdd_ddm::{
+    prepare, solve as dd_solve, solve_monolithic, Accelerator, CoarseMode, Gamma, Hooks, Model,
+    Record,
+};
 use contactdd_io::output::{safe_file_name, write_monolithic_results, write_results};
 
 use crate::args::{Common, MonolithicArgs, SolveArgs};
@@ -44,6 +47,16 @@ pub fn solve(args: SolveArgs) -> Result<Exit> {
     }
     if let Some(g) = args.gamma {
         settings.gamma = g;
+        if let Gamma::Constant(_) = g {
+            // The paper's iteration, unless asked otherwise below.
+            (settings.accelerator, settings.coarse) = (Accelerator::None, CoarseMode::Off);
+        }
+    }
+    if let Some(a) = args.accelerator {
+        settings.accelerator = a;
+    }
+    if let Some(c) = args.coarse {
+        settings.coarse = c;
     }
     let threads = apply_common(&args.common, &mut settings, loaded.threads);
     let model = &loaded.model;
@@ -64,12 +77,14 @@ pub fn solve(args: SolveArgs) -> Result<Exit> {
         let table = IterationTable::new(model);
         if !quiet {
             say!(
-                "solving {}: {}, {}, method {}, gamma {}, tol {:e}, max-iter {}",
+                "solving {}: {}, {}, method {}, gamma {}, accelerator {}, coarse {}, tol {:e}, max-iter {}",
                 model.name,
                 count(model.bodies.len(), "body", "bodies"),
                 count(model.pairs.len(), "contact pair", "contact pairs"),
                 settings.method,
                 settings.gamma,
+                settings.accelerator,
+                settings.coarse,
                 settings.tol,
                 settings.max_iter
             );

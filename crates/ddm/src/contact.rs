@@ -45,6 +45,21 @@ impl ContactPoint {
     pub fn has_partner(&self) -> bool {
         !self.partner.is_empty()
     }
+
+    /// The penalty overlap (d − s)⁻ ≤ 0 for the sum `s` of the normal displacements across the
+    /// pair (0 for a point without partner).
+    pub fn overlap(&self, s: f64) -> f64 {
+        if self.has_partner() {
+            (self.gap - s).min(0.0)
+        } else {
+            0.0
+        }
+    }
+
+    /// The normal contact stress σ_n = (d − s)⁻/θ ≤ 0 (method.md §2) for the sum `s`.
+    pub fn pressure(&self, s: f64) -> f64 {
+        self.overlap(s) / self.theta
+    }
 }
 
 /// All contact points of a model, grouped by body (the interface unknowns are their normal

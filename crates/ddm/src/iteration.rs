@@ -1,30 +1,68 @@
-//! The Robin domain decomposition iteration (method.md §3) on the condensed bodies.
+//! The domain decomposition iteration (method.md §3) on the condensed bodies.
 //!
-//! The iterate lives on the interface: the normal displacements U of all contact points (plus the
-//! interface loads T that reproduce the full fields at the end). Each iteration every body reads
-//! U^k and U^{k−1} from shared buffers, computes its Robin coefficients φ^k and right-hand side,
-//! solves its condensed Robin problem and writes its own slice of U^{k+1} (double buffering). The
-//! bodies run in parallel with rayon; each body's arithmetic is sequential and independent of the
-//! others, so the result does not depend on the number of threads.
+//! The iterate lives on the interface: the normal displacements U of all contact points, plus the
+//! interface loads T that reproduce the full fields at the end. One iteration is one parallel
+//! [`RobinSweep`] (every body solves its Robin problem against its partners' last state),
+//! optionally preceded by the rigid-body [`Coarse`] correction, followed by one of two updates:
+//!
+//! - **relaxation** (the paper's iteration): U^{k+1} = γ^k Ũ + (1 − γ^k) U^k, with a constant γ
+//!   or Aitken's `auto` ([`Relaxation`]); it stops when every body's relative change
+//!   ‖U^{k+1} − U^k‖/‖U^{k+1}‖ is below the tolerance;
+//! - **Anderson acceleration** ([`Anderson`]) over the whole interface vector; it stops when every
+//!   body's relative residual ‖Ũ − U^k‖/‖Ũ‖ of the map is below the tolerance, and the result is
+//!   the map's output Ũ.
+//!
+//! `docs/two-level.md` describes the accelerated two-level iteration, the default.
 
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::Instant;
 
-use rayon::prelude::*;
-
-use crate::condensed::{CondensedBody, RobinCache};
+use crate::anderson::Anderson;
+pub use crate::coarse::CoarseMode;
 use crate::contact::Interface;
 use crate::method::Method;
 use crate::relaxation::{Gamma, Relaxation};
+pub use crate::robin_sweep::Breakdown;
+use crate::robin_sweep::RobinSweep;
+use crate::solver::Prepared;
+
+/// How the iterates of the Robin sweeps are combined.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Accelerator {
+    /// Relaxation with γ only (the paper's iteration).
+    None,
+    /// Anderson acceleration (IQN-ILS) with at most `depth` secant pairs.
+    Anderson {
+        /// Memory: the number of secant pairs kept.
+        depth: usize,
+    },
+}
+
+impl std::fmt::Display for Accelerator {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            Accelerator::None => f.write_str("none"),
+            Accelerator::Anderson { depth } => write!(f, "anderson({depth})"),
+        }
+    }
+}
+
+/// Default Anderson memory: enough to act as GMRES over the few tens of iterations the two-level
+/// iteration takes, small against any interface.
+pub const ANDERSON_DEPTH: usize = 40;
 
 /// Settings of one DD solve.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Settings {
     /// Robin coefficient rule.
     pub method: Method,
-    /// Relaxation parameter γ.
+    /// Relaxation parameter γ (with Anderson: the relaxation of the first step).
     pub gamma: Gamma,
-    /// Stopping tolerance ε_u on the relative change of every body's normal displacements.
+    /// How the sweeps' outputs are combined.
+    pub accelerator: Accelerator,
+    /// Which bodies the rigid-body coarse correction moves into balance before every sweep.
+    pub coarse: CoarseMode,
+    /// Stopping tolerance on every body's relative change (relaxation) or residual (Anderson).
     pub tol: f64,
     /// Iteration cap.
     pub max_iter: usize,
@@ -34,13 +72,30 @@ pub struct Settings {
     pub u_prev: f64,
 }
 
+impl Settings {
+    /// The paper's iteration: `method` with a relaxation rule `gamma`, no accelerator, no coarse
+    /// correction, the other values as in [`Settings::default`].
+    pub fn paper(method: Method, gamma: Gamma) -> Settings {
+        Settings {
+            method,
+            gamma,
+            accelerator: Accelerator::None,
+            coarse: CoarseMode::Off,
+            ..Settings::default()
+        }
+    }
+}
+
 impl Default for Settings {
-    /// The paper's values: u^0 = 1e−4, u^{−1} = 2e−4, ε = 1e−3 would be loose for general use, so
-    /// the default tolerance is 1e−6.
+    /// The two-level iteration: `newton-kurchatov` Robin sweeps with Aitken's `auto` relaxation
+    /// and the rigid-body coarse correction of chains of floating bodies; tolerance 1e−6; the
+    /// paper's initial values u^0 = 1e−4, u^{−1} = 2e−4.
     fn default() -> Settings {
         Settings {
             method: Method::NewtonKurchatov,
             gamma: Gamma::Auto,
+            accelerator: Accelerator::None,
+            coarse: CoarseMode::Chains,
             tol: 1e-6,
             max_iter: 500,
             u0: 1e-4,
@@ -62,19 +117,6 @@ pub struct Record {
     pub active: Vec<usize>,
     /// Total normal contact force Σ w |σ_n| per body after the update.
     pub contact_force: Vec<f64>,
-}
-
-/// Why a body's iteration failed.
-#[derive(Clone, Debug, PartialEq)]
-pub enum Breakdown {
-    /// The body's Robin problem became singular with no closed point left.
-    LostContact,
-    /// The Robin problem became singular although some points are closed.
-    Singular,
-    /// NaN or infinity appeared.
-    NonFinite,
-    /// The displacements grew beyond any physical size.
-    Growth,
 }
 
 /// How the iteration ended.
@@ -123,62 +165,122 @@ pub struct Hooks<'a> {
     pub cancel: Option<&'a AtomicBool>,
 }
 
-/// Per-body buffers, allocated once per solve.
-#[derive(Default)]
-struct Scratch {
-    cache: RobinCache,
-    phi: Vec<f64>,
-    r: Vec<f64>,
-    tilde: Vec<f64>,
-    t_new: Vec<f64>,
+/// The interface state: U^{k−1}, U^k, their pair sums, and the loads T^k.
+struct State {
+    u_prev: Vec<f64>,
+    u: Vec<f64>,
+    s_prev: Vec<f64>,
+    s: Vec<f64>,
+    t: Vec<f64>,
 }
 
-/// One body's share of an iteration: its buffers and its slices of the shared outputs.
-struct BodyWork<'a> {
-    scratch: &'a mut Scratch,
-    next: &'a mut [f64],
-    t_load: &'a mut [f64],
-}
-
-/// Runs the iteration. `bodies[b]` is body b condensed on `interface.of_body(b)`; `scale[b]` is a
-/// length beyond which displacements count as blown up.
-pub fn iterate(
-    interface: &Interface,
-    bodies: &[CondensedBody],
-    scale: &[f64],
-    settings: &Settings,
-    hooks: Hooks<'_>,
-) -> Outcome {
-    let start = Instant::now();
-    let m = interface.len();
-    let nb = bodies.len();
-    let mut u_prev = vec![settings.u_prev; m];
-    let mut u_cur = vec![settings.u0; m];
-    let mut u_next = vec![0.0; m];
-    let mut t_load = vec![0.0; m];
-    for (b, body) in bodies.iter().enumerate() {
-        let range = interface.body_range[b].clone();
-        let t0 = body.initial_load(&u_cur[range.clone()]);
-        t_load[range].copy_from_slice(&t0);
+impl State {
+    /// The initial values u^0, u^{−1} and the loads T^0 that reproduce u^0.
+    fn initial(prepared: &Prepared, settings: &Settings) -> State {
+        let interface = &prepared.interface;
+        let m = interface.len();
+        let mut t = vec![0.0; m];
+        for (b, body) in prepared.bodies.iter().enumerate() {
+            let range = interface.body_range[b].clone();
+            t[range].copy_from_slice(&body.initial_load(&vec![settings.u0; body.len()]));
+        }
+        let mut state = State {
+            u_prev: vec![settings.u_prev; m],
+            u: vec![settings.u0; m],
+            s_prev: vec![0.0; m],
+            s: vec![0.0; m],
+            t,
+        };
+        interface.sum_normal(&state.u_prev, &mut state.s_prev);
+        interface.sum_normal(&state.u, &mut state.s);
+        state
     }
-    let t_start = t_load.clone();
-    let mut scratch: Vec<Scratch> = (0..nb)
-        .map(|b| {
-            let len = interface.body_range[b].len();
-            Scratch {
-                phi: vec![0.0; len],
-                r: vec![0.0; len],
-                tilde: vec![0.0; len],
-                t_new: vec![0.0; len],
-                ..Scratch::default()
+
+    /// Makes (`u`, `t`) the new current state: k−1 ← k ← new.
+    fn advance(&mut self, interface: &Interface, u: &mut Vec<f64>) {
+        std::mem::swap(&mut self.u_prev, &mut self.u);
+        std::mem::swap(&mut self.u, u);
+        std::mem::swap(&mut self.s_prev, &mut self.s);
+        interface.sum_normal(&self.u, &mut self.s);
+    }
+}
+
+/// Per body: ‖a − b‖/‖a‖ over its points (‖a − b‖ if a = 0).
+fn relative_change(interface: &Interface, a: &[f64], b: &[f64]) -> Vec<f64> {
+    interface
+        .body_range
+        .iter()
+        .map(|range| {
+            let (mut diff, mut norm) = (0.0, 0.0);
+            for j in range.clone() {
+                diff += (a[j] - b[j]).powi(2);
+                norm += a[j] * a[j];
+            }
+            if norm > 0.0 {
+                (diff / norm).sqrt()
+            } else {
+                diff.sqrt()
             }
         })
-        .collect();
-    let mut t_backup = t_load.clone();
-    let (mut s_prev, mut s_cur, mut s_next) = (vec![0.0; m], vec![0.0; m], vec![0.0; m]);
-    interface.sum_normal(&u_prev, &mut s_prev);
-    interface.sum_normal(&u_cur, &mut s_cur);
-    let mut relax = Relaxation::new(settings.gamma);
+        .collect()
+}
+
+/// The first body whose sweep failed or whose new values are non-finite or too large.
+fn first_breakdown(
+    interface: &Interface,
+    swept: Vec<Result<(), Breakdown>>,
+    values: &[f64],
+    scale: &[f64],
+) -> Option<(usize, Breakdown)> {
+    swept.into_iter().enumerate().find_map(|(b, res)| {
+        let v = &values[interface.body_range[b].clone()];
+        match res {
+            Err(reason) => Some((b, reason)),
+            Ok(()) if !v.iter().all(|x| x.is_finite()) => Some((b, Breakdown::NonFinite)),
+            Ok(()) if v.iter().any(|x| x.abs() > scale[b]) => Some((b, Breakdown::Growth)),
+            Ok(()) => None,
+        }
+    })
+}
+
+/// Closed points and total normal contact force Σ w |σ_n| per body for the state `un`.
+fn contact_summary(interface: &Interface, un: &[f64], nb: usize) -> (Vec<usize>, Vec<f64>) {
+    let mut s = vec![0.0; un.len()];
+    interface.sum_normal(un, &mut s);
+    let (mut active, mut force) = (vec![0usize; nb], vec![0.0; nb]);
+    for (j, p) in interface.points.iter().enumerate() {
+        if p.overlap(s[j]) < 0.0 {
+            active[p.body] += 1;
+            force[p.body] -= p.weight * p.pressure(s[j]);
+        }
+    }
+    (active, force)
+}
+
+/// How the sweeps' outputs become the next state.
+enum Update {
+    Relax(Relaxation),
+    Anderson(Anderson),
+}
+
+/// Runs the iteration on a prepared model.
+pub fn iterate(prepared: &Prepared, settings: &Settings, hooks: Hooks<'_>) -> Outcome {
+    let start = Instant::now();
+    let interface = &prepared.interface;
+    let (m, nb) = (interface.len(), prepared.bodies.len());
+    let accelerated = settings.accelerator != Accelerator::None;
+    let mut sweep = RobinSweep::new(interface, &prepared.bodies, settings.method, accelerated);
+    let mut update = match settings.accelerator {
+        Accelerator::None => Update::Relax(Relaxation::new(settings.gamma)),
+        Accelerator::Anderson { depth } => Update::Anderson(Anderson::new(depth)),
+    };
+    let first_gamma = match settings.gamma {
+        Gamma::Constant(g) => g,
+        Gamma::Auto => 1.0,
+    };
+    let mut state = State::initial(prepared, settings);
+    let (mut tilde, mut t_tilde, mut next) = (vec![0.0; m], vec![0.0; m], vec![0.0; m]);
+    let (mut input, mut input_t) = (vec![0.0; m], vec![0.0; m]);
     let mut history = Vec::new();
     let mut stop = Stop::MaxIterations;
     let mut iterations = 0;
@@ -188,143 +290,85 @@ pub fn iterate(
             stop = Stop::Interrupted;
             break;
         }
-        let gamma = relax.gamma();
-        t_backup.copy_from_slice(&t_load);
-        // Split the shared output buffers into per-body slices.
-        let mut work = Vec::with_capacity(nb);
-        {
-            let (mut next_rest, mut t_rest) = (u_next.as_mut_slice(), t_load.as_mut_slice());
-            for (b, scratch) in scratch.iter_mut().enumerate() {
-                let len = interface.body_range[b].len();
-                let (next, nr) = next_rest.split_at_mut(len);
-                let (tl, tr) = t_rest.split_at_mut(len);
-                next_rest = nr;
-                t_rest = tr;
-                work.push(BodyWork {
-                    scratch,
-                    next,
-                    t_load: tl,
-                });
-            }
-        }
-        let (u_cur_ref, s_cur_ref, s_prev_ref) = (&u_cur, &s_cur, &s_prev);
-        let results: Vec<Result<f64, Breakdown>> = work
-            .par_iter_mut()
-            .enumerate()
-            .map(|(b, w)| {
-                let range = interface.body_range[b].clone();
-                let points = &interface.points[range.clone()];
-                let u_own = &u_cur_ref[range.clone()];
-                let Scratch {
-                    cache,
-                    phi,
-                    r,
-                    tilde,
-                    t_new,
-                } = &mut *w.scratch;
-                for (j, p) in points.iter().enumerate() {
-                    let g = range.start + j;
-                    if !p.has_partner() {
-                        // Never closes: φ = 0, no contact force.
-                        (phi[j], r[j]) = (0.0, 0.0);
-                        continue;
-                    }
-                    let (s, sp) = (s_cur_ref[g], s_prev_ref[g]);
-                    phi[j] = settings.method.phi(p.gap, s, sp);
-                    let kw = p.weight / p.theta;
-                    r[j] = kw * (phi[j] * u_own[j] + (p.gap - s).min(0.0));
-                }
-                bodies[b]
-                    .robin_solve(phi, r, cache, tilde, t_new)
-                    .map_err(|_| {
-                        if phi.iter().all(|&f| f == 0.0) {
-                            Breakdown::LostContact
-                        } else {
-                            Breakdown::Singular
-                        }
-                    })?;
-                let (mut diff, mut norm) = (0.0, 0.0);
-                for j in 0..points.len() {
-                    let new = gamma * tilde[j] + (1.0 - gamma) * u_own[j];
-                    w.next[j] = new;
-                    w.t_load[j] = gamma * t_new[j] + (1.0 - gamma) * w.t_load[j];
-                    diff += (new - u_own[j]).powi(2);
-                    norm += new * new;
-                }
-                if !w.next.iter().all(|v| v.is_finite()) {
-                    return Err(Breakdown::NonFinite);
-                }
-                if w.next.iter().any(|v| v.abs() > scale[b]) {
-                    return Err(Breakdown::Growth);
-                }
-                Ok(if norm > 0.0 {
-                    (diff / norm).sqrt()
-                } else {
-                    diff.sqrt()
-                })
-            })
-            .collect();
-        drop(work);
         iterations = k;
-        let mut rel_change = Vec::with_capacity(nb);
-        let mut failed = None;
-        for (b, res) in results.into_iter().enumerate() {
-            match res {
-                Ok(rc) => rel_change.push(rc),
-                Err(reason) => {
-                    failed.get_or_insert(Stop::Diverged {
-                        body: b,
-                        iteration: k,
-                        reason,
-                    });
-                    rel_change.push(f64::NAN);
+        input.copy_from_slice(&state.u);
+        input_t.copy_from_slice(&state.t);
+        if settings.coarse != CoarseMode::Off {
+            prepared
+                .coarse
+                .correct(settings.coarse, interface, &mut state.u, &mut state.t);
+            interface.sum_normal(&state.u, &mut state.s);
+        }
+        let swept = sweep.apply(&state.u, &state.s, &state.s_prev, &mut tilde, &mut t_tilde);
+        let (gamma, rel_change, failed) = match &mut update {
+            Update::Relax(relax) => {
+                let gamma = relax.gamma();
+                for j in 0..m {
+                    next[j] = gamma * tilde[j] + (1.0 - gamma) * state.u[j];
+                }
+                let failed = first_breakdown(interface, swept, &next, &prepared.scale);
+                (gamma, relative_change(interface, &next, &input), failed)
+            }
+            Update::Anderson(_) => {
+                let failed = first_breakdown(interface, swept, &tilde, &prepared.scale);
+                (1.0, relative_change(interface, &tilde, &input), failed)
+            }
+        };
+        if let Some((body, reason)) = failed {
+            if let Update::Relax(relax) = &mut update {
+                if relax.restart() {
+                    // Start over from the initial values with a smaller γ cap.
+                    state = State::initial(prepared, settings);
+                    continue;
                 }
             }
-        }
-        if let Some(s) = failed {
-            // Keep the last good iterate consistent: U^k with its T^k.
-            t_load.copy_from_slice(&t_backup);
-            if relax.restart() {
-                // Start over from the initial values with a smaller γ cap.
-                u_prev.fill(settings.u_prev);
-                u_cur.fill(settings.u0);
-                t_load.copy_from_slice(&t_start);
-                interface.sum_normal(&u_prev, &mut s_prev);
-                interface.sum_normal(&u_cur, &mut s_cur);
-                continue;
-            }
-            stop = s;
+            stop = Stop::Diverged {
+                body,
+                iteration: k,
+                reason,
+            };
             break;
         }
-        interface.sum_normal(&u_next, &mut s_next);
-        let (mut active, mut force) = (vec![0usize; nb], vec![0.0; nb]);
-        for (j, p) in interface.points.iter().enumerate() {
-            if p.has_partner() && p.gap - s_next[j] < 0.0 {
-                active[p.body] += 1;
-                force[p.body] += p.weight * (s_next[j] - p.gap) / p.theta;
-            }
-        }
+        let new_state = if accelerated { &tilde } else { &next };
+        let (active, contact_force) = contact_summary(interface, new_state, nb);
         let record = Record {
             k,
             gamma,
             rel_change,
             active,
-            contact_force: force,
+            contact_force,
         };
         if let Some(f) = hooks.on_iteration {
             f(&record);
         }
-        // With an adaptive γ a tiny step must not pass for convergence: the change is judged as
-        // if γ were at least the starting value (for a constant γ this is the paper's criterion).
-        let scale = relax.convergence_scale();
-        let converged = record.rel_change.iter().all(|&r| r * scale <= settings.tol);
-        relax.update(&u_cur, &u_next);
+        let converged = match &mut update {
+            Update::Relax(relax) => {
+                // With an adaptive γ a tiny step must not pass for convergence: the change is
+                // judged as if γ were at least the starting value (for a constant γ this is the
+                // paper's criterion).
+                let scale = relax.convergence_scale();
+                let converged = record.rel_change.iter().all(|&r| r * scale <= settings.tol);
+                relax.update(&state.u, &next);
+                for j in 0..m {
+                    state.t[j] = gamma * t_tilde[j] + (1.0 - gamma) * state.t[j];
+                }
+                converged
+            }
+            Update::Anderson(acc) => {
+                let converged = record.rel_change.iter().all(|&r| r <= settings.tol);
+                if converged {
+                    next.copy_from_slice(&tilde);
+                    state.t.copy_from_slice(&t_tilde);
+                } else {
+                    next.copy_from_slice(&input);
+                    state.t.copy_from_slice(&input_t);
+                    acc.advance(&mut next, &mut state.t, &tilde, &t_tilde, first_gamma);
+                }
+                converged
+            }
+        };
         history.push(record);
-        // Rotate the double buffers: k−1 ← k ← k+1.
-        std::mem::swap(&mut u_prev, &mut u_cur);
-        std::mem::swap(&mut u_cur, &mut u_next);
-        std::mem::swap(&mut s_prev, &mut s_cur);
-        std::mem::swap(&mut s_cur, &mut s_next);
+        state.advance(interface, &mut next);
         if converged {
             stop = Stop::Converged;
             break;
@@ -333,8 +377,8 @@ pub fn iterate(
     Outcome {
         stop,
         iterations,
-        un: u_cur,
-        t_load,
+        un: state.u,
+        t_load: state.t,
         history,
         seconds: start.elapsed().as_secs_f64(),
     }

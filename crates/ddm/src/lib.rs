@@ -9,7 +9,9 @@
 //! [`solver::prepare`] (contact geometry, per-body factorisation and condensation) →
 //! [`iteration`] → [`Solution`] → [`output`].
 
+pub mod anderson;
 pub mod benchmark;
+pub mod coarse;
 pub mod condensed;
 pub mod contact;
 pub mod error;
@@ -19,12 +21,13 @@ pub mod model;
 pub mod monolithic;
 pub mod profile;
 pub mod relaxation;
+pub mod robin_sweep;
 pub mod solution;
 pub mod solver;
 pub mod sweep;
 
 pub use error::SetupError;
-pub use iteration::{Hooks, Record, Settings, Stop};
+pub use iteration::{Accelerator, CoarseMode, Hooks, Record, Settings, Stop};
 pub use method::Method;
 pub use model::{ContactPair, Model, Penalty};
 pub use monolithic::{solve_monolithic, MonolithicSolution};

@@ -6,6 +6,7 @@ use std::time::Instant;
 
 use rayon::prelude::*;
 
+use crate::coarse::Coarse;
 use crate::condensed::CondensedBody;
 use crate::contact::Interface;
 use crate::error::SetupError;
@@ -22,6 +23,8 @@ pub struct Prepared {
     pub bodies: Vec<CondensedBody>,
     /// Per body, the displacement size beyond which an iteration counts as blown up.
     pub scale: Vec<f64>,
+    /// The rigid modes of the bodies that only contacts hold.
+    pub coarse: Coarse,
     /// Setup wall times, seconds.
     pub timing: Vec<(String, f64)>,
 }
@@ -50,10 +53,12 @@ pub fn prepare(model: &Model) -> Result<Prepared, SetupError> {
         .iter()
         .map(|b| 10.0 * b.mesh.bounding_box_diameter())
         .collect();
+    let coarse = Coarse::new(model, &interface);
     Ok(Prepared {
         interface,
         bodies,
         scale,
+        coarse,
         timing: vec![
             ("contact_setup".into(), t_contact),
             ("assemble_factor_condense".into(), t_factor),
@@ -82,13 +87,7 @@ pub fn solve(
             )));
         }
     }
-    let outcome = iterate(
-        &prepared.interface,
-        &prepared.bodies,
-        &prepared.scale,
-        settings,
-        hooks,
-    );
+    let outcome = iterate(prepared, settings, hooks);
     let t = Instant::now();
     let displacements = prepared
         .bodies

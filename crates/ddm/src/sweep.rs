@@ -7,7 +7,7 @@ use std::sync::atomic::{AtomicBool, Ordering};
 
 use rayon::prelude::*;
 
-use crate::iteration::{iterate, Hooks, Settings, Stop};
+use crate::iteration::{iterate, Accelerator, CoarseMode, Hooks, Settings, Stop};
 use crate::method::Method;
 use crate::model::Model;
 use crate::relaxation::Gamma;
@@ -66,22 +66,19 @@ pub fn sweep_with_cancel(
             let (iterations, stop) = if cancel.is_some_and(|c| c.load(Ordering::Relaxed)) {
                 (0, Stop::Interrupted)
             } else {
+                // A sweep studies the paper's relaxed iteration: no accelerator, no coarse step.
                 let settings = Settings {
                     method,
                     gamma,
+                    accelerator: Accelerator::None,
+                    coarse: CoarseMode::Off,
                     ..base.clone()
                 };
                 let hooks = Hooks {
                     on_iteration: None,
                     cancel,
                 };
-                let out = iterate(
-                    &prepared.interface,
-                    &prepared.bodies,
-                    &prepared.scale,
-                    &settings,
-                    hooks,
-                );
+                let out = iterate(prepared, &settings, hooks);
                 (out.iterations, out.stop)
             };
             SweepRun {

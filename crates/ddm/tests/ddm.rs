@@ -11,11 +11,9 @@ use contactdd_ddm::*;
 
 fn settings(method: Method, gamma: f64, tol: f64) -> Settings {
     Settings {
-        method,
-        gamma: Gamma::Constant(gamma),
         tol,
         max_iter: 20_000,
-        ..Settings::default()
+        ..Settings::paper(method, Gamma::Constant(gamma))
     }
 }
 

@@ -261,6 +261,15 @@ pub struct SolverSpec {
     /// Relaxation parameter γ > 0 or `"auto"` (default `"auto"`).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub gamma: Option<GammaSpec>,
+    /// How the sweeps' outputs are combined: `"none"` (relaxation with γ, the default) or
+    /// `"anderson"` (Anderson acceleration; γ relaxes its first step).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub accelerator: Option<AcceleratorSpec>,
+    /// The rigid-body coarse correction: `"chains"` (floating bodies that touch each other; the
+    /// default unless a constant γ is given), `"all"` (every floating body) or `"off"` (the
+    /// paper's one-level iteration; the default with a constant γ).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub coarse: Option<CoarseSpec>,
     /// Stopping tolerance ε_u > 0 (default 1e-6).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub tol: Option<f64>,
@@ -276,6 +285,28 @@ pub struct SolverSpec {
     /// Worker threads ≥ 1 (default: the machine's).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub threads: Option<usize>,
+}
+
+/// `accelerator`: how the sweeps' outputs are combined.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Deserialize, Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum AcceleratorSpec {
+    /// Relaxation with γ only.
+    None,
+    /// Anderson acceleration (IQN-ILS).
+    Anderson,
+}
+
+/// `coarse`: which floating bodies the rigid-body coarse correction moves.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Deserialize, Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum CoarseSpec {
+    /// No coarse correction.
+    Off,
+    /// Floating bodies that touch another floating body.
+    Chains,
+    /// Every floating body.
+    All,
 }
 
 /// `gamma`: a number, or the string `"auto"`. Deserialized like an untagged enum, but by hand so

@@ -31,12 +31,15 @@ use contactdd_core::{
     BodyError, Constraints, ElasticBody, Load, Material, Mesh, MeshError, Order, Plane, Rectangle,
 };
 
-use contactdd_ddm::{ContactPair, Gamma, GapProfile, Model, Penalty, Settings, SetupError};
+use contactdd_ddm::iteration::ANDERSON_DEPTH;
+use contactdd_ddm::{
+    Accelerator, CoarseMode, ContactPair, Gamma, GapProfile, Model, Penalty, Settings, SetupError,
+};
 
 use crate::error::LoadError;
 use crate::problem::{
-    BodySpec, ContactSpec, GammaSpec, GapSpec, LoadSpec, MeshSpec, PenaltySpec, Problem,
-    SolverSpec, SupportSpec,
+    AcceleratorSpec, BodySpec, CoarseSpec, ContactSpec, GammaSpec, GapSpec, LoadSpec, MeshSpec,
+    PenaltySpec, Problem, SolverSpec, SupportSpec,
 };
 
 /// Largest number of rectangle cells (nx · ny) per body: far beyond what the solver handles, but it
@@ -181,6 +184,7 @@ pub fn settings(spec: &SolverSpec, base: &Settings) -> Result<Settings, SetupErr
     if let Some(g) = spec.gamma {
         s.gamma = gamma(g)?;
     }
+    iteration_kind(spec, &mut s);
     if let Some(tol) = spec.tol {
         if !(tol.is_finite() && tol > 0.0) {
             return Err(solver_error(
@@ -211,6 +215,27 @@ pub fn settings(spec: &SolverSpec, base: &Settings) -> Result<Settings, SetupErr
         return Err(solver_error("threads", "must be at least 1, got 0"));
     }
     Ok(s)
+}
+
+/// The accelerator and the coarse correction. A constant γ without an `accelerator` or `coarse`
+/// key asks for the paper's one-level iteration, so those keys then default to `none` and `off`.
+fn iteration_kind(spec: &SolverSpec, s: &mut Settings) {
+    let paper = matches!(spec.gamma, Some(GammaSpec::Value(_)));
+    s.accelerator = match spec.accelerator {
+        Some(AcceleratorSpec::Anderson) => Accelerator::Anderson {
+            depth: ANDERSON_DEPTH,
+        },
+        Some(AcceleratorSpec::None) => Accelerator::None,
+        None if paper => Accelerator::None,
+        None => s.accelerator,
+    };
+    s.coarse = match spec.coarse {
+        Some(CoarseSpec::Off) => CoarseMode::Off,
+        Some(CoarseSpec::Chains) => CoarseMode::Chains,
+        Some(CoarseSpec::All) => CoarseMode::All,
+        None if paper => CoarseMode::Off,
+        None => s.coarse,
+    };
 }
 
 /// A `gamma` value → a γ rule: `"auto"`, or a constant γ > 0.

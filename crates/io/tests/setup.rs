@@ -78,11 +78,9 @@ fn notch_toml_is_the_benchmark_model() {
     assert_eq!(
         loaded.settings,
         Settings {
-            method: Method::NewtonKurchatov,
-            gamma: Gamma::Constant(0.5),
             tol: 1e-3,
             max_iter: 500,
-            ..Settings::default()
+            ..Settings::paper(Method::NewtonKurchatov, Gamma::Constant(0.5))
         }
     );
     assert_eq!(loaded.threads, None);

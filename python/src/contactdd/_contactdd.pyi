@@ -28,6 +28,8 @@ METHODS: list[str]
 # One of METHODS: "neumann", "robin", "active-set", "newton-chord", "newton-kurchatov".
 _MethodName = str
 _GammaValue = Union[float, Literal["auto"]]
+_AcceleratorName = Literal["none", "anderson"]
+_CoarseName = Literal["off", "chains", "all"]
 _StrPath = Union[str, "PathLike[str]"]
 _ArrayLikeFloat = npt.ArrayLike
 _ArrayLikeInt = npt.ArrayLike
@@ -140,6 +142,8 @@ class Problem:
         u0: Optional[float] = None,
         u_prev: Optional[float] = None,
         threads: Optional[int] = None,
+        accelerator: Optional[_AcceleratorName] = None,
+        coarse: Optional[_CoarseName] = None,
     ) -> None:
         """Sets the default solver settings (None keeps a value)."""
     def boundaries(self, body: str) -> list[str]:
@@ -277,6 +281,8 @@ def solve(
     u_prev: Optional[float] = None,
     threads: Optional[int] = None,
     check: bool = True,
+    accelerator: Optional[_AcceleratorName] = None,
+    coarse: Optional[_CoarseName] = None,
 ) -> Result:
     """Solves a contact problem by the penalty Robin domain decomposition (GIL released)."""
 

@@ -1,0 +1,354 @@
+//! The coarse correction: every body that its supports leave free to move rigidly is moved rigidly
+//! so that its applied load and its contact forces balance.
+//!
+//! This is the natural coarse space of FETI-type methods (Farhat & Roux 1991; for contact, Dostál's
+//! TFETI): the rigid motions R_b of the floating bodies, 3 per body in 2D at most. A local Robin
+//! solve cannot move a body held only by its contacts towards equilibrium faster than its springs
+//! allow, and along a chain of N bodies information travels one body per sweep; the coarse problem
+//! couples all floating bodies at once.
+//!
+//! With c_b the coefficients of body b's free modes, a contact point j moves by ρ_j · c_{b(j)}
+//! along its normal (ρ_jq = n_j · R_q(x_j)), so the sum across its pair changes by
+//!   Δs_j(c) = ρ_j · c_{b(j)} + Σ_k c_jk ρ_k · c_{b(k)}
+//! (k: the partner points interpolated at j's projection). The balance of body b's free mode q is
+//!   F_bq(c) = R_qᵀ f_b + Σ_{j ∈ b} (w_j/θ_j) (d_j − s_j − Δs_j(c))⁻ ρ_jq = 0,
+//! a small piecewise-linear system, solved by a semismooth Newton method with a backtracking line
+//! search on ‖F‖. Its generalised Jacobian uses the closed points; a body with no closed point
+//! uses all its partnered points instead, which moves it towards its partners. The Newton steps
+//! are minimum-norm least-squares steps (column-scaled, with a tiny Levenberg–Marquardt shift), so
+//! a motion that no contact resists (two bodies translating together along their contact) is left
+//! alone.
+//!
+//! A rigid motion R c of a body adds K₀ R c = N D₀ Nᵀ R c to its load, because K R c = 0: the
+//! interface load T therefore changes by D₀ ρ c and the relation U = f₀ + C₀ T stays exact.
+
+use std::ops::Range;
+
+use faer::{Mat, Side};
+
+use contactdd_core::rigid::{free_modes, RigidBasis};
+
+use crate::contact::Interface;
+use crate::model::Model;
+
+/// Newton steps at most per correction (the system is piecewise linear and small).
+const MAX_NEWTON: usize = 50;
+/// Relative accuracy of the balance.
+const BALANCE_TOL: f64 = 1e-12;
+
+/// Which bodies the coarse correction moves.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum CoarseMode {
+    /// No coarse correction (the paper's one-level iteration).
+    Off,
+    /// The floating bodies that touch another floating body: chains and clusters of bodies held
+    /// only by each other. A floating body whose partners are all held by supports is balanced by
+    /// its own Robin solve already, so it is left to the sweep.
+    Chains,
+    /// Every floating body.
+    All,
+}
+
+impl std::fmt::Display for CoarseMode {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(match self {
+            CoarseMode::Off => "off",
+            CoarseMode::Chains => "chains",
+            CoarseMode::All => "all",
+        })
+    }
+}
+
+/// The coarse spaces of a model, for [`CoarseMode::Chains`] and [`CoarseMode::All`].
+#[derive(Clone, Debug, Default)]
+pub struct Coarse {
+    chains: FloatingModes,
+    all: FloatingModes,
+}
+
+impl Coarse {
+    /// Finds the free rigid modes of every body and their values on the contact points.
+    pub fn new(model: &Model, interface: &Interface) -> Coarse {
+        let free: Vec<Vec<[f64; 3]>> = model
+            .bodies
+            .iter()
+            .map(|b| free_modes(&b.mesh, &b.constraints, &[]))
+            .collect();
+        let mut in_chain = vec![false; free.len()];
+        for pair in &model.pairs {
+            let [a, b] = pair.bodies;
+            if !free[a].is_empty() && !free[b].is_empty() {
+                (in_chain[a], in_chain[b]) = (true, true);
+            }
+        }
+        let chains: Vec<Vec<[f64; 3]>> = free
+            .iter()
+            .zip(&in_chain)
+            .map(|(f, &c)| if c { f.clone() } else { Vec::new() })
+            .collect();
+        Coarse {
+            chains: FloatingModes::new(model, interface, &chains),
+            all: FloatingModes::new(model, interface, &free),
+        }
+    }
+
+    /// Number of coarse unknowns in `mode`.
+    pub fn len(&self, mode: CoarseMode) -> usize {
+        match mode {
+            CoarseMode::Off => 0,
+            CoarseMode::Chains => self.chains.len(),
+            CoarseMode::All => self.all.len(),
+        }
+    }
+
+    /// Moves the bodies that `mode` selects rigidly into balance in the state (`un`, `t`).
+    /// Returns the number of Newton steps taken.
+    pub fn correct(
+        &self,
+        mode: CoarseMode,
+        interface: &Interface,
+        un: &mut [f64],
+        t: &mut [f64],
+    ) -> usize {
+        match mode {
+            CoarseMode::Off => 0,
+            CoarseMode::Chains => self.chains.correct(interface, un, t),
+            CoarseMode::All => self.all.correct(interface, un, t),
+        }
+    }
+}
+
+/// The selected bodies' rigid modes on the contact points.
+#[derive(Clone, Debug, Default)]
+struct FloatingModes {
+    /// Coarse unknowns of each body (empty for a body held by its supports).
+    range: Vec<Range<usize>>,
+    /// Owning body of every contact point.
+    body: Vec<usize>,
+    /// ρ_jq for every contact point j and free mode q of its body.
+    rho: Vec<Vec<f64>>,
+    /// R_qᵀ f for every coarse unknown.
+    load: Vec<f64>,
+}
+
+impl FloatingModes {
+    /// The modes `free[b]` (coefficient vectors of the rigid basis) of every body b.
+    fn new(model: &Model, interface: &Interface, free: &[Vec<[f64; 3]>]) -> FloatingModes {
+        let mut range = Vec::with_capacity(model.bodies.len());
+        let mut modes = Vec::with_capacity(model.bodies.len());
+        let mut load = Vec::new();
+        for (body, free) in model.bodies.iter().zip(free) {
+            let basis = RigidBasis::new(&body.mesh);
+            range.push(load.len()..load.len() + free.len());
+            for v in free {
+                let work: f64 = body
+                    .mesh
+                    .nodes()
+                    .iter()
+                    .enumerate()
+                    .map(|(i, &x)| {
+                        let u = basis.motion(x, v);
+                        u[0] * body.load[2 * i] + u[1] * body.load[2 * i + 1]
+                    })
+                    .sum();
+                load.push(work);
+            }
+            modes.push((basis, free.as_slice()));
+        }
+        let rho = interface
+            .points
+            .iter()
+            .map(|p| {
+                let (basis, free) = &modes[p.body];
+                let x = model.bodies[p.body].mesh.nodes()[p.node];
+                free.iter()
+                    .map(|v| {
+                        let u = basis.motion(x, v);
+                        p.normal[0] * u[0] + p.normal[1] * u[1]
+                    })
+                    .collect()
+            })
+            .collect();
+        FloatingModes {
+            range,
+            body: interface.points.iter().map(|p| p.body).collect(),
+            rho,
+            load,
+        }
+    }
+
+    fn len(&self) -> usize {
+        self.load.len()
+    }
+
+    /// Moves the bodies rigidly into balance; returns the number of Newton steps.
+    fn correct(&self, interface: &Interface, un: &mut [f64], t: &mut [f64]) -> usize {
+        if self.load.is_empty() {
+            return 0;
+        }
+        let mut s = vec![0.0; un.len()];
+        interface.sum_normal(un, &mut s);
+        let mut c = vec![0.0; self.len()];
+        let mut f = self.residual(interface, &s, &c);
+        let scale = self.force_scale(interface, &s);
+        let mut steps = 0;
+        while steps < MAX_NEWTON && norm(&f) > BALANCE_TOL * scale {
+            steps += 1;
+            let Some(delta) = self.newton_step(interface, &s, &c, &f) else {
+                break;
+            };
+            let Some((c_new, f_new)) = self.line_search(interface, &s, &c, &f, &delta) else {
+                break;
+            };
+            (c, f) = (c_new, f_new);
+        }
+        for (j, p) in interface.points.iter().enumerate() {
+            let du = self.own_shift(j, &c);
+            un[j] += du;
+            t[j] += p.weight / p.theta * du;
+        }
+        steps
+    }
+
+    /// ρ_j · c_{b(j)}: the normal motion of point j.
+    fn own_shift(&self, j: usize, c: &[f64]) -> f64 {
+        let cb = &c[self.range[self.body[j]].clone()];
+        self.rho[j].iter().zip(cb).map(|(r, x)| r * x).sum()
+    }
+
+    /// Δs_j(c).
+    fn shift(&self, interface: &Interface, j: usize, c: &[f64]) -> f64 {
+        self.own_shift(j, c)
+            + interface.points[j]
+                .partner
+                .iter()
+                .map(|&(k, ck)| ck * self.own_shift(k, c))
+                .sum::<f64>()
+    }
+
+    /// F(c), one entry per coarse unknown.
+    fn residual(&self, interface: &Interface, s: &[f64], c: &[f64]) -> Vec<f64> {
+        let mut f = self.load.clone();
+        for (j, p) in interface.points.iter().enumerate() {
+            let r = self.range[p.body].clone();
+            if r.is_empty() {
+                continue;
+            }
+            let force = p.weight * p.pressure(s[j] + self.shift(interface, j, c));
+            for (q, &rho) in r.zip(&self.rho[j]) {
+                f[q] += force * rho;
+            }
+        }
+        f
+    }
+
+    /// Size of the forces involved: applied loads and contact forces of the floating bodies.
+    fn force_scale(&self, interface: &Interface, s: &[f64]) -> f64 {
+        let contact: f64 = interface
+            .points
+            .iter()
+            .enumerate()
+            .filter(|(_, p)| !self.range[p.body].is_empty())
+            .map(|(j, p)| (p.weight * p.pressure(s[j])).abs())
+            .sum();
+        norm(&self.load) + contact + f64::MIN_POSITIVE
+    }
+
+    /// The minimum-norm Newton step J δ = −F for the generalised Jacobian at `c`.
+    fn newton_step(
+        &self,
+        interface: &Interface,
+        s: &[f64],
+        c: &[f64],
+        f: &[f64],
+    ) -> Option<Vec<f64>> {
+        let n = self.len();
+        let jac = self.jacobian(interface, s, c);
+        // Column scaling, then (ĴᵀĴ + μI) y = −ĴᵀF, δ = S y.
+        let col: Vec<f64> = (0..n)
+            .map(|i| {
+                let l = (0..n).map(|r| jac[(r, i)].powi(2)).sum::<f64>().sqrt();
+                if l > 0.0 {
+                    1.0 / l
+                } else {
+                    1.0
+                }
+            })
+            .collect();
+        let js = Mat::<f64>::from_fn(n, n, |r, i| jac[(r, i)] * col[i]);
+        let mut normal = js.transpose() * &js;
+        for i in 0..n {
+            normal[(i, i)] += 1e-12;
+        }
+        let rhs = Mat::<f64>::from_fn(n, 1, |i, _| -(0..n).map(|r| js[(r, i)] * f[r]).sum::<f64>());
+        let llt = normal.llt(Side::Lower).ok()?;
+        let y = faer::prelude::Solve::solve(&llt, &rhs);
+        let delta: Vec<f64> = (0..n).map(|i| col[i] * y[(i, 0)]).collect();
+        delta.iter().all(|d| d.is_finite()).then_some(delta)
+    }
+
+    /// ∂F/∂c on the closed points (all partnered points for a body with none closed).
+    fn jacobian(&self, interface: &Interface, s: &[f64], c: &[f64]) -> Mat<f64> {
+        let n = self.len();
+        let closed: Vec<bool> = interface
+            .points
+            .iter()
+            .enumerate()
+            .map(|(j, p)| p.overlap(s[j] + self.shift(interface, j, c)) < 0.0)
+            .collect();
+        let mut any_closed = vec![false; self.range.len()];
+        for (j, p) in interface.points.iter().enumerate() {
+            any_closed[p.body] |= closed[j];
+        }
+        let mut jac = Mat::<f64>::zeros(n, n);
+        for (j, p) in interface.points.iter().enumerate() {
+            let rows = self.range[p.body].clone();
+            let used = closed[j] || (!any_closed[p.body] && p.has_partner());
+            if rows.is_empty() || !used {
+                continue;
+            }
+            let k = p.weight / p.theta;
+            // ∂Δs_j/∂c: own modes, then the partner points' modes.
+            let mut grad: Vec<(usize, f64)> = self.range[p.body]
+                .clone()
+                .zip(self.rho[j].iter().copied())
+                .collect();
+            for &(pk, ck) in &p.partner {
+                let cols = self.range[self.body[pk]].clone();
+                grad.extend(cols.zip(self.rho[pk].iter().map(|r| ck * r)));
+            }
+            for (row, &rho) in rows.zip(&self.rho[j]) {
+                for &(col, g) in &grad {
+                    jac[(row, col)] -= k * rho * g;
+                }
+            }
+        }
+        jac
+    }
+
+    /// Backtracking on ‖F‖ along `delta`; None if no step length decreases it.
+    fn line_search(
+        &self,
+        interface: &Interface,
+        s: &[f64],
+        c: &[f64],
+        f: &[f64],
+        delta: &[f64],
+    ) -> Option<(Vec<f64>, Vec<f64>)> {
+        let f0 = norm(f);
+        let mut alpha = 1.0;
+        for _ in 0..40 {
+            let trial: Vec<f64> = c.iter().zip(delta).map(|(x, d)| x + alpha * d).collect();
+            let ft = self.residual(interface, s, &trial);
+            if norm(&ft) < (1.0 - 1e-4 * alpha) * f0 {
+                return Some((trial, ft));
+            }
+            alpha *= 0.5;
+        }
+        None
+    }
+}
+
+fn norm(v: &[f64]) -> f64 {
+    v.iter().map(|x| x * x).sum::<f64>().sqrt()
+}
