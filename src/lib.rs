@@ -8,3 +8,5 @@
 pub use contactdd_core as fem;
 pub use contactdd_ddm as ddm;
 pub use contactdd_io as io;
+
+pub mod cases;
