@@ -9,7 +9,7 @@ use contactdd_core::{
 use contactdd_ddm::benchmark::Notch;
 use contactdd_ddm::iteration::iterate;
 use contactdd_ddm::{
-    prepare, solve, sweep, ContactPair, Gamma, Hooks, Method, Model, Penalty, Settings,
+    prepare, solve, sweep, CoarseMode, ContactPair, Gamma, Hooks, Method, Model, Penalty, Settings,
 };
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion};
 
@@ -155,5 +155,31 @@ fn threads(c: &mut Criterion) {
     group.finish();
 }
 
-criterion_group!(benches, notch, threads);
+/// A column of floating blocks (`contactdd::cases::column`, c = 0.5, tolerance 1e−6): the solve
+/// after setup with the default two-level iteration, against the one-level iteration where it
+/// converges (8 blocks; from 16 blocks on it loses contact).
+fn two_level(c: &mut Criterion) {
+    let mut group = c.benchmark_group("column");
+    group.sample_size(10);
+    let one_level = Settings {
+        coarse: CoarseMode::Off,
+        max_iter: 5000,
+        ..Settings::default()
+    };
+    for n in [8, 64] {
+        let model = contactdd::cases::column(n, 0.5);
+        let prepared = prepare(&model).expect("prepare");
+        group.bench_function(BenchmarkId::new("two_level_solve", n), |b| {
+            b.iter(|| solve(&model, &prepared, &Settings::default(), Hooks::default()))
+        });
+        if n == 8 {
+            group.bench_function(BenchmarkId::new("one_level_solve", n), |b| {
+                b.iter(|| solve(&model, &prepared, &one_level, Hooks::default()))
+            });
+        }
+    }
+    group.finish();
+}
+
+criterion_group!(benches, notch, threads, two_level);
 criterion_main!(benches);

@@ -17,7 +17,7 @@ use pyo3::types::{PyDict, PyList};
 
 use contactdd_core::{Order, Plane};
 use contactdd_ddm::benchmark::Notch;
-use contactdd_ddm::{Gamma, Hooks, Method, SetupError};
+use contactdd_ddm::{Gamma, Hooks, Method, Settings, SetupError};
 
 mod convert;
 mod error;
@@ -328,11 +328,13 @@ fn notch_benchmark(nx: usize, ny: usize, order: &str) -> PyResult<Problem> {
     }
     p.bodies = model.bodies;
     p.pairs = model.pairs;
-    p.settings.method = Method::NewtonKurchatov;
-    p.settings.gamma = Gamma::Constant(0.5);
-    p.settings.tol = 1e-3;
-    p.settings.u0 = 1e-4;
-    p.settings.u_prev = 2e-4;
+    // The paper's one-level iteration, as in examples/notch.toml.
+    p.settings = Settings {
+        tol: 1e-3,
+        u0: 1e-4,
+        u_prev: 2e-4,
+        ..Settings::paper(Method::NewtonKurchatov, Gamma::Constant(0.5))
+    };
     Ok(p)
 }
 

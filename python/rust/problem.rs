@@ -95,6 +95,7 @@ impl Overrides {
             u0: self.u0,
             u_prev: self.u_prev,
             threads: self.threads,
+            ..SolverSpec::default()
         };
         setup::settings(&spec, base).map_err(setup_error)
     }

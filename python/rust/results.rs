@@ -194,6 +194,7 @@ fn stop_name(stop: &Stop) -> &'static str {
         Stop::MaxIterations => "max-iterations",
         Stop::Diverged { .. } => "diverged",
         Stop::Interrupted => "interrupted",
+        Stop::Stalled { .. } => "stalled",
     }
 }
 

@@ -83,6 +83,7 @@ fn cell(run: &SweepRun) -> String {
         Stop::Converged => run.iterations.to_string(),
         Stop::MaxIterations => "max".into(),
         Stop::Interrupted => "int".into(),
+        Stop::Stalled { .. } => "stall".into(),
         Stop::Diverged { .. } => format!("div@{}", run.iterations),
     }
 }

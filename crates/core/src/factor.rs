@@ -307,16 +307,6 @@ impl FactoredBody {
             .collect()
     }
 
-    /// The dense lower Cholesky factor `L₂₂` of the Schur complement on the free interface DOFs,
-    /// or a zero matrix where [`FactoredBody::schur_factor`] fails.
-    ///
-    /// Kept until its caller in `contactdd-ddm` uses [`FactoredBody::schur_factor`].
-    pub fn interface_schur_factor(&self) -> Mat<f64> {
-        let m = self.interface.len();
-        self.schur_factor()
-            .unwrap_or_else(|_| Mat::<f64>::zeros(m, m))
-    }
-
     /// The dense lower Cholesky factor `L₂₂` of the Schur complement on the free interface DOFs
     /// (ordered as [`FactoredBody::interface_index`] says); 0 × 0 without interface DOFs.
     ///

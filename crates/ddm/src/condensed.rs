@@ -90,7 +90,7 @@ impl CondensedBody {
         op.factorize(&additions)?;
 
         // Y = L₂₂⁻¹ N on the free interface DOFs, C₀ = Yᵀ Y.
-        let l22 = op.interface_schur_factor();
+        let l22 = op.schur_factor()?;
         let index = op.interface_index(&interface);
         let pos: std::collections::HashMap<usize, Option<usize>> =
             interface.iter().copied().zip(index).collect();
@@ -134,16 +134,6 @@ impl CondensedBody {
     /// True if the body has no contact points.
     pub fn is_empty(&self) -> bool {
         self.nodes.is_empty()
-    }
-
-    /// Reference spring stiffness w_j/θ_j.
-    pub fn d0(&self) -> &[f64] {
-        &self.d0
-    }
-
-    /// f₀ = Nᵀ K₀⁻¹ f.
-    pub fn f0(&self) -> &[f64] {
-        &self.f0
     }
 
     /// The factorised operator.

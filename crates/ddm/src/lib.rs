@@ -5,9 +5,10 @@
 //! elasticity problem with Robin conditions on its contact zones, in parallel, followed by a
 //! relaxation with parameter γ. Five Robin coefficient rules are available ([`Method`]).
 //!
-//! Data flow: problem description ([`problem`], plain serde types) → [`setup`] → [`Model`] →
-//! [`solver::prepare`] (contact geometry, per-body factorisation and condensation) →
-//! [`iteration`] → [`Solution`] → [`output`].
+//! Data flow: a problem description (the `contactdd-io` crate reads files) → [`Model`] →
+//! [`solver::prepare`] (contact geometry, per-body factorisation and condensation, the coarse
+//! space) → [`iteration`] (parallel [`robin_sweep`]s, [`coarse`] correction, relaxation or
+//! [`anderson`] acceleration) → [`Solution`]. This crate reads and writes no file format.
 
 pub mod anderson;
 pub mod benchmark;

@@ -40,11 +40,6 @@ impl Method {
         }
     }
 
-    /// True for the two-point methods, which also use u^{k−1}.
-    pub fn is_two_point(self) -> bool {
-        matches!(self, Method::NewtonChord | Method::NewtonKurchatov)
-    }
-
     /// φ^k at one contact point with initial gap `d`, sums `s` = s^k and `s_prev` = s^{k−1}.
     pub fn phi(self, d: f64, s: f64, s_prev: f64) -> f64 {
         let chi = if d - s < 0.0 { 1.0 } else { 0.0 };

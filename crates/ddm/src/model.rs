@@ -1,6 +1,6 @@
 //! The resolved multibody contact model: bodies (mesh, material, supports, loads) and contact
-//! pairs. This is solver input built by [`crate::setup`] from a problem description, or directly in
-//! code.
+//! pairs. This is solver input, built from a problem file by the `contactdd-io` crate or directly
+//! in code.
 
 use contactdd_core::{ElasticBody, Material, Plane};
 

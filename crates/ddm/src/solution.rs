@@ -6,7 +6,7 @@ use contactdd_core::post::stresses;
 use contactdd_core::Mesh;
 
 use crate::contact::Interface;
-use crate::iteration::{Breakdown, Record, Stop};
+use crate::iteration::{Accelerator, Breakdown, CoarseMode, Record, Stop};
 use crate::method::Method;
 use crate::model::Model;
 use crate::relaxation::Gamma;
@@ -92,6 +92,13 @@ pub struct Solution {
     pub bodies: Vec<BodyResult>,
     /// Per-pair contact results.
     pub contact: Vec<PairResult>,
+    /// Accelerator used.
+    pub accelerator: Accelerator,
+    /// Coarse mode used.
+    pub coarse: CoarseMode,
+    /// Per body, the equilibrium residual: the contact forces the fields carry against those of
+    /// the reported pressures, relative to the total contact force ([`crate::solver::equilibrium`]).
+    pub equilibrium: Vec<f64>,
     /// Wall time per phase, seconds.
     pub timing: BTreeMap<String, f64>,
 }
@@ -121,6 +128,10 @@ pub fn stop_message(
             ))
         }
         Stop::Interrupted => Some(format!("interrupted after {} iterations", history.len())),
+        Stop::Stalled { residual, limit } => Some(format!(
+            "stalled: after {} iterations the change is below the tolerance {tol:.1e}, but the contact forces that the fields carry differ from those of the contact pressures by {residual:.2e} of the total contact force (more than equilibrium-tol = {limit:.1e}); the iteration was still far from its fixed point: use a tighter tol, a larger gamma or gamma = \"auto\"",
+            history.len()
+        )),
         Stop::Diverged {
             body: b,
             iteration,
@@ -156,6 +167,7 @@ pub fn short_reason(model: &Model, stop: &Stop) -> String {
         Stop::Converged => String::new(),
         Stop::MaxIterations => "max iterations".into(),
         Stop::Interrupted => "interrupted".into(),
+        Stop::Stalled { .. } => "stalled (out of equilibrium)".into(),
         Stop::Diverged {
             body,
             iteration,

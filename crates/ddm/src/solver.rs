@@ -80,6 +80,12 @@ pub fn solve(
             settings.tol
         )));
     }
+    if settings.equilibrium_tol.is_nan() || settings.equilibrium_tol <= 0.0 {
+        return Err(SetupError::Solver(format!(
+            "equilibrium-tol must be positive, got {}",
+            settings.equilibrium_tol
+        )));
+    }
     if let crate::relaxation::Gamma::Constant(g) = settings.gamma {
         if !(g > 0.0 && g.is_finite()) {
             return Err(SetupError::Solver(format!(
@@ -106,23 +112,75 @@ pub fn solve(
     timing.insert("recover".into(), t_recover);
     timing.insert("post".into(), t_post);
     let theta = model.thetas();
+    let equilibrium = equilibrium(&prepared.interface, &outcome.un, &outcome.t_load);
+    // A NaN residual wins the fold: a non-finite result is out of equilibrium too.
+    let worst = equilibrium.iter().fold(0.0f64, |m, &e| {
+        if e.is_nan() || m.is_nan() {
+            f64::NAN
+        } else {
+            m.max(e)
+        }
+    });
+    let stop = match outcome.stop {
+        Stop::Converged if worst.is_nan() || worst > settings.equilibrium_tol => Stop::Stalled {
+            residual: worst,
+            limit: settings.equilibrium_tol,
+        },
+        stop => stop,
+    };
     Ok(Solution {
-        converged: outcome.stop == Stop::Converged,
+        converged: stop == Stop::Converged,
         message: stop_message(
-            &outcome.stop,
+            &stop,
             model,
             settings.method,
             &outcome.history,
             settings.tol,
         ),
-        stop: outcome.stop,
+        stop,
         iterations: outcome.iterations,
         method: settings.method,
         gamma: settings.gamma,
+        accelerator: settings.accelerator,
+        coarse: settings.coarse,
         theta,
         history: outcome.history,
         bodies,
         contact,
+        equilibrium,
         timing,
     })
+}
+
+/// Per body, the equilibrium residual of the result: the contact forces that the recovered field
+/// carries (T − D₀U at every contact point, since K u = f + N (T − D₀ Nᵀu)) against the penalty
+/// forces w σ_n(s) of the reported pressures, ‖·‖₂ over the body's points relative to ‖w σ_n‖₂
+/// over all points. Zero at a fixed point of the iteration, whatever stopped it.
+pub fn equilibrium(interface: &Interface, un: &[f64], t_load: &[f64]) -> Vec<f64> {
+    let mut s = vec![0.0; un.len()];
+    interface.sum_normal(un, &mut s);
+    let force = |j: usize| {
+        let p = &interface.points[j];
+        p.weight * p.pressure(s[j])
+    };
+    let total = (0..un.len()).map(|j| force(j).powi(2)).sum::<f64>().sqrt();
+    interface
+        .body_range
+        .iter()
+        .map(|range| {
+            let residual = range
+                .clone()
+                .map(|j| {
+                    let p = &interface.points[j];
+                    (t_load[j] - p.weight / p.theta * un[j] - force(j)).powi(2)
+                })
+                .sum::<f64>()
+                .sqrt();
+            if residual == 0.0 {
+                0.0
+            } else {
+                residual / total
+            }
+        })
+        .collect()
 }

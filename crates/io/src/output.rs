@@ -16,12 +16,14 @@
 //!
 //! | key         | value                                                                      |
 //! |-------------|----------------------------------------------------------------------------|
-//! | `converged` | true if every body met the tolerance                                       |
+//! | `converged` | true if every body met the tolerance and the result is in equilibrium      |
 //! | `iterations`| iterations taken (m)                                                       |
 //! | `method`    | method name (`newton-kurchatov`, …)                                         |
 //! | `gamma`     | the constant γ, or `"auto"`                                                |
 //! | `theta`     | penalty θ per contact pair                                                 |
 //! | `message`   | `null` when converged, else why not                                        |
+//! | `equilibrium` | per body, the equilibrium residual (contact forces of the fields against those of the pressures, relative to the total contact force) |
+//! | `accelerator`, `coarse` | the accelerator and coarse mode used                           |
 //! | `history`   | per iteration `{k, gamma, rel_change, active, contact_force}` (per body)   |
 //! | `bodies`    | per body `{name, nodes, elements, dofs, order, applied_load}`               |
 //! | `contact`   | per pair `{name, bodies, x, y, gap, pressure, status, force}`              |
@@ -102,6 +104,9 @@ pub fn summary_json(model: &Model, sol: &Solution) -> Value {
         "gamma": gamma_json(sol.gamma),
         "theta": json_numbers(&sol.theta),
         "message": sol.message,
+        "equilibrium": json_numbers(&sol.equilibrium),
+        "accelerator": sol.accelerator.to_string(),
+        "coarse": sol.coarse.to_string(),
         "history": history,
         "bodies": bodies_json(model),
         "contact": contact_json(&sol.contact),

@@ -273,6 +273,10 @@ pub struct SolverSpec {
     /// Stopping tolerance ε_u > 0 (default 1e-6).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub tol: Option<f64>,
+    /// Largest equilibrium residual of a converged result, relative to the total contact force
+    /// (default 1e-2).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub equilibrium_tol: Option<f64>,
     /// Iteration cap ≥ 1 (default 500).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub max_iter: Option<usize>,

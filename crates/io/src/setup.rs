@@ -194,6 +194,15 @@ pub fn settings(spec: &SolverSpec, base: &Settings) -> Result<Settings, SetupErr
         }
         s.tol = tol;
     }
+    if let Some(e) = spec.equilibrium_tol {
+        if !(e.is_finite() && e > 0.0) {
+            return Err(solver_error(
+                "equilibrium-tol",
+                format!("must be a positive number, got {e}"),
+            ));
+        }
+        s.equilibrium_tol = e;
+    }
     if let Some(max_iter) = spec.max_iter {
         if max_iter == 0 {
             return Err(solver_error("max-iter", "must be at least 1, got 0"));
