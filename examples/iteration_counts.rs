@@ -34,6 +34,17 @@ fn variants() -> Vec<(&'static str, Settings)> {
             }),
         ),
         (
+            "anderson+chains",
+            tight(Settings {
+                method: Method::ActiveSet,
+                gamma: Gamma::Constant(1.0),
+                accelerator: Accelerator::Anderson {
+                    depth: ANDERSON_DEPTH,
+                },
+                ..Settings::default()
+            }),
+        ),
+        (
             "anderson",
             tight(Settings {
                 method: Method::ActiveSet,
@@ -41,6 +52,7 @@ fn variants() -> Vec<(&'static str, Settings)> {
                 accelerator: Accelerator::Anderson {
                     depth: ANDERSON_DEPTH,
                 },
+                coarse: CoarseMode::Off,
                 ..Settings::default()
             }),
         ),

@@ -54,6 +54,9 @@ pub fn solve(args: SolveArgs) -> Result<Exit> {
     }
     if let Some(a) = args.accelerator {
         settings.accelerator = a;
+        if a != Accelerator::None {
+            settings.coarse = CoarseMode::Off;
+        }
     }
     if let Some(c) = args.coarse {
         settings.coarse = c;

@@ -51,6 +51,16 @@ impl RigidBasis {
     }
 }
 
+/// A free mode in words: the basis modes it mostly consists of, e.g. "translation in y".
+pub fn describe(v: &[f64; NUM_MODES]) -> String {
+    let names = ["translation in x", "translation in y", "rotation"];
+    (0..NUM_MODES)
+        .filter(|&i| v[i].abs() > 0.3)
+        .map(|i| names[i])
+        .collect::<Vec<_>>()
+        .join(" + ")
+}
+
 /// The rigid motions that supports and springs (node, unit direction) leave free, as orthonormal
 /// coefficient vectors of the [`RigidBasis`] of `mesh` (empty if the body is held).
 pub fn free_modes(

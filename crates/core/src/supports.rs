@@ -2,7 +2,7 @@
 
 use crate::error::SupportError;
 use crate::mesh::Mesh;
-use crate::rigid::free_modes;
+use crate::rigid::{describe, free_modes};
 
 /// Which displacement component a support prescribes.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
@@ -127,15 +127,8 @@ pub fn free_rigid_modes(
     constraints: &Constraints,
     springs: &[(usize, [f64; 2])],
 ) -> Vec<String> {
-    let names = ["translation in x", "translation in y", "rotation"];
     free_modes(mesh, constraints, springs)
         .iter()
-        .map(|v| {
-            let parts: Vec<&str> = (0..3)
-                .filter(|&i| v[i].abs() > 0.3)
-                .map(|i| names[i])
-                .collect();
-            parts.join(" + ")
-        })
+        .map(describe)
         .collect()
 }

@@ -18,7 +18,9 @@ use std::time::Instant;
 use faer::prelude::Solve;
 use faer::sparse::{SparseColMat, Triplet};
 use faer::Mat;
-use nalgebra::{DMatrix, Matrix3, SymmetricEigen};
+use nalgebra::{DMatrix, SymmetricEigen};
+
+use contactdd_core::rigid::{describe, free_modes, RigidBasis};
 
 use crate::contact::Interface;
 use crate::error::SetupError;
@@ -178,58 +180,22 @@ fn contact_terms(
     (trip, rhs)
 }
 
-/// Per body, the rigid motions its supports leave free, as global vectors.
+/// Per body, the rigid motions its supports leave free (the core's rigid basis), as global
+/// vectors.
 fn rigid_candidates(model: &Model, num: &Numbering) -> (Vec<Vec<f64>>, Vec<String>) {
     let mut out = Vec::new();
     let mut names = Vec::new();
     for (b, body) in model.bodies.iter().enumerate() {
-        let p = body.mesh.nodes();
-        let nn = p.len() as f64;
-        let c = p
-            .iter()
-            .fold([0.0, 0.0], |s, x| [s[0] + x[0] / nn, s[1] + x[1] / nn]);
-        let h = body.mesh.bounding_box_diameter();
-        let mode = |d: usize| -> [f64; 3] {
-            let v = d / 2;
-            let (dx, dy) = ((p[v][0] - c[0]) / h, (p[v][1] - c[1]) / h);
-            if d % 2 == 0 {
-                [1.0, 0.0, -dy]
-            } else {
-                [0.0, 1.0, dx]
-            }
-        };
-        let mut gram = Matrix3::<f64>::zeros();
-        for (d, _) in body.constraints.fixed() {
-            let r = mode(d);
-            for i in 0..3 {
-                for j in 0..3 {
-                    gram[(i, j)] += r[i] * r[j];
-                }
-            }
-        }
-        let eig = SymmetricEigen::new(gram);
-        let scale = eig.eigenvalues.max().max(1.0);
-        for k in 0..3 {
-            if eig.eigenvalues[k] > 1e-10 * scale {
-                continue;
-            }
-            let coef = eig.eigenvectors.column(k);
+        let basis = RigidBasis::new(&body.mesh);
+        for v in free_modes(&body.mesh, &body.constraints, &[]) {
             let mut z = vec![0.0; num.n];
             for (d, idx) in num.index[b].iter().enumerate() {
                 if let Some(i) = idx {
-                    let m = mode(d);
-                    z[*i] = coef[0] * m[0] + coef[1] * m[1] + coef[2] * m[2];
+                    z[*i] = basis.motion(body.mesh.nodes()[d / 2], &v)[d % 2];
                 }
             }
-            let label = ["translation in x", "translation in y", "rotation"]
-                .iter()
-                .zip(coef.iter())
-                .filter(|(_, c)| c.abs() > 0.3)
-                .map(|(n, _)| *n)
-                .collect::<Vec<_>>()
-                .join(" + ");
             out.push(z);
-            names.push(format!("{label} of '{}'", body.name));
+            names.push(format!("{} of '{}'", describe(&v), body.name));
         }
     }
     (out, names)

@@ -219,7 +219,7 @@ pub fn pair_results(model: &Model, interface: &Interface, un: &[f64]) -> Vec<Pai
         r.x.push(x[0]);
         r.y.push(x[1]);
         r.gap.push(gap);
-        r.pressure.push(gap.min(0.0) / p.theta);
+        r.pressure.push(p.pressure(s[j]));
         r.closed.push(gap < 0.0);
         r.weight.push(p.weight);
         r.nx.push(p.normal[0]);
@@ -247,7 +247,7 @@ pub fn body_results(
             let mut pressure = vec![0.0; body.mesh.num_nodes()];
             for (j, p) in interface.points.iter().enumerate() {
                 if p.body == b && p.has_partner() {
-                    let sn = (p.gap - s[j]).min(0.0) / p.theta;
+                    let sn = p.pressure(s[j]);
                     pressure[p.node] = f64::min(pressure[p.node], sn);
                 }
             }

@@ -227,7 +227,8 @@ pub fn settings(spec: &SolverSpec, base: &Settings) -> Result<Settings, SetupErr
 }
 
 /// The accelerator and the coarse correction. A constant γ without an `accelerator` or `coarse`
-/// key asks for the paper's one-level iteration, so those keys then default to `none` and `off`.
+/// key asks for the paper's one-level iteration, so those keys then default to `none` and `off`;
+/// with `accelerator = "anderson"`, `coarse` defaults to `off`.
 fn iteration_kind(spec: &SolverSpec, s: &mut Settings) {
     let paper = matches!(spec.gamma, Some(GammaSpec::Value(_)));
     s.accelerator = match spec.accelerator {
@@ -242,7 +243,9 @@ fn iteration_kind(spec: &SolverSpec, s: &mut Settings) {
         Some(CoarseSpec::Off) => CoarseMode::Off,
         Some(CoarseSpec::Chains) => CoarseMode::Chains,
         Some(CoarseSpec::All) => CoarseMode::All,
-        None if paper => CoarseMode::Off,
+        // Anderson's secant columns and the coarse step's rigid jumps do not mix well (measured:
+        // docs/two-level.md), so an accelerated solve runs without coarse correction unless asked.
+        None if paper || s.accelerator != Accelerator::None => CoarseMode::Off,
         None => s.coarse,
     };
 }

@@ -768,3 +768,43 @@ fn errors_keep_their_typed_cause() {
         other => panic!("expected a TOML error, got {other:?}"),
     }
 }
+
+/// Which iteration a `[solver]` table selects: nothing → the two-level default; a constant γ
+/// alone → the paper's one-level iteration; `auto` keeps the coarse correction; Anderson runs
+/// without it unless asked; explicit keys win.
+#[test]
+fn solver_keys_select_the_iteration() {
+    let kind = |solver: &str| {
+        let text = format!("{SMALL}\n[solver]\n{solver}\n");
+        let s = load_str(&text, "small.toml", Path::new("."))
+            .expect("valid")
+            .settings;
+        (s.accelerator, s.coarse)
+    };
+    let anderson = Accelerator::Anderson {
+        depth: contactdd_ddm::iteration::ANDERSON_DEPTH,
+    };
+    assert_eq!(kind(""), (Accelerator::None, CoarseMode::Chains));
+    assert_eq!(kind("gamma = 0.5"), (Accelerator::None, CoarseMode::Off));
+    assert_eq!(
+        kind("gamma = \"auto\""),
+        (Accelerator::None, CoarseMode::Chains)
+    );
+    assert_eq!(
+        kind("accelerator = \"anderson\""),
+        (anderson, CoarseMode::Off)
+    );
+    assert_eq!(
+        kind("gamma = 0.5\ncoarse = \"all\""),
+        (Accelerator::None, CoarseMode::All)
+    );
+    assert_eq!(
+        kind("accelerator = \"anderson\"\ncoarse = \"chains\""),
+        (anderson, CoarseMode::Chains)
+    );
+    let bad = format!("{SMALL}\n[solver]\ncoarse = \"some\"\n");
+    let err = load_str(&bad, "small.toml", Path::new("."))
+        .unwrap_err()
+        .to_string();
+    assert!(err.contains("coarse"), "{err}");
+}
