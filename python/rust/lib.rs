@@ -296,7 +296,7 @@ fn monolithic(py: Python<'_>, problem: &Bound<'_, Problem>) -> PyResult<Py<Monol
     Py::new(py, MonolithicResult::new(py, model, sol)?)
 }
 
-/// The two-body notch benchmark of the paper (method.md §5) as a :class:`Problem`.
+/// The two-body notch benchmark of the paper (docs/method.md §5) as a :class:`Problem`.
 ///
 /// Two 4 × 1 cm blocks (``lower``, ``upper``), pressed together by q = 0.01·E, with a notch of
 /// depth 0.05 cm in the gap at the symmetry line x = 4; contact pair ``notch``. The default

@@ -138,7 +138,7 @@ pub fn edge_shape(order: Order, t: f64) -> [f64; 3] {
 }
 
 /// Nodal quadrature weights of an edge of length `len` (trapezoid for P1, Simpson for P2), in the
-/// edge node order `a, b, [mid]`. These are the contact integration weights of method.md §4.
+/// edge node order `a, b, [mid]`. These are the contact integration weights of docs/method.md §4.
 pub fn edge_nodal_weights(order: Order, len: f64) -> [f64; 3] {
     match order {
         Order::P1 => [0.5 * len, 0.5 * len, 0.0],

@@ -1,4 +1,4 @@
-//! An example problem built in code: the paper's two-body notch benchmark (method.md §5), the
+//! An example problem built in code: the paper's two-body notch benchmark (docs/method.md §5), the
 //! problem of `examples/notch.toml` without reading a file (a test in `contactdd-io` checks that
 //! both give the same model and solution). Tests, benches, `examples/large_two_bodies.rs` and the
 //! Python module's `notch_benchmark()` use it; it also shows how to build a [`Model`] by hand.

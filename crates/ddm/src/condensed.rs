@@ -1,6 +1,6 @@
 //! A body condensed onto the normal displacements of its contact points.
 //!
-//! Each body's Robin problem (method.md §3) is
+//! Each body's Robin problem (docs/method.md §3) is
 //!   (K + N D Nᵀ) ũ = f + N r,   D = diag(φ_j w_j / θ),   r_j = (w_j/θ)(φ_j u^k_n,j + (d_j − s^k_j)⁻),
 //! where column j of N is the normal n_j at the node of contact point j. A floating body has a
 //! singular K, so we factor the *reference* operator K₀ = K + N D₀ Nᵀ with D₀ = diag(w_j/θ) (φ ≡ 1,

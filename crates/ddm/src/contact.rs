@@ -2,7 +2,7 @@
 //! the projection of every contact point onto the opposite body's contact boundary.
 //!
 //! Every body integrates the contact terms over its own contact zone with nodal quadrature
-//! (trapezoid weights for P1, Simpson for P2; method.md §4), so each node of a contact boundary is
+//! (trapezoid weights for P1, Simpson for P2; docs/method.md §4), so each node of a contact boundary is
 //! a *contact point* of its body. For a point x of body α, the ray x + t n_α(x) is intersected with
 //! the edges of the partner boundary of body β; the hit x' gives the initial gap
 //! d = t + d_profile(x) and the interpolation coefficients of β's normal displacement at x', so
@@ -56,7 +56,7 @@ impl ContactPoint {
         }
     }
 
-    /// The normal contact stress σ_n = (d − s)⁻/θ ≤ 0 (method.md §2) for the sum `s`.
+    /// The normal contact stress σ_n = (d − s)⁻/θ ≤ 0 (docs/method.md §2) for the sum `s`.
     pub fn pressure(&self, s: f64) -> f64 {
         self.overlap(s) / self.theta
     }

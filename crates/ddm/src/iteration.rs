@@ -1,4 +1,4 @@
-//! The domain decomposition iteration (method.md §3) on the condensed bodies.
+//! The domain decomposition iteration (docs/method.md §3) on the condensed bodies.
 //!
 //! The iterate lives on the interface: the normal displacements U of all contact points, plus the
 //! interface loads T that reproduce the full fields at the end. One iteration is one parallel

@@ -1,7 +1,7 @@
 //! # contactdd-ddm
 //!
 //! Frictionless unilateral contact of several linear elastic bodies by the penalty Robin domain
-//! decomposition of Prokopyshyn & Shakhno (see `method.md`): every body solves its own linear
+//! decomposition of Prokopyshyn & Shakhno (see `docs/method.md`): every body solves its own linear
 //! elasticity problem with Robin conditions on its contact zones, in parallel, followed by a
 //! relaxation with parameter γ. Five Robin coefficient rules are available ([`Method`]).
 //!

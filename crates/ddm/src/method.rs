@@ -1,9 +1,9 @@
-//! The five choices of the Robin coefficient φ^k (method.md §3).
+//! The five choices of the Robin coefficient φ^k (docs/method.md §3).
 
 use std::fmt;
 use std::str::FromStr;
 
-/// A domain decomposition method, named as in method.md.
+/// A domain decomposition method, named as in docs/method.md.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, serde::Serialize, serde::Deserialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum Method {
@@ -20,7 +20,7 @@ pub enum Method {
 }
 
 impl Method {
-    /// All methods, in the order of method.md.
+    /// All methods, in the order of docs/method.md.
     pub const ALL: [Method; 5] = [
         Method::Neumann,
         Method::Robin,

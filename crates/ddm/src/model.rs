@@ -11,7 +11,7 @@ use crate::profile::GapProfile;
 pub enum Penalty {
     /// θ given directly (length / stress units).
     Theta(f64),
-    /// The rod model of method.md §2: θ = c · h · (1/E*_α + 1/E*_β), which for equal materials is
+    /// The rod model of docs/method.md §2: θ = c · h · (1/E*_α + 1/E*_β), which for equal materials is
     /// θ = 2 c h (1 − ν²)/E in plane strain (2 c h / E in plane stress). `c` is dimensionless, `h` a
     /// characteristic body height.
     RodModel {

@@ -20,7 +20,7 @@ use std::fmt;
 /// A relaxation parameter choice.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Gamma {
-    /// The same γ every iteration (0 < γ ≤ 1 typically; method.md allows any γ > 0).
+    /// The same γ every iteration (0 < γ ≤ 1 typically; docs/method.md allows any γ > 0).
     Constant(f64),
     /// Safeguarded Aitken Δ² relaxation.
     Auto,

@@ -1,7 +1,7 @@
 //! One parallel Robin sweep: the domain decomposition step as a map of the interface state.
 //!
 //! Given the normal displacements U^k of all contact points (and their sums s^k, s^{k−1} across
-//! each pair), every body computes its Robin coefficients φ^k and right-hand side (method.md §3)
+//! each pair), every body computes its Robin coefficients φ^k and right-hand side (docs/method.md §3)
 //! and solves its condensed Robin problem. The output is the *unrelaxed* Robin solution: the normal
 //! displacements Ũ and the interface loads T̃ (so that the body's field is K₀⁻¹(f + N T̃)). The
 //! relaxation and the accelerators of [`crate::iteration`] combine these outputs.

@@ -5,7 +5,7 @@
 //! (`Model` + `Settings` of `contactdd_ddm`), validating every value and naming the
 //! key and the body or pair when something is wrong. Solver state never derives `Deserialize`.
 //!
-//! Keys are kebab-case and use the names of `method.md`. A complete file:
+//! Keys are kebab-case and use the names of `docs/method.md`. A complete file:
 //!
 //! ```toml
 //! name = "notch"                  # optional; default: the file stem
