@@ -278,7 +278,89 @@ fn contact_summary(interface: &Interface, un: &[f64], nb: usize) -> (Vec<usize>,
 /// How the sweeps' outputs become the next state.
 enum Update {
     Relax(Relaxation),
-    Anderson(Anderson),
+    Anderson {
+        memory: Anderson,
+        /// γ of the first step (and of steps without secant pairs).
+        first_gamma: f64,
+    },
+}
+
+/// Interface-sized work buffers of one solve.
+struct Buffers {
+    /// The sweep's outputs Ũ and T̃.
+    tilde: Vec<f64>,
+    t_tilde: Vec<f64>,
+    /// The proposed next state.
+    next: Vec<f64>,
+    /// The state before the coarse correction.
+    input: Vec<f64>,
+    input_t: Vec<f64>,
+}
+
+impl Update {
+    fn new(settings: &Settings) -> Update {
+        match settings.accelerator {
+            Accelerator::None => Update::Relax(Relaxation::new(settings.gamma)),
+            Accelerator::Anderson { depth } => Update::Anderson {
+                memory: Anderson::new(depth),
+                first_gamma: match settings.gamma {
+                    Gamma::Constant(g) => g,
+                    Gamma::Auto => 1.0,
+                },
+            },
+        }
+    }
+
+    /// Proposes the next normal displacements in `buf.next` (relaxed, or the sweep's output for
+    /// Anderson, whose stopping test is on the unrelaxed residual); returns the γ used.
+    fn propose(&self, u: &[f64], buf: &mut Buffers) -> f64 {
+        match self {
+            Update::Relax(relax) => {
+                let gamma = relax.gamma();
+                for j in 0..u.len() {
+                    buf.next[j] = gamma * buf.tilde[j] + (1.0 - gamma) * u[j];
+                }
+                gamma
+            }
+            Update::Anderson { .. } => {
+                buf.next.copy_from_slice(&buf.tilde);
+                1.0
+            }
+        }
+    }
+
+    /// The stopping test on the record's relative changes.
+    fn converged(&self, record: &Record, tol: f64) -> bool {
+        // With an adaptive γ a tiny step must not pass for convergence: the change is judged as
+        // if γ were at least the starting value (for a constant γ this is the paper's criterion).
+        let scale = match self {
+            Update::Relax(relax) => relax.convergence_scale(),
+            Update::Anderson { .. } => 1.0,
+        };
+        record.rel_change.iter().all(|&r| r * scale <= tol)
+    }
+
+    /// Makes `buf.next` and `t` the next state (Anderson: from the accelerated combination unless
+    /// the iteration has converged, when the sweep's output is the result).
+    fn commit(&mut self, gamma: f64, converged: bool, u: &[f64], t: &mut [f64], buf: &mut Buffers) {
+        match self {
+            Update::Relax(relax) => {
+                relax.update(u, &buf.next);
+                for j in 0..t.len() {
+                    t[j] = gamma * buf.t_tilde[j] + (1.0 - gamma) * t[j];
+                }
+            }
+            Update::Anderson { .. } if converged => t.copy_from_slice(&buf.t_tilde),
+            Update::Anderson {
+                memory,
+                first_gamma,
+            } => {
+                buf.next.copy_from_slice(&buf.input);
+                t.copy_from_slice(&buf.input_t);
+                memory.advance(&mut buf.next, t, &buf.tilde, &buf.t_tilde, *first_gamma);
+            }
+        }
+    }
 }
 
 /// Runs the iteration on a prepared model.
@@ -288,17 +370,15 @@ pub fn iterate(prepared: &Prepared, settings: &Settings, hooks: Hooks<'_>) -> Ou
     let (m, nb) = (interface.len(), prepared.bodies.len());
     let accelerated = settings.accelerator != Accelerator::None;
     let mut sweep = RobinSweep::new(interface, &prepared.bodies, settings.method, accelerated);
-    let mut update = match settings.accelerator {
-        Accelerator::None => Update::Relax(Relaxation::new(settings.gamma)),
-        Accelerator::Anderson { depth } => Update::Anderson(Anderson::new(depth)),
-    };
-    let first_gamma = match settings.gamma {
-        Gamma::Constant(g) => g,
-        Gamma::Auto => 1.0,
-    };
+    let mut update = Update::new(settings);
     let mut state = State::initial(prepared, settings);
-    let (mut tilde, mut t_tilde, mut next) = (vec![0.0; m], vec![0.0; m], vec![0.0; m]);
-    let (mut input, mut input_t) = (vec![0.0; m], vec![0.0; m]);
+    let mut buf = Buffers {
+        tilde: vec![0.0; m],
+        t_tilde: vec![0.0; m],
+        next: vec![0.0; m],
+        input: vec![0.0; m],
+        input_t: vec![0.0; m],
+    };
     let mut history = Vec::new();
     let mut stop = Stop::MaxIterations;
     let mut iterations = 0;
@@ -309,30 +389,24 @@ pub fn iterate(prepared: &Prepared, settings: &Settings, hooks: Hooks<'_>) -> Ou
             break;
         }
         iterations = k;
-        input.copy_from_slice(&state.u);
-        input_t.copy_from_slice(&state.t);
+        buf.input.copy_from_slice(&state.u);
+        buf.input_t.copy_from_slice(&state.t);
         if settings.coarse != CoarseMode::Off {
             prepared
                 .coarse
                 .correct(settings.coarse, interface, &mut state.u, &mut state.t);
             interface.sum_normal(&state.u, &mut state.s);
         }
-        let swept = sweep.apply(&state.u, &state.s, &state.s_prev, &mut tilde, &mut t_tilde);
-        let (gamma, rel_change, failed) = match &mut update {
-            Update::Relax(relax) => {
-                let gamma = relax.gamma();
-                for j in 0..m {
-                    next[j] = gamma * tilde[j] + (1.0 - gamma) * state.u[j];
-                }
-                let failed = first_breakdown(interface, swept, &next, &prepared.scale);
-                (gamma, relative_change(interface, &next, &input), failed)
-            }
-            Update::Anderson(_) => {
-                let failed = first_breakdown(interface, swept, &tilde, &prepared.scale);
-                (1.0, relative_change(interface, &tilde, &input), failed)
-            }
-        };
-        if let Some((body, reason)) = failed {
+        let swept = sweep.apply(
+            &state.u,
+            &state.s,
+            &state.s_prev,
+            &mut buf.tilde,
+            &mut buf.t_tilde,
+        );
+        let gamma = update.propose(&state.u, &mut buf);
+        if let Some((body, reason)) = first_breakdown(interface, swept, &buf.next, &prepared.scale)
+        {
             if let Update::Relax(relax) = &mut update {
                 if relax.restart() {
                     // Start over from the initial values with a smaller γ cap.
@@ -347,46 +421,21 @@ pub fn iterate(prepared: &Prepared, settings: &Settings, hooks: Hooks<'_>) -> Ou
             };
             break;
         }
-        let new_state = if accelerated { &tilde } else { &next };
-        let (active, contact_force) = contact_summary(interface, new_state, nb);
+        let (active, contact_force) = contact_summary(interface, &buf.next, nb);
         let record = Record {
             k,
             gamma,
-            rel_change,
+            rel_change: relative_change(interface, &buf.next, &buf.input),
             active,
             contact_force,
         };
         if let Some(f) = hooks.on_iteration {
             f(&record);
         }
-        let converged = match &mut update {
-            Update::Relax(relax) => {
-                // With an adaptive γ a tiny step must not pass for convergence: the change is
-                // judged as if γ were at least the starting value (for a constant γ this is the
-                // paper's criterion).
-                let scale = relax.convergence_scale();
-                let converged = record.rel_change.iter().all(|&r| r * scale <= settings.tol);
-                relax.update(&state.u, &next);
-                for j in 0..m {
-                    state.t[j] = gamma * t_tilde[j] + (1.0 - gamma) * state.t[j];
-                }
-                converged
-            }
-            Update::Anderson(acc) => {
-                let converged = record.rel_change.iter().all(|&r| r <= settings.tol);
-                if converged {
-                    next.copy_from_slice(&tilde);
-                    state.t.copy_from_slice(&t_tilde);
-                } else {
-                    next.copy_from_slice(&input);
-                    state.t.copy_from_slice(&input_t);
-                    acc.advance(&mut next, &mut state.t, &tilde, &t_tilde, first_gamma);
-                }
-                converged
-            }
-        };
+        let converged = update.converged(&record, settings.tol);
+        update.commit(gamma, converged, &state.u, &mut state.t, &mut buf);
         history.push(record);
-        state.advance(interface, &mut next);
+        state.advance(interface, &mut buf.next);
         if converged {
             stop = Stop::Converged;
             break;
