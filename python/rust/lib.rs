@@ -15,9 +15,10 @@ use std::time::Duration;
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList};
 
-use contactdd_core::{Order, Plane};
+use contactdd_core::Order;
 use contactdd_ddm::benchmark::Notch;
 use contactdd_ddm::{Gamma, Hooks, Method, Settings, SetupError};
+use contactdd_io::setup::ModelBuilder;
 
 mod convert;
 mod error;
@@ -322,12 +323,14 @@ fn notch_benchmark(nx: usize, ny: usize, order: &str) -> PyResult<Problem> {
         ..Notch::default()
     };
     let model = notch.model().map_err(setup_error)?;
-    let mut p = Problem::empty(&model.name, Plane::Strain);
-    if let Some(b) = model.bodies.first() {
-        p.materials.insert("steel".into(), b.material);
-    }
-    p.bodies = model.bodies;
-    p.pairs = model.pairs;
+    let materials = model
+        .bodies
+        .first()
+        .map(|b| ("steel".to_string(), b.material))
+        .into_iter()
+        .collect();
+    let name = model.name.clone();
+    let mut p = Problem::with_model(&name, ModelBuilder::from_model(model, materials));
     // The paper's one-level iteration, as in examples/notch.toml.
     p.settings = Settings {
         tol: 1e-3,
