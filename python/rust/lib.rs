@@ -25,7 +25,9 @@ mod error;
 mod problem;
 mod results;
 
-use error::{convergence_error, panic_error, setup_error, ContactddError, ConvergenceError};
+use error::{
+    convergence_error, io_error_type, panic_error, setup_error, ContactddError, ConvergenceError,
+};
 use problem::{gamma, gamma_to_py, GammaArg, Overrides, Problem};
 use results::{Body, Contact, MonolithicResult, SolveResult};
 
@@ -356,6 +358,7 @@ fn _contactdd(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(notch_benchmark, m)?)?;
     m.add("ContactddError", py.get_type::<ContactddError>())?;
     m.add("ConvergenceError", py.get_type::<ConvergenceError>())?;
+    m.add("ContactddIOError", io_error_type(py)?)?;
     m.add(
         "METHODS",
         Method::ALL.iter().map(|m| m.name()).collect::<Vec<_>>(),
