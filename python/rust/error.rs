@@ -1,17 +1,26 @@
-//! The Python exceptions of contactdd and the mapping of the Rust errors onto them.
+//! The Python exceptions of contactdd and the mapping of the Rust errors onto them, variant by
+//! variant:
 //!
-//! - every [`SetupError`](contactdd_ddm::SetupError) and [`LoadError`] (a bad problem file, bad
-//!   arrays, unknown names, a body that cannot be factorised) becomes `contactdd.ContactddError`, a `ValueError`, with the same message the
-//!   command line prints;
+//! - a file that cannot be read ([`LoadError::Io`], or a Gmsh mesh file named by a problem that
+//!   cannot be read) becomes `contactdd.ContactddIOError`, both a `ContactddError` and an
+//!   `OSError` (its `errno` is the system's, when there is one);
+//! - every other [`SetupError`](contactdd_ddm::SetupError) and [`LoadError`] (a bad problem file,
+//!   bad arrays, unknown names, a body that cannot be factorised) becomes
+//!   `contactdd.ContactddError`, a `ValueError`;
 //! - a solve that does not converge raises `contactdd.ConvergenceError`, a `RuntimeError`, whose
 //!   `result` attribute holds the partial result (see [`convergence_error`]);
 //! - a panic inside the solver (a bug) becomes a `RuntimeError` instead of reaching Python as a
 //!   `PanicException`.
+//!
+//! The message is always the one the command line prints.
 
-use pyo3::exceptions::{PyRuntimeError, PyValueError};
+use pyo3::exceptions::{PyOSError, PyRuntimeError, PyValueError};
 use pyo3::prelude::*;
+use pyo3::sync::PyOnceLock;
+use pyo3::types::{PyDict, PyTuple, PyType};
 use pyo3::{create_exception, PyErr};
 
+use contactdd_core::GmshError;
 use contactdd_io::LoadError;
 
 create_exception!(
@@ -33,9 +42,71 @@ create_exception!(
      exception."
 );
 
-/// A setup or load error as a `ContactddError`.
+const IO_ERROR_DOC: &str = "A problem file or a mesh file it names cannot be read.\n\n\
+     Both a :class:`ContactddError` and an ``OSError`` (``errno`` is set when the system gave \
+     one); the message is the one the command line prints.";
+
+/// `ContactddIOError(ContactddError, OSError)`, created once. `create_exception!` takes one base
+/// only, so the class is made by calling `type` with both.
+static IO_ERROR: PyOnceLock<Py<PyType>> = PyOnceLock::new();
+
+/// The `ContactddIOError` class.
+pub fn io_error_type(py: Python<'_>) -> PyResult<&Bound<'_, PyType>> {
+    IO_ERROR
+        .get_or_try_init(py, || {
+            let bases = PyTuple::new(
+                py,
+                [py.get_type::<ContactddError>(), py.get_type::<PyOSError>()],
+            )?;
+            let dict = PyDict::new(py);
+            dict.set_item("__module__", "contactdd")?;
+            dict.set_item("__doc__", IO_ERROR_DOC)?;
+            let class = py
+                .get_type::<PyType>()
+                .call1(("ContactddIOError", bases, dict))?;
+            Ok(class.cast_into::<PyType>()?.unbind())
+        })
+        .map(|t| t.bind(py))
+}
+
+/// The I/O error behind `e`, if `e` is a file that cannot be read.
+fn io_cause(e: &LoadError) -> Option<&std::io::Error> {
+    match e {
+        LoadError::Io { source, .. } => Some(source),
+        LoadError::Gmsh {
+            source: GmshError::Io { source, .. },
+            ..
+        } => Some(source),
+        LoadError::InFile { error, .. } => io_cause(error),
+        LoadError::Toml { .. } | LoadError::Gmsh { .. } | LoadError::Setup(_) => None,
+    }
+}
+
+/// A setup or load error as its Python exception: `ContactddIOError` for a file that cannot be
+/// read, `ContactddError` otherwise.
 pub fn setup_error(e: impl Into<LoadError>) -> PyErr {
-    ContactddError::new_err(e.into().to_string())
+    let e = e.into();
+    let message = e.to_string();
+    match io_cause(&e) {
+        None => ContactddError::new_err(message),
+        Some(io) => {
+            let errno = io.raw_os_error();
+            Python::attach(|py| os_error(py, message, errno))
+        }
+    }
+}
+
+/// A `ContactddIOError` with `message` and `errno`. Only `errno` is set, not `strerror` or
+/// `filename`: with those, `OSError.__str__` would replace the message by its own format.
+fn os_error(py: Python<'_>, message: String, errno: Option<i32>) -> PyErr {
+    let make = || -> PyResult<PyErr> {
+        let err = PyErr::from_value(io_error_type(py)?.call1((message.as_str(),))?);
+        if let Some(errno) = errno {
+            err.value(py).setattr("errno", errno)?;
+        }
+        Ok(err)
+    };
+    make().unwrap_or_else(|e| e)
 }
 
 /// Any displayable input error as a `ContactddError`.

@@ -15,16 +15,19 @@ use std::time::Duration;
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList};
 
-use contactdd_core::{Order, Plane};
+use contactdd_core::Order;
 use contactdd_ddm::benchmark::Notch;
 use contactdd_ddm::{Gamma, Hooks, Method, Settings, SetupError};
+use contactdd_io::setup::ModelBuilder;
 
 mod convert;
 mod error;
 mod problem;
 mod results;
 
-use error::{convergence_error, panic_error, setup_error, ContactddError, ConvergenceError};
+use error::{
+    convergence_error, io_error_type, panic_error, setup_error, ContactddError, ConvergenceError,
+};
 use problem::{gamma, gamma_to_py, GammaArg, Overrides, Problem};
 use results::{Body, Contact, MonolithicResult, SolveResult};
 
@@ -322,12 +325,14 @@ fn notch_benchmark(nx: usize, ny: usize, order: &str) -> PyResult<Problem> {
         ..Notch::default()
     };
     let model = notch.model().map_err(setup_error)?;
-    let mut p = Problem::empty(&model.name, Plane::Strain);
-    if let Some(b) = model.bodies.first() {
-        p.materials.insert("steel".into(), b.material);
-    }
-    p.bodies = model.bodies;
-    p.pairs = model.pairs;
+    let materials = model
+        .bodies
+        .first()
+        .map(|b| ("steel".to_string(), b.material))
+        .into_iter()
+        .collect();
+    let name = model.name.clone();
+    let mut p = Problem::with_model(&name, ModelBuilder::from_model(model, materials));
     // The paper's one-level iteration, as in examples/notch.toml.
     p.settings = Settings {
         tol: 1e-3,
@@ -353,6 +358,7 @@ fn _contactdd(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(notch_benchmark, m)?)?;
     m.add("ContactddError", py.get_type::<ContactddError>())?;
     m.add("ConvergenceError", py.get_type::<ConvergenceError>())?;
+    m.add("ContactddIOError", io_error_type(py)?)?;
     m.add(
         "METHODS",
         Method::ALL.iter().map(|m| m.name()).collect::<Vec<_>>(),

@@ -1,11 +1,11 @@
 //! `contactdd.Problem`: a contact problem read from a TOML file or built in code.
 //!
-//! The problem holds resolved solver input (the bodies, contact pairs and iteration settings of a
-//! [`Model`]), built and checked by the functions of `contactdd_io::setup` that resolve a problem
-//! file (`material`, `mesh`, `body_on_mesh`, `pair`, `settings`, `check_floating`), so a bad value
-//! gets the message a problem file would get. Supports, loads and gap profiles are Python dicts
-//! deserialized into the problem-file schema (`contactdd_io::problem`): the same keys, kinds and
-//! defaults as the TOML tables.
+//! The problem holds a `contactdd_io::setup::ModelBuilder`, the resolve step of a problem file:
+//! every `add_*` call builds a schema entry (`contactdd_io::problem`) and hands it to the builder,
+//! which checks it as it checks the same entry of a file, so a bad value gets the message a
+//! problem file would get. Supports, loads and gap profiles are Python dicts deserialized into the
+//! schema (the same keys, kinds and defaults as the TOML tables); only a mesh given as arrays has
+//! no schema entry and goes through `setup::mesh_from_arrays`.
 
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
@@ -16,13 +16,13 @@ use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use serde::de::DeserializeOwned;
 
-use contactdd_core::{Diagonal, Edge, ElasticBody, Material, Mesh, Order, Plane};
-use contactdd_ddm::{ContactPair, Gamma, Method, Model, Settings, SetupError};
+use contactdd_core::{Edge, Material, Order, Plane};
+use contactdd_ddm::{Gamma, Method, Model, Settings, SetupError};
 use contactdd_io::problem::{
-    AcceleratorSpec, CoarseSpec, ContactSpec, GammaSpec, GapSpec, LoadSpec, MeshSpec, PenaltySpec,
-    SolverSpec, SupportSpec,
+    AcceleratorSpec, BodySpec, CoarseSpec, ContactSpec, GammaSpec, GapSpec, LoadSpec, MaterialSpec,
+    MeshSpec, PenaltySpec, SolverSpec, SupportSpec,
 };
-use contactdd_io::setup;
+use contactdd_io::setup::{self, ModelBuilder};
 use contactdd_io::Loaded;
 
 use crate::convert::{from_name, name_of, to_json, Bad};
@@ -62,29 +62,19 @@ impl Overrides {
             Some(m) => Some(m.parse::<Method>().map_err(|e| solver_error("method", e))?),
             None => None,
         };
-        let accelerator = match self.accelerator.as_deref() {
-            None => None,
-            Some("none") => Some(AcceleratorSpec::None),
-            Some("anderson") => Some(AcceleratorSpec::Anderson),
-            Some(other) => {
-                return Err(solver_error(
-                    "accelerator",
-                    format!("expected \"none\" or \"anderson\", got \"{other}\""),
-                ))
-            }
-        };
-        let coarse = match self.coarse.as_deref() {
-            None => None,
-            Some("off") => Some(CoarseSpec::Off),
-            Some("chains") => Some(CoarseSpec::Chains),
-            Some("all") => Some(CoarseSpec::All),
-            Some(other) => {
-                return Err(solver_error(
-                    "coarse",
-                    format!("expected \"off\", \"chains\" or \"all\", got \"{other}\""),
-                ))
-            }
-        };
+        // The names are those of the `[solver]` table's schema, with its messages.
+        let accelerator: Option<AcceleratorSpec> = self
+            .accelerator
+            .as_deref()
+            .map(from_name)
+            .transpose()
+            .map_err(|e| solver_error("accelerator", e))?;
+        let coarse: Option<CoarseSpec> = self
+            .coarse
+            .as_deref()
+            .map(from_name)
+            .transpose()
+            .map_err(|e| solver_error("coarse", e))?;
         let spec = SolverSpec {
             method,
             gamma: self.gamma.as_ref().map(gamma_spec).transpose()?,
@@ -101,15 +91,12 @@ impl Overrides {
     }
 }
 
-/// A γ argument as the `gamma` value of a `[solver]` table (a name must be `"auto"`).
+/// A γ argument as the `gamma` value of a `[solver]` table: a name is read by the schema's
+/// deserializer (only `"auto"`), whose message names the key.
 fn gamma_spec(g: &GammaArg) -> PyResult<GammaSpec> {
     match g {
         GammaArg::Value(v) => Ok(GammaSpec::Value(*v)),
-        GammaArg::Name(s) if s == "auto" => Ok(GammaSpec::Auto),
-        GammaArg::Name(s) => Err(solver_error(
-            "gamma",
-            format!("must be a positive number or \"auto\", got \"{s}\""),
-        )),
+        GammaArg::Name(s) => from_name(s).map_err(|e| setup_error(SetupError::Solver(e))),
     }
 }
 
@@ -143,23 +130,18 @@ pub fn gamma_to_py(py: Python<'_>, g: Gamma) -> PyResult<Py<PyAny>> {
 #[pyclass(module = "contactdd", name = "Problem")]
 pub struct Problem {
     pub(crate) name: String,
-    pub(crate) plane: Plane,
-    pub(crate) materials: BTreeMap<String, Material>,
-    pub(crate) bodies: Vec<ElasticBody>,
-    pub(crate) pairs: Vec<ContactPair>,
+    /// Materials, bodies and pairs, resolved entry by entry as a problem file is.
+    pub(crate) model: ModelBuilder,
     pub(crate) settings: Settings,
     pub(crate) threads: Option<usize>,
 }
 
 impl Problem {
-    /// An empty problem with default settings.
-    pub fn empty(name: &str, plane: Plane) -> Problem {
+    /// A problem holding `model` (built and checked), with default settings.
+    pub fn with_model(name: &str, model: ModelBuilder) -> Problem {
         Problem {
             name: name.to_string(),
-            plane,
-            materials: BTreeMap::new(),
-            bodies: Vec::new(),
-            pairs: Vec::new(),
+            model,
             settings: Settings::default(),
             threads: None,
         }
@@ -167,80 +149,28 @@ impl Problem {
 
     /// A problem from a resolved problem file.
     fn from_loaded(loaded: Loaded, default_name: Option<&str>) -> PyResult<Problem> {
-        let mut materials = BTreeMap::new();
+        // The file's materials are resolved again only to be listed by `Problem.materials`.
+        let mut materials: BTreeMap<String, Material> = BTreeMap::new();
         for (name, m) in &loaded.problem.materials {
             let mat = setup::material(name, m.young, m.poisson).map_err(setup_error)?;
             materials.insert(name.clone(), mat);
         }
         let name = match (&loaded.problem.name, default_name) {
             (None, Some(d)) => d.to_string(),
-            _ => loaded.model.name,
+            _ => loaded.model.name.clone(),
         };
         Ok(Problem {
             name,
-            plane: loaded.model.plane,
-            materials,
-            bodies: loaded.model.bodies,
-            pairs: loaded.model.pairs,
+            model: ModelBuilder::from_model(loaded.model, materials),
             settings: loaded.settings,
             threads: loaded.threads,
         })
     }
 
-    /// The solver input, checked as a whole: at least one body, and every body held by supports
-    /// or a contact pair (as a problem file is checked).
+    /// The solver input, checked as a whole as a problem file is: at least one body, and every
+    /// body held by supports or a contact pair.
     pub fn model(&self) -> PyResult<Model> {
-        if self.bodies.is_empty() {
-            return Err(setup_error(SetupError::Invalid {
-                key: "bodies".into(),
-                message: "the problem has no bodies (add one with Problem.add_body or \
-                          Problem.add_rectangle_body)"
-                    .into(),
-            }));
-        }
-        let model = Model {
-            name: self.name.clone(),
-            plane: self.plane,
-            bodies: self.bodies.clone(),
-            pairs: self.pairs.clone(),
-        };
-        setup::check_floating(&model).map_err(setup_error)?;
-        Ok(model)
-    }
-
-    fn check_new_body_name(&self, name: &str) -> PyResult<()> {
-        setup::check_body_name(name, self.bodies.iter().map(|b| b.name.as_str()))
-            .map_err(setup_error)
-    }
-
-    /// Adds a body on a built mesh: material lookup, supports and loads as in `setup`.
-    fn push_body(
-        &mut self,
-        name: &str,
-        mesh: Mesh,
-        material: &str,
-        supports: Option<&Bound<'_, PyAny>>,
-        loads: Option<&Bound<'_, PyAny>>,
-    ) -> PyResult<()> {
-        let mat = *self.materials.get(material).ok_or_else(|| {
-            let known: Vec<&str> = self.materials.keys().map(String::as_str).collect();
-            let known = if known.is_empty() {
-                "none; add one with Problem.add_material".to_string()
-            } else {
-                known.join(", ")
-            };
-            setup_error(body_error(
-                name,
-                "material",
-                format!("unknown material '{material}' (known: {known})"),
-            ))
-        })?;
-        let supports: Vec<SupportSpec> = specs(name, "supports", supports)?;
-        let loads: Vec<LoadSpec> = specs(name, "loads", loads)?;
-        let body = setup::body_on_mesh(name, mesh, mat, self.plane, &supports, &loads)
-            .map_err(setup_error)?;
-        self.bodies.push(body);
-        Ok(())
+        self.model.model(&self.name).map_err(setup_error)
     }
 }
 
@@ -315,7 +245,7 @@ impl Problem {
                 message: e,
             })
         })?;
-        Ok(Problem::empty(name, plane))
+        Ok(Problem::with_model(name, ModelBuilder::new(plane)))
     }
 
     /// Reads a TOML problem file (the format of the command line tool).
@@ -324,7 +254,8 @@ impl Problem {
     /// problem's default settings.
     ///
     /// Raises:
-    ///     ContactddError: the file cannot be read or is not a valid problem.
+    ///     ContactddIOError: the file (or a mesh file it names) cannot be read; an ``OSError``.
+    ///     ContactddError: the file is not a valid problem.
     #[staticmethod]
     fn from_toml(py: Python<'_>, path: PathBuf) -> PyResult<Problem> {
         let loaded = py
@@ -363,15 +294,9 @@ impl Problem {
     ///     poisson: Poisson's ratio ν in (-1, 0.5).
     #[pyo3(signature = (name, young, poisson))]
     fn add_material(&mut self, name: &str, young: f64, poisson: f64) -> PyResult<()> {
-        if self.materials.contains_key(name) {
-            return Err(setup_error(SetupError::Material {
-                material: name.to_string(),
-                message: "is already defined".into(),
-            }));
-        }
-        let mat = setup::material(name, young, poisson).map_err(setup_error)?;
-        self.materials.insert(name.to_string(), mat);
-        Ok(())
+        self.model
+            .add_material(name, &MaterialSpec { young, poisson })
+            .map_err(setup_error)
     }
 
     /// Adds a body on a triangle mesh given as arrays.
@@ -404,7 +329,9 @@ impl Problem {
         loads: Option<&Bound<'_, PyAny>>,
         node_sets: Option<&Bound<'_, PyDict>>,
     ) -> PyResult<()> {
-        self.check_new_body_name(name)?;
+        self.model.check_body_name(name).map_err(setup_error)?;
+        // The checks of the arrays' shapes and signs: what numpy can get wrong and a mesh file
+        // cannot; the mesh itself is checked by `setup::mesh_from_arrays`.
         let mesh_error = |message: String| setup_error(body_error(name, "mesh", message));
         let [n, dim] = [nodes.shape()[0], nodes.shape()[1]];
         if dim != 2 {
@@ -460,9 +387,13 @@ impl Problem {
                 sets.insert(sname, ids);
             }
         }
-        let mesh = Mesh::new(points, order, cells, edge_sets, sets)
-            .map_err(|e| mesh_error(e.to_string()))?;
-        self.push_body(name, mesh, material, supports, loads)
+        let mesh = setup::mesh_from_arrays(name, points, order, cells, edge_sets, sets)
+            .map_err(setup_error)?;
+        let supports: Vec<SupportSpec> = specs(name, "supports", supports)?;
+        let loads: Vec<LoadSpec> = specs(name, "loads", loads)?;
+        self.model
+            .add_body_on_mesh(name, material, mesh, &supports, &loads)
+            .map_err(setup_error)
     }
 
     /// Adds a body meshed as a structured rectangle ``x[0] ≤ x ≤ x[1]``, ``y[0] ≤ y ≤ y[1]`` with
@@ -491,21 +422,27 @@ impl Problem {
         supports: Option<&Bound<'_, PyAny>>,
         loads: Option<&Bound<'_, PyAny>>,
     ) -> PyResult<()> {
-        self.check_new_body_name(name)?;
+        self.model.check_body_name(name).map_err(setup_error)?;
         let err = |key: &str, m: String| setup_error(body_error(name, key, m));
-        let diagonal: Diagonal = from_name(diagonal).map_err(|e| err("mesh.diagonal", e))?;
-        let order: Order = from_name(order).map_err(|e| err("mesh.order", e))?;
-        let spec = MeshSpec::Rectangle {
-            x: [x.0, x.1],
-            y: [y.0, y.1],
-            nx,
-            ny,
-            diagonal,
-            mirror,
-            order,
+        let spec = BodySpec {
+            name: name.to_string(),
+            material: material.to_string(),
+            mesh: MeshSpec::Rectangle {
+                x: [x.0, x.1],
+                y: [y.0, y.1],
+                nx,
+                ny,
+                diagonal: from_name(diagonal).map_err(|e| err("mesh.diagonal", e))?,
+                mirror,
+                order: from_name(order).map_err(|e| err("mesh.order", e))?,
+            },
+            supports: specs(name, "supports", supports)?,
+            loads: specs(name, "loads", loads)?,
         };
-        let mesh = setup::mesh(name, &spec, Path::new("")).map_err(setup_error)?;
-        self.push_body(name, mesh, material, supports, loads)
+        // The `[[bodies]]` step of a problem file (no Gmsh path to resolve).
+        self.model
+            .add_body(&spec, Path::new(""))
+            .map_err(setup_error)
     }
 
     /// Adds a contact pair: boundary ``boundaries[0]`` of body ``bodies[0]`` may touch boundary
@@ -531,27 +468,23 @@ impl Problem {
         gap: Option<&Bound<'_, PyAny>>,
         name: Option<String>,
     ) -> PyResult<()> {
-        let name = name.unwrap_or_else(|| format!("{}-{}", bodies.0, bodies.1));
-        let gap: Option<GapSpec> = match gap {
-            Some(g) if !g.is_none() => Some(parse(g, "gap")?.map_err(|message| {
-                setup_error(SetupError::Pair {
-                    pair: name.clone(),
-                    message,
-                })
-            })?),
-            _ => None,
-        };
-        let spec = ContactSpec {
-            name: Some(name),
+        let mut spec = ContactSpec {
+            name,
             bodies: [bodies.0, bodies.1],
             boundaries: [boundaries.0, boundaries.1],
             penalty: PenaltySpec { c, h, theta },
-            gap,
+            gap: None,
         };
-        let pair =
-            setup::pair(&spec, &self.bodies, &self.pairs, self.plane).map_err(setup_error)?;
-        self.pairs.push(pair);
-        Ok(())
+        if let Some(g) = gap.filter(|g| !g.is_none()) {
+            let gap: GapSpec = parse(g, "gap")?.map_err(|message| {
+                setup_error(SetupError::Pair {
+                    pair: spec.pair_name(),
+                    message,
+                })
+            })?;
+            spec.gap = Some(gap);
+        }
+        self.model.add_pair(&spec).map_err(setup_error)
     }
 
     /// Sets the default solver settings of the problem (the ``[solver]`` table of a problem
@@ -606,7 +539,8 @@ impl Problem {
     /// The names of the boundaries (and node sets) of a body.
     fn boundaries(&self, body: &str) -> PyResult<Vec<String>> {
         let b = self
-            .bodies
+            .model
+            .bodies()
             .iter()
             .find(|b| b.name == body)
             .ok_or_else(|| input_error(format!("no body named '{body}'")))?;
@@ -627,14 +561,14 @@ impl Problem {
     /// ``"strain"`` or ``"stress"``.
     #[getter]
     fn plane(&self) -> String {
-        name_of(&self.plane)
+        name_of(&self.model.plane())
     }
 
     /// Materials: ``{name: {"young": E, "poisson": ν}}``.
     #[getter]
     fn materials<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
         let d = PyDict::new(py);
-        for (name, m) in &self.materials {
+        for (name, m) in self.model.materials() {
             let entry = PyDict::new(py);
             entry.set_item("young", m.young())?;
             entry.set_item("poisson", m.poisson())?;
@@ -646,13 +580,13 @@ impl Problem {
     /// Body names, in order.
     #[getter]
     fn bodies(&self) -> Vec<String> {
-        self.bodies.iter().map(|b| b.name.clone()).collect()
+        self.model.bodies().iter().map(|b| b.name.clone()).collect()
     }
 
     /// Contact pair names, in order.
     #[getter]
     fn contacts(&self) -> Vec<String> {
-        self.pairs.iter().map(|p| p.name.clone()).collect()
+        self.model.pairs().iter().map(|p| p.name.clone()).collect()
     }
 
     /// Default solver settings: ``method``, ``gamma``, ``tol``, ``max_iter``, ``u0``,
@@ -672,14 +606,15 @@ impl Problem {
     }
 
     fn __repr__(&self) -> String {
-        let nodes: usize = self.bodies.iter().map(|b| b.mesh.num_nodes()).sum();
+        let bodies = self.model.bodies();
+        let nodes: usize = bodies.iter().map(|b| b.mesh.num_nodes()).sum();
         format!(
             "<contactdd.Problem '{}': {} bodies ({} nodes), {} contact pairs, plane {}, method {}, gamma {}>",
             self.name,
-            self.bodies.len(),
+            bodies.len(),
             nodes,
-            self.pairs.len(),
-            name_of(&self.plane),
+            self.model.pairs().len(),
+            name_of(&self.model.plane()),
             self.settings.method,
             self.settings.gamma
         )

@@ -140,3 +140,112 @@ def test_max_iterations(notch):
     with pytest.raises(ConvergenceError, match="not converged after 3 iterations") as e:
         contactdd.solve(notch, gamma=0.1, max_iter=3)
     assert e.value.result.stop == "max-iterations" and e.value.result.iterations == 3
+
+
+def test_io_errors_are_oserrors(tmp_path):
+    assert issubclass(contactdd.ContactddIOError, ContactddError)
+    assert issubclass(contactdd.ContactddIOError, OSError)
+    missing = tmp_path / "missing.toml"
+    with pytest.raises(OSError) as e:
+        contactdd.Problem.from_toml(missing)
+    assert isinstance(e.value, contactdd.ContactddIOError)
+    assert str(e.value).startswith(f"cannot read '{missing}'")
+    assert e.value.errno == 2  # ENOENT
+    # A mesh file that a problem names and that does not exist is an I/O error too.
+    text = """plane = "strain"
+[materials.steel]
+young = 1.0
+poisson = 0.3
+[[bodies]]
+name = "b"
+material = "steel"
+mesh = { kind = "gmsh", file = "nowhere.msh" }
+"""
+    with pytest.raises(contactdd.ContactddIOError, match="nowhere.msh"):
+        contactdd.Problem.from_toml_str(text, base_dir=tmp_path, source="p.toml")
+    # A bad file is bad input, not an I/O error.
+    with pytest.raises(ContactddError) as e:
+        contactdd.Problem.from_toml_str('plane = "strain"\n', source="empty.toml")
+    assert not isinstance(e.value, OSError)
+
+
+TOML_HEAD = """plane = "strain"
+[materials.steel]
+young = 2.1e5
+poisson = 0.3
+"""
+
+
+def toml_message(body_tables):
+    """The message of a problem file with `body_tables`, without the file name."""
+    with pytest.raises(ContactddError) as e:
+        contactdd.Problem.from_toml_str(TOML_HEAD + body_tables, source="p.toml")
+    message = str(e.value)
+    assert message.startswith("p.toml: ")
+    return message[len("p.toml: "):]
+
+
+def code_message(build):
+    p = body_problem()
+    with pytest.raises(ContactddError) as e:
+        build(p)
+    return str(e.value)
+
+
+RECT = 'mesh = { kind = "rectangle", x = [0.0, 1.0], y = [0.0, 1.0], nx = 2, ny = 2 }'
+
+
+@pytest.mark.parametrize("toml, build", [
+    (  # unknown material
+        f'[[bodies]]\nname = "b"\nmaterial = "iron"\n{RECT}\n',
+        lambda p: p.add_rectangle_body("b", (0, 1), (0, 1), 2, 2, "iron"),
+    ),
+    (  # empty rectangle
+        '[[bodies]]\nname = "b"\nmaterial = "steel"\n'
+        'mesh = { kind = "rectangle", x = [0.0, 1.0], y = [0.0, 1.0], nx = 0, ny = 2 }\n',
+        lambda p: p.add_rectangle_body("b", (0, 1), (0, 1), 0, 2, "steel"),
+    ),
+    (  # unknown support boundary
+        f'[[bodies]]\nname = "b"\nmaterial = "steel"\n{RECT}\n'
+        'supports = [{ boundary = "rigth", component = "x" }]\n',
+        lambda p: p.add_rectangle_body("b", (0, 1), (0, 1), 2, 2, "steel",
+                                       supports=[{"boundary": "rigth", "component": "x"}]),
+    ),
+    (  # a body that floats
+        f'[[bodies]]\nname = "b"\nmaterial = "steel"\n{RECT}\n',
+        lambda p: (p.add_rectangle_body("b", (0, 1), (0, 1), 2, 2, "steel"), contactdd.solve(p)),
+    ),
+    (  # the same pair twice
+        f'[[bodies]]\nname = "a"\nmaterial = "steel"\n{RECT}\n'
+        '[[bodies]]\nname = "b"\nmaterial = "steel"\n'
+        'mesh = { kind = "rectangle", x = [0.0, 1.0], y = [1.0, 2.0], nx = 2, ny = 2 }\n'
+        '[[contact]]\nbodies = ["a", "b"]\nboundaries = ["top", "bottom"]\npenalty = { theta = 1e-6 }\n'
+        '[[contact]]\nbodies = ["a", "b"]\nboundaries = ["top", "bottom"]\npenalty = { theta = 1e-6 }\n',
+        lambda p: (p.add_rectangle_body("a", (0, 1), (0, 1), 2, 2, "steel"),
+                   p.add_rectangle_body("b", (0, 1), (1, 2), 2, 2, "steel"),
+                   p.add_contact(("a", "b"), ("top", "bottom"), theta=1e-6),
+                   p.add_contact(("a", "b"), ("top", "bottom"), theta=1e-6)),
+    ),
+])
+def test_same_message_as_a_file(toml, build):
+    assert code_message(build) == toml_message(toml)
+
+
+def test_add_body_messages_as_a_file():
+    nodes = np.array([[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]])
+    # add_body resolves its body like a [[bodies]] table: the same unknown-material message.
+    assert code_message(lambda p: p.add_body("b", nodes, [[0, 1, 2]], {}, "iron")) == \
+        toml_message(f'[[bodies]]\nname = "b"\nmaterial = "iron"\n{RECT}\n')
+    # A bad mesh is a mesh error of the body, as for a rectangle or Gmsh mesh.
+    message = code_message(lambda p: p.add_body("t", nodes, [[0, 2, 1]], {}, "steel"))
+    assert message.startswith("body 't': mesh: ") and "inverted" in message
+
+
+def test_solver_names_use_the_schema():
+    p = body_problem()
+    with pytest.raises(ContactddError) as e:
+        p.solver(accelerator="fast")
+    assert str(e.value) == "solver: accelerator: unknown variant `fast`, expected `none` or `anderson`"
+    with pytest.raises(ContactddError) as e:
+        p.solver(gamma="fast")
+    assert str(e.value) == 'solver: gamma: expected a positive number or "auto", got "fast"'

@@ -204,6 +204,15 @@ pub struct ContactSpec {
     pub gap: Option<GapSpec>,
 }
 
+impl ContactSpec {
+    /// The pair's name: `name`, or `"<body1>-<body2>"`.
+    pub fn pair_name(&self) -> String {
+        self.name
+            .clone()
+            .unwrap_or_else(|| format!("{}-{}", self.bodies[0], self.bodies[1]))
+    }
+}
+
 /// The penalty θ of a pair: give either `theta`, or both `c` and `h` (rod model
 /// θ = c·h·(1/E*₁ + 1/E*₂)). Kept as one table of optional keys so that a wrong combination gets a
 /// precise message from [`crate::setup`].

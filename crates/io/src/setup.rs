@@ -20,15 +20,18 @@
 //! - a penalty `{ c, h }` is the rod model θ = c·h·(1/E*₁ + 1/E*₂), `{ theta }` is θ itself;
 //! - absent `[solver]` keys take the values of [`Settings::default`].
 //!
-//! The checks of single entries are public ([`material`], [`check_body_name`], [`mesh`],
-//! [`body_on_mesh`], [`pair`], [`settings`], [`gamma`], [`check_floating`]) so that a problem
-//! built in code (the Python module) gets the same validation and the same messages as a file.
+//! [`resolve`] builds the model one entry at a time with a [`ModelBuilder`]; a problem built in
+//! code (the Python module) uses the same builder, so it gets the same validation and the same
+//! messages as a file. The checks of single entries are public too ([`material`],
+//! [`check_body_name`], [`mesh`], [`mesh_from_arrays`], [`body_on_mesh`], [`pair`], [`settings`],
+//! [`gamma`], [`check_floating`]).
 
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
 use contactdd_core::{
-    BodyError, Constraints, ElasticBody, Load, Material, Mesh, MeshError, Order, Plane, Rectangle,
+    BodyError, Constraints, Edge, ElasticBody, Load, Material, Mesh, MeshError, Order, Plane,
+    Rectangle,
 };
 
 use contactdd_ddm::iteration::ANDERSON_DEPTH;
@@ -38,8 +41,8 @@ use contactdd_ddm::{
 
 use crate::error::LoadError;
 use crate::problem::{
-    AcceleratorSpec, BodySpec, CoarseSpec, ContactSpec, GammaSpec, GapSpec, LoadSpec, MeshSpec,
-    PenaltySpec, Problem, SolverSpec, SupportSpec,
+    AcceleratorSpec, BodySpec, CoarseSpec, ContactSpec, GammaSpec, GapSpec, LoadSpec, MaterialSpec,
+    MeshSpec, PenaltySpec, Problem, SolverSpec, SupportSpec,
 };
 
 /// Largest number of rectangle cells (nx · ny) per body: far beyond what the solver handles, but it
@@ -100,51 +103,195 @@ fn resolve_named(
     default_name: &str,
 ) -> Result<Loaded, LoadError> {
     let settings = settings(&problem.solver, &Settings::default())?;
+    // Checked before the materials and bodies so that an empty file gets this message first.
     if problem.bodies.is_empty() {
-        return Err(SetupError::Invalid {
-            key: "bodies".into(),
-            message: "the problem has no bodies (add a [[bodies]] table)".into(),
-        }
-        .into());
+        return Err(no_bodies().into());
     }
-    let materials = problem
-        .materials
-        .iter()
-        .map(|(name, m)| Ok((name.clone(), material(name, m.young, m.poisson)?)))
-        .collect::<Result<BTreeMap<_, _>, SetupError>>()?;
+    let mut builder = ModelBuilder::new(problem.plane);
+    for (name, m) in &problem.materials {
+        builder.add_material(name, m)?;
+    }
+    // Every name is checked before any mesh is built (a duplicate name is reported even when an
+    // earlier body's mesh is also wrong).
     for (i, body) in problem.bodies.iter().enumerate() {
         check_body_name(
             &body.name,
             problem.bodies[..i].iter().map(|b| b.name.as_str()),
         )?;
     }
-    let bodies = problem
-        .bodies
-        .iter()
-        .map(|spec| body(spec, &materials, problem.plane, base_dir))
-        .collect::<Result<Vec<_>, LoadError>>()?;
-    let mut pairs: Vec<ContactPair> = Vec::with_capacity(problem.contact.len());
+    for spec in &problem.bodies {
+        builder.add_body(spec, base_dir)?;
+    }
     for spec in &problem.contact {
-        let pair = pair(spec, &bodies, &pairs, problem.plane)?;
-        pairs.push(pair);
+        builder.add_pair(spec)?;
     }
     let name = problem
         .name
         .clone()
         .unwrap_or_else(|| default_name.to_string());
-    let model = Model {
-        name,
-        plane: problem.plane,
-        bodies,
-        pairs,
-    };
-    check_floating(&model)?;
+    let model = builder.into_model(&name)?;
     Ok(Loaded {
         model,
         settings,
         threads: problem.solver.threads,
         problem,
     })
+}
+
+/// Builds a [`Model`] entry by entry, checking each entry as it is added: the one resolve step of
+/// a problem file ([`resolve`]) and of a problem built in code (the Python module).
+#[derive(Clone, Debug)]
+pub struct ModelBuilder {
+    plane: Plane,
+    materials: BTreeMap<String, Material>,
+    bodies: Vec<ElasticBody>,
+    pairs: Vec<ContactPair>,
+}
+
+impl ModelBuilder {
+    /// An empty model of plane strain or plane stress.
+    pub fn new(plane: Plane) -> ModelBuilder {
+        ModelBuilder {
+            plane,
+            materials: BTreeMap::new(),
+            bodies: Vec::new(),
+            pairs: Vec::new(),
+        }
+    }
+
+    /// A builder holding an already built model (a benchmark built in code) and its named
+    /// materials; later entries are checked against it.
+    pub fn from_model(model: Model, materials: BTreeMap<String, Material>) -> ModelBuilder {
+        ModelBuilder {
+            plane: model.plane,
+            materials,
+            bodies: model.bodies,
+            pairs: model.pairs,
+        }
+    }
+
+    /// Plane strain or plane stress.
+    pub fn plane(&self) -> Plane {
+        self.plane
+    }
+
+    /// The materials by name.
+    pub fn materials(&self) -> &BTreeMap<String, Material> {
+        &self.materials
+    }
+
+    /// The bodies, in order.
+    pub fn bodies(&self) -> &[ElasticBody] {
+        &self.bodies
+    }
+
+    /// The contact pairs, in order.
+    pub fn pairs(&self) -> &[ContactPair] {
+        &self.pairs
+    }
+
+    /// Adds a `[materials.NAME]` table. (A file cannot define a name twice; code can, and is told.)
+    pub fn add_material(&mut self, name: &str, spec: &MaterialSpec) -> Result<(), SetupError> {
+        if self.materials.contains_key(name) {
+            return Err(SetupError::Material {
+                material: name.to_string(),
+                message: "is already defined".into(),
+            });
+        }
+        let m = material(name, spec.young, spec.poisson)?;
+        self.materials.insert(name.to_string(), m);
+        Ok(())
+    }
+
+    /// Checks the name of the next body (see [`check_body_name`]).
+    pub fn check_body_name(&self, name: &str) -> Result<(), SetupError> {
+        check_body_name(name, self.bodies.iter().map(|b| b.name.as_str()))
+    }
+
+    /// Adds a `[[bodies]]` entry: name, material, mesh (a relative Gmsh path resolves against
+    /// `base_dir`), supports and loads.
+    pub fn add_body(&mut self, spec: &BodySpec, base_dir: &Path) -> Result<(), LoadError> {
+        let name = spec.name.as_str();
+        self.check_body_name(name)?;
+        let material = self.material_of(name, &spec.material)?;
+        let mesh = mesh(name, &spec.mesh, base_dir)?;
+        let body = body_on_mesh(
+            name,
+            mesh,
+            material,
+            self.plane,
+            &spec.supports,
+            &spec.loads,
+        )?;
+        self.bodies.push(body);
+        Ok(())
+    }
+
+    /// Adds a body on a mesh built by the caller (e.g. [`mesh_from_arrays`]), checked like a
+    /// `[[bodies]]` entry.
+    pub fn add_body_on_mesh(
+        &mut self,
+        name: &str,
+        material: &str,
+        mesh: Mesh,
+        supports: &[SupportSpec],
+        loads: &[LoadSpec],
+    ) -> Result<(), SetupError> {
+        self.check_body_name(name)?;
+        let material = self.material_of(name, material)?;
+        let body = body_on_mesh(name, mesh, material, self.plane, supports, loads)?;
+        self.bodies.push(body);
+        Ok(())
+    }
+
+    /// Adds a `[[contact]]` entry between two of the bodies added so far.
+    pub fn add_pair(&mut self, spec: &ContactSpec) -> Result<(), SetupError> {
+        let p = pair(spec, &self.bodies, &self.pairs, self.plane)?;
+        self.pairs.push(p);
+        Ok(())
+    }
+
+    /// The model so far, checked as a whole: at least one body, and every body held (see
+    /// [`check_floating`]).
+    pub fn model(&self, name: &str) -> Result<Model, SetupError> {
+        self.clone().into_model(name)
+    }
+
+    /// As [`ModelBuilder::model`], without copying the bodies.
+    pub fn into_model(self, name: &str) -> Result<Model, SetupError> {
+        if self.bodies.is_empty() {
+            return Err(no_bodies());
+        }
+        let model = Model {
+            name: name.to_string(),
+            plane: self.plane,
+            bodies: self.bodies,
+            pairs: self.pairs,
+        };
+        check_floating(&model)?;
+        Ok(model)
+    }
+
+    /// The material `material` of body `body`.
+    fn material_of(&self, body: &str, material: &str) -> Result<Material, SetupError> {
+        self.materials.get(material).copied().ok_or_else(|| {
+            body_error(
+                body,
+                "material",
+                format!(
+                    "unknown material '{material}' (known: {})",
+                    known(self.materials.keys())
+                ),
+            )
+        })
+    }
+}
+
+fn no_bodies() -> SetupError {
+    SetupError::Invalid {
+        key: "bodies".into(),
+        message: "the problem has no bodies; it needs at least one".into(),
+    }
 }
 
 fn body_error(body: &str, key: &str, message: impl std::fmt::Display) -> SetupError {
@@ -330,36 +477,6 @@ pub fn check_floating(model: &Model) -> Result<(), SetupError> {
     Ok(())
 }
 
-/// One `[[bodies]]` entry → an elastic body.
-fn body(
-    spec: &BodySpec,
-    materials: &BTreeMap<String, Material>,
-    plane: Plane,
-    base_dir: &Path,
-) -> Result<ElasticBody, LoadError> {
-    let name = spec.name.as_str();
-    let material = *materials.get(&spec.material).ok_or_else(|| {
-        body_error(
-            name,
-            "material",
-            format!(
-                "unknown material '{}' (known: {})",
-                spec.material,
-                known(materials.keys())
-            ),
-        )
-    })?;
-    let mesh = mesh(name, &spec.mesh, base_dir)?;
-    Ok(body_on_mesh(
-        name,
-        mesh,
-        material,
-        plane,
-        &spec.supports,
-        &spec.loads,
-    )?)
-}
-
 /// Body `name` on a built mesh: supports applied in order ([`Constraints::fix`]), loads checked
 /// (finite values, known boundaries) and summed into one load vector.
 pub fn body_on_mesh(
@@ -534,6 +651,19 @@ pub fn mesh(body: &str, spec: &MeshSpec, base_dir: &Path) -> Result<Mesh, LoadEr
     }
 }
 
+/// A mesh given as arrays (nodes, the node indices of each triangle, named boundary edges and
+/// node sets) → a validated mesh of body `body`, with the errors of a mesh read from a file.
+pub fn mesh_from_arrays(
+    body: &str,
+    nodes: Vec<[f64; 2]>,
+    order: Order,
+    cells: Vec<usize>,
+    boundaries: BTreeMap<String, Vec<Edge>>,
+    node_sets: BTreeMap<String, Vec<usize>>,
+) -> Result<Mesh, SetupError> {
+    Mesh::new(nodes, order, cells, boundaries, node_sets).map_err(|e| mesh_error(body, "mesh", e))
+}
+
 /// One `[[contact]]` entry → a contact pair between two of `bodies`, whose name must differ from
 /// those of the `earlier` pairs (this one is `contact[earlier.len()]`).
 pub fn pair(
@@ -542,10 +672,7 @@ pub fn pair(
     earlier: &[ContactPair],
     plane: Plane,
 ) -> Result<ContactPair, SetupError> {
-    let name = spec
-        .name
-        .clone()
-        .unwrap_or_else(|| format!("{}-{}", spec.bodies[0], spec.bodies[1]));
+    let name = spec.pair_name();
     let mut ids = [0usize; 2];
     for (s, body) in spec.bodies.iter().enumerate() {
         ids[s] = bodies.iter().position(|b| b.name == *body).ok_or_else(|| {
@@ -690,7 +817,7 @@ fn gap_profile(pair: &str, spec: &GapSpec) -> Result<GapProfile, SetupError> {
 fn known<'a>(names: impl Iterator<Item = &'a String>) -> String {
     let names: Vec<&str> = names.map(String::as_str).collect();
     if names.is_empty() {
-        "none; add a [materials.NAME] table".into()
+        "none defined".into()
     } else {
         names.join(", ")
     }

@@ -18,6 +18,7 @@ __all__ = [
     "monolithic",
     "notch_benchmark",
     "ContactddError",
+    "ContactddIOError",
     "ConvergenceError",
     "METHODS",
     "__version__",
@@ -36,6 +37,9 @@ _ArrayLikeInt = npt.ArrayLike
 
 class ContactddError(ValueError):
     """Bad input: a problem file, array, name or setting that contactdd cannot use."""
+
+class ContactddIOError(ContactddError, OSError):
+    """A problem file or a mesh file it names cannot be read (``errno`` as the system gave it)."""
 
 class ConvergenceError(RuntimeError):
     """The domain decomposition iteration did not converge; ``result`` holds the partial result."""
@@ -89,7 +93,11 @@ class Problem:
         """An empty problem."""
     @staticmethod
     def from_toml(path: _StrPath) -> Problem:
-        """Reads a TOML problem file (the format of the command line tool)."""
+        """Reads a TOML problem file (the format of the command line tool).
+
+        Raises ContactddIOError (an OSError) if the file or a mesh file it names cannot be read,
+        ContactddError if it is not a valid problem.
+        """
     @staticmethod
     def from_toml_str(text: str, base_dir: Optional[_StrPath] = None, source: str = "<string>") -> Problem:
         """Parses the text of a TOML problem file."""
