@@ -36,6 +36,16 @@ pub fn apply_common(
         .or(file_threads)
 }
 
+/// Whether iteration `k` gets a line: every one up to 10, then every 10th up to 100, every 100th
+/// up to 1000 and so on (the last iteration always does), so a long run prints a few dozen lines.
+fn shown(k: usize) -> bool {
+    let mut step = 1;
+    while k >= 10 * step {
+        step *= 10;
+    }
+    k % step == 0
+}
+
 /// `contactdd solve`.
 pub fn solve(args: SolveArgs) -> Result<Exit> {
     let start = Instant::now();
@@ -93,13 +103,21 @@ pub fn solve(args: SolveArgs) -> Result<Exit> {
             );
             say!("{}", table.header());
         }
-        let print_line = |r: &Record| say!("{}", table.line(r));
+        let print_line = |r: &Record| {
+            if shown(r.k) {
+                say!("{}", table.line(r))
+            }
+        };
         let hooks = Hooks {
             on_iteration: if quiet { None } else { Some(&print_line) },
             cancel: None,
         };
         let sol =
             dd_solve(model, &prepared, &settings, hooks).map_err(|e| anyhow::anyhow!("{e}"))?;
+        match sol.history.last() {
+            Some(last) if !quiet && !shown(last.k) => say!("{}", table.line(last)),
+            _ => {}
+        }
         let written = write_results(&out, model, &sol)
             .with_context(|| format!("cannot write the results to '{}'", out.display()))?;
 
@@ -225,4 +243,17 @@ fn files(dir: &Path, written: &[PathBuf]) -> String {
 /// `1 body`, `2 bodies`.
 pub fn count(n: usize, one: &str, many: &str) -> String {
     format!("{n} {}", if n == 1 { one } else { many })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::shown;
+
+    #[test]
+    fn long_runs_print_a_few_dozen_lines() {
+        let lines: Vec<usize> = (1..=6631).filter(|&k| shown(k)).collect();
+        assert_eq!(&lines[..12], &[1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 20, 30]);
+        assert!(lines.contains(&100) && lines.contains(&6000) && !lines.contains(&6100));
+        assert_eq!(lines.len(), 33);
+    }
 }
