@@ -16,7 +16,7 @@ use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use serde::de::DeserializeOwned;
 
-use contactdd_core::{Diagonal, Edge, ElasticBody, Material, Mesh, Order, Plane};
+use contactdd_core::{Diagonal, Edge, ElasticBody, Material, Mesh, Order, Plane, Point, DIM};
 use contactdd_ddm::{ContactPair, Gamma, Method, Model, Settings, SetupError};
 use contactdd_io::problem::{
     AcceleratorSpec, CoarseSpec, ContactSpec, GammaSpec, GapSpec, LoadSpec, MeshSpec, PenaltySpec,
@@ -407,16 +407,16 @@ impl Problem {
         self.check_new_body_name(name)?;
         let mesh_error = |message: String| setup_error(body_error(name, "mesh", message));
         let [n, dim] = [nodes.shape()[0], nodes.shape()[1]];
-        if dim != 2 {
+        if dim != DIM {
             return Err(mesh_error(format!(
-                "nodes must have shape (n, 2), got ({n}, {dim})"
+                "nodes must have shape (n, {DIM}), got ({n}, {dim})"
             )));
         }
-        let points: Vec<[f64; 2]> = nodes
+        let points: Vec<Point> = nodes
             .as_array()
             .rows()
             .into_iter()
-            .map(|r| [r[0], r[1]])
+            .map(|r| std::array::from_fn(|c| r[c]))
             .collect();
         let order = match triangles.shape()[1] {
             3 => Order::P1,
