@@ -16,7 +16,7 @@ use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use serde::de::DeserializeOwned;
 
-use contactdd_core::{Edge, Material, Order, Plane};
+use contactdd_core::{Edge, Material, Order, Plane, Point, DIM};
 use contactdd_ddm::{Gamma, Method, Model, Settings, SetupError};
 use contactdd_io::problem::{
     AcceleratorSpec, BodySpec, CoarseSpec, ContactSpec, GammaSpec, GapSpec, LoadSpec, MaterialSpec,
@@ -334,16 +334,16 @@ impl Problem {
         // cannot; the mesh itself is checked by `setup::mesh_from_arrays`.
         let mesh_error = |message: String| setup_error(body_error(name, "mesh", message));
         let [n, dim] = [nodes.shape()[0], nodes.shape()[1]];
-        if dim != 2 {
+        if dim != DIM {
             return Err(mesh_error(format!(
-                "nodes must have shape (n, 2), got ({n}, {dim})"
+                "nodes must have shape (n, {DIM}), got ({n}, {dim})"
             )));
         }
-        let points: Vec<[f64; 2]> = nodes
+        let points: Vec<Point> = nodes
             .as_array()
             .rows()
             .into_iter()
-            .map(|r| [r[0], r[1]])
+            .map(|r| std::array::from_fn(|c| r[c]))
             .collect();
         let order = match triangles.shape()[1] {
             3 => Order::P1,

@@ -7,6 +7,7 @@ use std::sync::Arc;
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList};
 
+use contactdd_core::DIM;
 use contactdd_ddm::iteration::Stop;
 use contactdd_ddm::solution::{BodyResult, PairResult};
 use contactdd_ddm::{Model, MonolithicSolution, Solution};
@@ -67,9 +68,9 @@ impl Body {
         Ok(Body {
             name: b.name.clone(),
             order: name_of(&mesh.order()),
-            nodes: array2(py, nodes, 2)?.unbind(),
+            nodes: array2(py, nodes, DIM)?.unbind(),
             triangles: array2(py, cells, npc)?.unbind(),
-            displacement: array2(py, b.displacement.clone(), 2)?.unbind(),
+            displacement: array2(py, b.displacement.clone(), DIM)?.unbind(),
             stress: array2(py, stress, 4)?.unbind(),
             von_mises: array1(py, b.von_mises.clone()).unbind(),
             contact_pressure: array1(py, b.contact_pressure.clone()).unbind(),
@@ -158,7 +159,7 @@ impl Contact {
             closed: array1(py, p.closed.clone()).unbind(),
             status: (0..p.x.len()).map(|i| point_status(p, i)).collect(),
             weight: array1(py, p.weight.clone()).unbind(),
-            normal: array2(py, normal, 2)?.unbind(),
+            normal: array2(py, normal, DIM)?.unbind(),
             forces: (force(0), force(1)),
         })
     }

@@ -3,7 +3,7 @@
 
 use anyhow::Result;
 
-use contactdd_core::{Component, ElasticBody, Order};
+use contactdd_core::{num_dofs, Component, ElasticBody, Order};
 use contactdd_ddm::contact::Interface;
 use contactdd_ddm::{Gamma, Model, Penalty};
 use contactdd_io::problem::{BodySpec, LoadSpec, MeshSpec};
@@ -63,7 +63,7 @@ fn body_text(body: &ElasticBody, spec: &BodySpec) -> String {
             Order::P1 => "P1",
             Order::P2 => "P2",
         },
-        2 * nodes - prescribed.min(2 * nodes),
+        num_dofs(nodes) - prescribed.min(num_dofs(nodes)),
         prescribed,
         sig(body.material.young()),
         body.material.poisson()

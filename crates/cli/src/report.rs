@@ -3,6 +3,7 @@
 use std::fmt::Write as _;
 use std::io::IsTerminal;
 
+use contactdd_core::Vector;
 use contactdd_ddm::solution::PairResult;
 use contactdd_ddm::{Model, Record};
 use contactdd_io::output::applied_load;
@@ -21,7 +22,7 @@ pub fn sig(x: f64) -> String {
 }
 
 /// A 2D vector as `(x, y)`.
-pub fn vec2(v: [f64; 2]) -> String {
+pub fn vec2(v: Vector) -> String {
     format!("({}, {})", sig(v[0]), sig(v[1]))
 }
 

@@ -11,6 +11,7 @@ use faer::sparse::{SparseColMat, SymbolicSparseColMat};
 use rayon::prelude::*;
 
 use crate::element::{self, Affine, EDGE_GAUSS_3, TRIANGLE_DEGREE_5};
+use crate::geometry::{dof, num_dofs, Point, Vector, DIM};
 use crate::mesh::{Edge, Mesh};
 
 /// Node-to-triangle incidence and node adjacency of a mesh.
@@ -85,20 +86,20 @@ impl Pattern {
     pub fn new(mesh: &Mesh) -> Pattern {
         let adjacency = Adjacency::new(mesh);
         let n = mesh.num_nodes();
-        let mut col_ptr = Vec::with_capacity(2 * n + 1);
+        let mut col_ptr = Vec::with_capacity(num_dofs(n) + 1);
         col_ptr.push(0usize);
-        let mut row_idx = Vec::with_capacity(4 * adjacency.nbrs.len());
+        let mut row_idx = Vec::with_capacity(DIM * DIM * adjacency.nbrs.len());
         for i in 0..n {
-            for _ in 0..2 {
+            for _ in 0..DIM {
                 for &j in adjacency.neighbours(i) {
-                    row_idx.push(2 * j);
-                    row_idx.push(2 * j + 1);
+                    row_idx.extend((0..DIM).map(|c| dof(j, c)));
                 }
                 col_ptr.push(row_idx.len());
             }
         }
         // Safe by construction: rows sorted and unique within each column, all < 2n.
-        let symbolic = SymbolicSparseColMat::new_checked(2 * n, 2 * n, col_ptr, None, row_idx);
+        let symbolic =
+            SymbolicSparseColMat::new_checked(num_dofs(n), num_dofs(n), col_ptr, None, row_idx);
         Pattern {
             adjacency,
             symbolic,
@@ -121,13 +122,13 @@ impl Pattern {
         let mut chunks: Vec<&mut [f64]> = Vec::with_capacity(n);
         let mut rest = values.as_mut_slice();
         for i in 0..n {
-            let (head, tail) = rest.split_at_mut(col_ptr[2 * i + 2] - col_ptr[2 * i]);
+            let (head, tail) = rest.split_at_mut(col_ptr[dof(i + 1, 0)] - col_ptr[dof(i, 0)]);
             chunks.push(head);
             rest = tail;
         }
         chunks.into_par_iter().enumerate().for_each(|(i, cols)| {
             let nbrs = adj.neighbours(i);
-            let half = cols.len() / 2;
+            let len = cols.len() / DIM;
             for &e in &adj.cells[adj.cell_ptr[i]..adj.cell_ptr[i + 1]] {
                 let c = mesh.cell(e);
                 let geo = affine(mesh, c);
@@ -139,10 +140,10 @@ impl Pattern {
                     let Ok(p) = nbrs.binary_search(&j) else {
                         continue;
                     };
-                    for ci in 0..2 {
-                        for cj in 0..2 {
-                            // Column 2i + ci, row 2j + cj.
-                            cols[ci * half + 2 * p + cj] += ke[2 * b + cj][2 * a + ci];
+                    for ci in 0..DIM {
+                        for cj in 0..DIM {
+                            // Column dof(i, ci), row dof(j, cj).
+                            cols[ci * len + dof(p, cj)] += ke[dof(b, cj)][dof(a, ci)];
                         }
                     }
                 }
@@ -160,7 +161,7 @@ pub fn affine(mesh: &Mesh, c: &[usize]) -> Affine {
 
 /// Adds the consistent nodal forces of a body force `f(x)` (force per unit area), integrated by a
 /// degree-5 rule.
-pub fn add_body_force(mesh: &Mesh, f: impl Fn([f64; 2]) -> [f64; 2], rhs: &mut [f64]) {
+pub fn add_body_force(mesh: &Mesh, f: impl Fn(Point) -> Vector, rhs: &mut [f64]) {
     let order = mesh.order();
     for e in 0..mesh.num_cells() {
         let c = mesh.cell(e);
@@ -173,8 +174,9 @@ pub fn add_body_force(mesh: &Mesh, f: impl Fn([f64; 2]) -> [f64; 2], rhs: &mut [
             let n = element::shape(order, *l);
             let fx = f(geo.point(*l));
             for (k, &v) in c.iter().enumerate() {
-                rhs[2 * v] += w * geo.area * n[k] * fx[0];
-                rhs[2 * v + 1] += w * geo.area * n[k] * fx[1];
+                for c in 0..DIM {
+                    rhs[dof(v, c)] += w * geo.area * n[k] * fx[c];
+                }
             }
         }
     }
@@ -185,7 +187,7 @@ pub fn add_body_force(mesh: &Mesh, f: impl Fn([f64; 2]) -> [f64; 2], rhs: &mut [
 pub fn add_edge_traction(
     mesh: &Mesh,
     edges: &[Edge],
-    traction: impl Fn([f64; 2], [f64; 2]) -> [f64; 2],
+    traction: impl Fn(Point, Vector) -> Vector,
     rhs: &mut [f64],
 ) {
     let order = mesh.order();
@@ -195,12 +197,13 @@ pub fn add_edge_traction(
         let (a, b) = (p[edge.a], p[edge.b]);
         let ids: Vec<usize> = edge.nodes().collect();
         for (t, w) in EDGE_GAUSS_3.0.iter().zip(EDGE_GAUSS_3.1) {
-            let x = [a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1])];
+            let x: Point = std::array::from_fn(|c| a[c] + t * (b[c] - a[c]));
             let tr = traction(x, normal);
             let n = element::edge_shape(order, *t);
             for (k, &v) in ids.iter().enumerate() {
-                rhs[2 * v] += w * len * n[k] * tr[0];
-                rhs[2 * v + 1] += w * len * n[k] * tr[1];
+                for c in 0..DIM {
+                    rhs[dof(v, c)] += w * len * n[k] * tr[c];
+                }
             }
         }
     }

@@ -4,6 +4,7 @@
 use crate::assembly::Pattern;
 use crate::error::BodyError;
 use crate::factor::FactoredBody;
+use crate::geometry::Vector;
 use crate::material::{Material, Plane};
 use crate::mesh::Mesh;
 use crate::post::{residual, stresses, Stresses};
@@ -44,7 +45,7 @@ impl ElasticBody {
     }
 
     /// Errors if supports plus springs at `springs` (node, direction) leave rigid-body modes.
-    pub fn check_held(&self, springs: &[(usize, [f64; 2])]) -> Result<(), BodyError> {
+    pub fn check_held(&self, springs: &[(usize, Vector)]) -> Result<(), BodyError> {
         let modes = free_rigid_modes(&self.mesh, &self.constraints, springs);
         if modes.is_empty() {
             return Ok(());

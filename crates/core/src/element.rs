@@ -4,6 +4,7 @@
 //! vertices 0, 1, 2, then mid-sides of (0,1), (1,2), (2,0). Because the map is affine, the
 //! gradients of the barycentric coordinates are constant on a triangle.
 
+use crate::geometry::{dof, Point, Vector, DIM};
 use crate::mesh::Order;
 
 /// Largest number of nodes of a triangle (P2).
@@ -30,14 +31,14 @@ pub struct Affine {
     /// Area (positive for a counter-clockwise triangle).
     pub area: f64,
     /// ∇λ_i, constant on the triangle.
-    pub grad_l: [[f64; 2]; 3],
+    pub grad_l: [Vector; 3],
     /// The three vertices.
-    pub vertices: [[f64; 2]; 3],
+    pub vertices: [Point; 3],
 }
 
 impl Affine {
     /// Geometry of the triangle with vertices `p`.
-    pub fn new(p: [[f64; 2]; 3]) -> Affine {
+    pub fn new(p: [Point; 3]) -> Affine {
         let area2 =
             (p[1][0] - p[0][0]) * (p[2][1] - p[0][1]) - (p[2][0] - p[0][0]) * (p[1][1] - p[0][1]);
         let g = |i: usize, j: usize| [(p[i][1] - p[j][1]) / area2, (p[j][0] - p[i][0]) / area2];
@@ -49,7 +50,7 @@ impl Affine {
     }
 
     /// Physical point of barycentric coordinates `l`.
-    pub fn point(&self, l: [f64; 3]) -> [f64; 2] {
+    pub fn point(&self, l: [f64; 3]) -> Point {
         let v = &self.vertices;
         [
             l[0] * v[0][0] + l[1] * v[1][0] + l[2] * v[2][0],
@@ -58,13 +59,13 @@ impl Affine {
     }
 
     /// Physical gradients of the shape functions at barycentric point `l`.
-    pub fn grad(&self, order: Order, l: [f64; 3]) -> [[f64; 2]; MAX_NODES] {
+    pub fn grad(&self, order: Order, l: [f64; 3]) -> [Vector; MAX_NODES] {
         let g = &self.grad_l;
-        let mut out = [[0.0; 2]; MAX_NODES];
+        let mut out = [[0.0; DIM]; MAX_NODES];
         match order {
             Order::P1 => out[..3].copy_from_slice(g),
             Order::P2 => {
-                for d in 0..2 {
+                for d in 0..DIM {
                     for i in 0..3 {
                         out[i][d] = (4.0 * l[i] - 1.0) * g[i][d];
                     }
@@ -152,9 +153,9 @@ pub fn stiffness(
     order: Order,
     geo: &Affine,
     d: &[[f64; 3]; 3],
-) -> [[f64; 2 * MAX_NODES]; 2 * MAX_NODES] {
+) -> [[f64; DIM * MAX_NODES]; DIM * MAX_NODES] {
     let n = order.nodes_per_cell();
-    let mut k = [[0.0; 2 * MAX_NODES]; 2 * MAX_NODES];
+    let mut k = [[0.0; DIM * MAX_NODES]; DIM * MAX_NODES];
     let rule: (&[[f64; 3]], &[f64]) = match order {
         // Constant gradients: one point is exact.
         Order::P1 => (&[[1.0 / 3.0; 3]], &[1.0]),
@@ -179,10 +180,10 @@ pub fn stiffness(
             for b in 0..n {
                 let (bx, by) = (g[b][0], g[b][1]);
                 // B_bᵀ (D B_a)
-                k[2 * b][2 * a] += scale * (bx * dbx[0] + by * dbx[2]);
-                k[2 * b + 1][2 * a] += scale * (by * dbx[1] + bx * dbx[2]);
-                k[2 * b][2 * a + 1] += scale * (bx * dby[0] + by * dby[2]);
-                k[2 * b + 1][2 * a + 1] += scale * (by * dby[1] + bx * dby[2]);
+                k[dof(b, 0)][dof(a, 0)] += scale * (bx * dbx[0] + by * dbx[2]);
+                k[dof(b, 1)][dof(a, 0)] += scale * (by * dbx[1] + bx * dbx[2]);
+                k[dof(b, 0)][dof(a, 1)] += scale * (bx * dby[0] + by * dby[2]);
+                k[dof(b, 1)][dof(a, 1)] += scale * (by * dby[1] + bx * dby[2]);
             }
         }
     }
@@ -191,7 +192,7 @@ pub fn stiffness(
 
 /// Strain `(ε_xx, ε_yy, γ_xy)` at barycentric point `l` from the element's nodal displacements
 /// `u` (2 per node).
-pub fn strain(order: Order, geo: &Affine, l: [f64; 3], u: &[[f64; 2]]) -> [f64; 3] {
+pub fn strain(order: Order, geo: &Affine, l: [f64; 3], u: &[Vector]) -> [f64; 3] {
     let g = geo.grad(order, l);
     let mut e = [0.0; 3];
     for (gi, ui) in g.iter().zip(u) {

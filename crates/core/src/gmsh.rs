@@ -37,7 +37,8 @@ use std::collections::{BTreeMap, BTreeSet, HashMap};
 use std::path::Path;
 
 use crate::error::{GmshError, MeshError};
-use crate::mesh::{Edge, Mesh, Order};
+use crate::geometry::{Point, DIM};
+use crate::mesh::{dist, Edge, Mesh, Order};
 
 /// Reads a Gmsh ASCII mesh file (MSH 4.1 or 2.2) into a validated [`Mesh`].
 pub fn read_msh(path: &Path) -> Result<Mesh, GmshError> {
@@ -611,24 +612,24 @@ impl RawMsh {
     /// Renumbers the `used` nodes in file order and checks that they lie in one xy plane.
     /// Returns their xy coordinates and, per node of `coords`, its new index (`usize::MAX` if
     /// unused).
-    fn renumber_nodes(&self, used: &[bool]) -> Result<(Vec<[f64; 2]>, Vec<usize>), GmshError> {
+    fn renumber_nodes(&self, used: &[bool]) -> Result<(Vec<Point>, Vec<usize>), GmshError> {
         let mut new_index = vec![usize::MAX; self.coords.len()];
         let mut nodes = Vec::new();
         let (mut zmin, mut zmax) = (f64::INFINITY, f64::NEG_INFINITY);
-        let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
+        let (mut lo, mut hi) = ([f64::INFINITY; DIM], [f64::NEG_INFINITY; DIM]);
         for ((&xyz, &u), slot) in self.coords.iter().zip(used).zip(&mut new_index) {
             if u {
                 *slot = nodes.len();
-                nodes.push([xyz[0], xyz[1]]);
+                nodes.push(std::array::from_fn::<f64, DIM, _>(|d| xyz[d]));
                 zmin = zmin.min(xyz[2]);
                 zmax = zmax.max(xyz[2]);
-                for d in 0..2 {
+                for d in 0..DIM {
                     lo[d] = lo[d].min(xyz[d]);
                     hi[d] = hi[d].max(xyz[d]);
                 }
             }
         }
-        let diameter = (hi[0] - lo[0]).hypot(hi[1] - lo[1]);
+        let diameter = dist(hi, lo);
         if zmax - zmin > 1e-10 * diameter {
             return Err(GmshError::Unsupported(format!(
                 "the mesh is not planar in xy: z ranges from {zmin} to {zmax}"
@@ -642,7 +643,7 @@ impl RawMsh {
     fn sort_elements(
         &self,
         order: Order,
-        nodes: &[[f64; 2]],
+        nodes: &[Point],
         new_index: &[usize],
     ) -> Result<
         (
@@ -781,7 +782,7 @@ fn skip_section(tokens: &mut Tokens<'_>, start: usize, name: &str) -> Result<(),
 }
 
 /// Twice the signed area of triangle (a, b, c); zero if an index is out of range.
-fn signed_area2(nodes: &[[f64; 2]], a: usize, b: usize, c: usize) -> f64 {
+fn signed_area2(nodes: &[Point], a: usize, b: usize, c: usize) -> f64 {
     match (nodes.get(a), nodes.get(b), nodes.get(c)) {
         (Some(p0), Some(p1), Some(p2)) => {
             (p1[0] - p0[0]) * (p2[1] - p0[1]) - (p2[0] - p0[0]) * (p1[1] - p0[1])

@@ -2,6 +2,7 @@
 
 use crate::assembly::{add_body_force, add_edge_traction, add_pressure};
 use crate::error::MeshError;
+use crate::geometry::{num_dofs, Vector};
 use crate::mesh::Mesh;
 
 /// One load.
@@ -19,15 +20,15 @@ pub enum Load {
         /// Boundary name.
         boundary: String,
         /// Force per unit length.
-        value: [f64; 2],
+        value: Vector,
     },
     /// Uniform body force per unit area (e.g. `ρ g`).
-    BodyForce([f64; 2]),
+    BodyForce(Vector),
 }
 
 /// The consistent load vector (2 entries per node) of a set of loads.
 pub fn load_vector(mesh: &Mesh, loads: &[Load]) -> Result<Vec<f64>, MeshError> {
-    let mut f = vec![0.0; 2 * mesh.num_nodes()];
+    let mut f = vec![0.0; num_dofs(mesh.num_nodes())];
     for load in loads {
         match load {
             Load::Pressure { boundary, value } => {

@@ -9,6 +9,7 @@
 use std::collections::{BTreeMap, HashMap};
 
 use crate::error::MeshError;
+use crate::geometry::{Point, Vector, DIM};
 
 /// Polynomial order of the Lagrange triangle.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, serde::Serialize, serde::Deserialize)]
@@ -56,7 +57,7 @@ impl Edge {
 /// A validated triangular mesh of one body.
 #[derive(Clone, Debug)]
 pub struct Mesh {
-    nodes: Vec<[f64; 2]>,
+    nodes: Vec<Point>,
     order: Order,
     cells: Vec<usize>,
     boundaries: BTreeMap<String, Vec<Edge>>,
@@ -71,7 +72,7 @@ impl Mesh {
     /// triangle. Boundary edges may be given in either direction; they are re-oriented so that the
     /// body lies on their left, and for P2 the missing mid-side node is filled in.
     pub fn new(
-        nodes: Vec<[f64; 2]>,
+        nodes: Vec<Point>,
         order: Order,
         cells: Vec<usize>,
         boundaries: BTreeMap<String, Vec<Edge>>,
@@ -210,7 +211,7 @@ impl Mesh {
     }
 
     /// Node coordinates.
-    pub fn nodes(&self) -> &[[f64; 2]] {
+    pub fn nodes(&self) -> &[Point] {
         &self.nodes
     }
 
@@ -285,9 +286,9 @@ impl Mesh {
 
     /// Length of the bounding box diagonal (a length scale for tolerances).
     pub fn bounding_box_diameter(&self) -> f64 {
-        let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
+        let (mut lo, mut hi) = ([f64::INFINITY; DIM], [f64::NEG_INFINITY; DIM]);
         for p in &self.nodes {
-            for d in 0..2 {
+            for d in 0..DIM {
                 lo[d] = lo[d].min(p[d]);
                 hi[d] = hi[d].max(p[d]);
             }
@@ -343,7 +344,7 @@ impl Mesh {
     }
 
     /// Outward unit normal and length of a boundary edge.
-    pub fn edge_normal(&self, edge: &Edge) -> ([f64; 2], f64) {
+    pub fn edge_normal(&self, edge: &Edge) -> (Vector, f64) {
         let (a, b) = (self.nodes[edge.a], self.nodes[edge.b]);
         let (dx, dy) = (b[0] - a[0], b[1] - a[1]);
         let len = dx.hypot(dy);
@@ -352,7 +353,7 @@ impl Mesh {
 
     /// Returns a copy with every node moved by `f` (e.g. to map a reference mesh onto a body).
     /// The result is validated again.
-    pub fn map_nodes(&self, f: impl Fn([f64; 2]) -> [f64; 2]) -> Result<Mesh, MeshError> {
+    pub fn map_nodes(&self, f: impl Fn(Point) -> Point) -> Result<Mesh, MeshError> {
         Mesh::new(
             self.nodes.iter().map(|&p| f(p)).collect(),
             self.order,
@@ -364,6 +365,6 @@ impl Mesh {
 }
 
 /// Euclidean distance of two points.
-pub fn dist(a: [f64; 2], b: [f64; 2]) -> f64 {
+pub fn dist(a: Point, b: Point) -> f64 {
     (a[0] - b[0]).hypot(a[1] - b[1])
 }

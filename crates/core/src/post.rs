@@ -4,6 +4,7 @@ use faer::sparse::SparseColMat;
 
 use crate::assembly::affine;
 use crate::element::{self, node_barycentric};
+use crate::geometry::{dof, node_vector, Vector, DIM};
 use crate::material::{von_mises, Material, Plane};
 use crate::mesh::Mesh;
 
@@ -32,7 +33,7 @@ fn stress_at(
 ) -> Stress {
     let c = mesh.cell(e);
     let geo = affine(mesh, c);
-    let ue: Vec<[f64; 2]> = c.iter().map(|&v| [u[2 * v], u[2 * v + 1]]).collect();
+    let ue: Vec<Vector> = c.iter().map(|&v| node_vector(u, v)).collect();
     let eps = element::strain(mesh.order(), &geo, l, &ue);
     let s: [f64; 3] = [0, 1, 2].map(|i| d[i][0] * eps[0] + d[i][1] * eps[1] + d[i][2] * eps[2]);
     [s[0], s[1], s[2], material.sigma_zz(plane, s[0], s[1])]
@@ -87,9 +88,9 @@ pub fn residual(k: &SparseColMat<usize, f64>, u: &[f64], f: &[f64]) -> Vec<f64> 
 }
 
 /// Total reaction force `[R_x, R_y]` on the nodes of a boundary, from the residual `K u − f`.
-pub fn reaction_on(mesh: &Mesh, boundary: &str, residual: &[f64]) -> Option<[f64; 2]> {
+pub fn reaction_on(mesh: &Mesh, boundary: &str, residual: &[f64]) -> Option<Vector> {
     let nodes = mesh.boundary_nodes(boundary).ok()?;
-    Some(nodes.iter().fold([0.0, 0.0], |s, &v| {
-        [s[0] + residual[2 * v], s[1] + residual[2 * v + 1]]
+    Some(nodes.iter().fold([0.0; DIM], |s, &v| {
+        std::array::from_fn(|c| s[c] + residual[dof(v, c)])
     }))
 }

@@ -4,6 +4,7 @@
 use std::collections::BTreeMap;
 
 use crate::error::MeshError;
+use crate::geometry::Point;
 use crate::mesh::{Edge, Mesh, Order};
 
 /// Which diagonal splits each cell.
@@ -23,9 +24,9 @@ pub enum Diagonal {
 #[derive(Clone, Debug, PartialEq)]
 pub struct Rectangle {
     /// Lower-left corner.
-    pub origin: [f64; 2],
+    pub origin: Point,
     /// Upper-right corner.
-    pub corner: [f64; 2],
+    pub corner: Point,
     /// Cells in x.
     pub nx: usize,
     /// Cells in y.

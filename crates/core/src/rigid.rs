@@ -7,6 +7,7 @@
 
 use nalgebra::{Matrix3, SymmetricEigen};
 
+use crate::geometry::{component_of, dot, node_of, Point, Vector, DIM};
 use crate::mesh::Mesh;
 use crate::supports::Constraints;
 
@@ -16,7 +17,7 @@ pub const NUM_MODES: usize = 3;
 /// The rigid-body basis of one body.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct RigidBasis {
-    center: [f64; 2],
+    center: Point,
     size: f64,
 }
 
@@ -28,7 +29,7 @@ impl RigidBasis {
         let n = p.len().max(1) as f64;
         let center = p
             .iter()
-            .fold([0.0, 0.0], |s, x| [s[0] + x[0] / n, s[1] + x[1] / n]);
+            .fold([0.0; DIM], |s, x| std::array::from_fn(|c| s[c] + x[c] / n));
         RigidBasis {
             center,
             size: mesh.bounding_box_diameter().max(f64::MIN_POSITIVE),
@@ -36,7 +37,7 @@ impl RigidBasis {
     }
 
     /// The three modes at point `x`: row `c` holds displacement component `c` of each mode.
-    pub fn at(&self, x: [f64; 2]) -> [[f64; NUM_MODES]; 2] {
+    pub fn at(&self, x: Point) -> [[f64; NUM_MODES]; DIM] {
         let (dx, dy) = (
             (x[0] - self.center[0]) / self.size,
             (x[1] - self.center[1]) / self.size,
@@ -45,9 +46,9 @@ impl RigidBasis {
     }
 
     /// The displacement at `x` of the combination with coefficients `v`.
-    pub fn motion(&self, x: [f64; 2], v: &[f64; NUM_MODES]) -> [f64; 2] {
+    pub fn motion(&self, x: Point, v: &[f64; NUM_MODES]) -> Vector {
         let m = self.at(x);
-        [0, 1].map(|c| (0..NUM_MODES).map(|i| m[c][i] * v[i]).sum())
+        std::array::from_fn(|c| (0..NUM_MODES).map(|i| m[c][i] * v[i]).sum())
     }
 }
 
@@ -66,7 +67,7 @@ pub fn describe(v: &[f64; NUM_MODES]) -> String {
 pub fn free_modes(
     mesh: &Mesh,
     constraints: &Constraints,
-    springs: &[(usize, [f64; 2])],
+    springs: &[(usize, Vector)],
 ) -> Vec<[f64; NUM_MODES]> {
     let basis = RigidBasis::new(mesh);
     let p = mesh.nodes();
@@ -80,11 +81,11 @@ pub fn free_modes(
         }
     };
     for (dof, _) in constraints.fixed() {
-        add(basis.at(p[dof / 2])[dof % 2]);
+        add(basis.at(p[node_of(dof)])[component_of(dof)]);
     }
     for &(v, dir) in springs {
         let m = basis.at(p[v]);
-        add([0, 1, 2].map(|k| dir[0] * m[0][k] + dir[1] * m[1][k]));
+        add([0, 1, 2].map(|k| dot(dir, std::array::from_fn(|c| m[c][k]))));
     }
     let scale = gram.trace().max(1.0);
     let eig = SymmetricEigen::new(gram);

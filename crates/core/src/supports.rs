@@ -1,6 +1,7 @@
 //! Prescribed displacements (supports) and the check that a body has no rigid-body modes left.
 
 use crate::error::SupportError;
+use crate::geometry::{dof, num_dofs, Vector};
 use crate::mesh::Mesh;
 use crate::rigid::{describe, free_modes};
 
@@ -29,7 +30,7 @@ impl Constraints {
     /// No DOF constrained, for a mesh with `num_nodes` nodes.
     pub fn new(num_nodes: usize) -> Constraints {
         Constraints {
-            values: vec![None; 2 * num_nodes],
+            values: vec![None; num_dofs(num_nodes)],
         }
     }
 
@@ -65,7 +66,7 @@ impl Constraints {
         };
         for v in nodes {
             for &c in comps {
-                self.values[2 * v + c] = Some(value);
+                self.values[dof(v, c)] = Some(value);
             }
         }
         Ok(())
@@ -125,7 +126,7 @@ fn axis_normal(mesh: &Mesh, name: &str) -> Option<usize> {
 pub fn free_rigid_modes(
     mesh: &Mesh,
     constraints: &Constraints,
-    springs: &[(usize, [f64; 2])],
+    springs: &[(usize, Vector)],
 ) -> Vec<String> {
     free_modes(mesh, constraints, springs)
         .iter()

@@ -26,6 +26,8 @@ use std::ops::Range;
 
 use faer::{Mat, Side};
 
+use contactdd_core::geometry::dot;
+use contactdd_core::node_vector;
 use contactdd_core::rigid::{free_modes, RigidBasis};
 
 use crate::contact::Interface;
@@ -148,7 +150,7 @@ impl FloatingModes {
                     .enumerate()
                     .map(|(i, &x)| {
                         let u = basis.motion(x, v);
-                        u[0] * body.load[2 * i] + u[1] * body.load[2 * i + 1]
+                        dot(u, node_vector(&body.load, i))
                     })
                     .sum();
                 load.push(work);

@@ -18,7 +18,8 @@
 use faer::prelude::Solve;
 use faer::{Mat, Side};
 
-use contactdd_core::{BodyError, ElasticBody, FactoredBody};
+use contactdd_core::geometry::dot;
+use contactdd_core::{dof, node_vector, BodyError, ElasticBody, FactoredBody, Vector, DIM};
 
 use crate::contact::ContactPoint;
 
@@ -31,7 +32,7 @@ pub struct CondensedBody {
     op: FactoredBody,
     /// Nodes and normals of the contact points (body-local order).
     nodes: Vec<usize>,
-    normals: Vec<[f64; 2]>,
+    normals: Vec<Vector>,
     /// Reference spring stiffness w_j/θ_j (φ = 1).
     d0: Vec<f64>,
     /// C₀ = Nᵀ K₀⁻¹ N.
@@ -58,9 +59,9 @@ impl CondensedBody {
         par: faer::Par,
     ) -> Result<CondensedBody, BodyError> {
         let nodes: Vec<usize> = points.iter().map(|p| p.node).collect();
-        let normals: Vec<[f64; 2]> = points.iter().map(|p| p.normal).collect();
+        let normals: Vec<Vector> = points.iter().map(|p| p.normal).collect();
         let d0: Vec<f64> = points.iter().map(|p| p.weight / p.theta).collect();
-        let springs: Vec<(usize, [f64; 2])> =
+        let springs: Vec<(usize, Vector)> =
             nodes.iter().copied().zip(normals.iter().copied()).collect();
         body.check_held(&springs)?;
         if body.load.iter().any(|v| !v.is_finite()) {
@@ -74,18 +75,19 @@ impl CondensedBody {
         let mut interface: Vec<usize> = nodes
             .iter()
             .zip(&normals)
-            .flat_map(|(&v, n)| (0..2).filter(|&c| n[c] != 0.0).map(move |c| 2 * v + c))
+            .flat_map(|(&v, n)| (0..DIM).filter(|&c| n[c] != 0.0).map(move |c| dof(v, c)))
             .collect();
         interface.sort_unstable();
         interface.dedup();
         let mut op =
             FactoredBody::new(&body.name, body.stiffness(), &body.constraints, &interface)?;
         op.set_parallelism(par);
-        let mut additions = Vec::with_capacity(4 * nodes.len());
+        let mut additions = Vec::with_capacity(DIM * DIM * nodes.len());
         for ((&v, n), &k) in nodes.iter().zip(&normals).zip(&d0) {
-            additions.push((2 * v, 2 * v, k * n[0] * n[0]));
-            additions.push((2 * v + 1, 2 * v + 1, k * n[1] * n[1]));
-            additions.push((2 * v + 1, 2 * v, k * n[0] * n[1]));
+            let (x, y) = (dof(v, 0), dof(v, 1));
+            additions.push((x, x, k * n[0] * n[0]));
+            additions.push((y, y, k * n[1] * n[1]));
+            additions.push((y, x, k * n[0] * n[1]));
         }
         op.factorize(&additions)?;
 
@@ -97,8 +99,8 @@ impl CondensedBody {
         let m = nodes.len();
         let mut y = Mat::<f64>::zeros(l22.nrows(), m);
         for (j, (&v, n)) in nodes.iter().zip(&normals).enumerate() {
-            for c in 0..2 {
-                if let Some(Some(i)) = pos.get(&(2 * v + c)) {
+            for c in 0..DIM {
+                if let Some(Some(i)) = pos.get(&dof(v, c)) {
                     y[(*i, j)] += n[c];
                 }
             }
@@ -113,7 +115,7 @@ impl CondensedBody {
         let f0 = nodes
             .iter()
             .zip(&normals)
-            .map(|(&v, n)| n[0] * x[2 * v] + n[1] * x[2 * v + 1])
+            .map(|(&v, n)| dot(*n, node_vector(&x, v)))
             .collect();
         Ok(CondensedBody {
             op,
@@ -224,8 +226,9 @@ impl CondensedBody {
     pub fn recover(&self, t_load: &[f64]) -> Result<Vec<f64>, BodyError> {
         let mut f = self.load.clone();
         for ((&v, n), &t) in self.nodes.iter().zip(&self.normals).zip(t_load) {
-            f[2 * v] += n[0] * t;
-            f[2 * v + 1] += n[1] * t;
+            for c in 0..DIM {
+                f[dof(v, c)] += n[c] * t;
+            }
         }
         self.op.solve(&f)
     }

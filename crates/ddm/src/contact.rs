@@ -13,7 +13,8 @@ use std::collections::HashMap;
 use std::ops::Range;
 
 use contactdd_core::element::{edge_nodal_weights, edge_shape};
-use contactdd_core::{Edge, Mesh, Order};
+use contactdd_core::geometry::dot;
+use contactdd_core::{Edge, Mesh, Order, Point, Vector, DIM};
 
 use crate::error::SetupError;
 use crate::model::Model;
@@ -28,7 +29,7 @@ pub struct ContactPoint {
     /// Contact pair index.
     pub pair: usize,
     /// Outward unit normal of the owning body at the node.
-    pub normal: [f64; 2],
+    pub normal: Vector,
     /// Nodal quadrature weight (length).
     pub weight: f64,
     /// Initial gap d (geometric normal distance plus the pair's profile).
@@ -80,7 +81,7 @@ impl Interface {
             body: usize,
             pair: usize,
             nodes: Vec<usize>,
-            normals: Vec<[f64; 2]>,
+            normals: Vec<Vector>,
             weights: Vec<f64>,
         }
         let mut sides = Vec::new();
@@ -223,7 +224,7 @@ fn nodal_quadrature(
     edges: &[Edge],
     partner: &Mesh,
     partner_edges: &[Edge],
-) -> (Vec<usize>, Vec<[f64; 2]>, Vec<f64>) {
+) -> (Vec<usize>, Vec<Vector>, Vec<f64>) {
     let mut index: HashMap<usize, usize> = HashMap::new();
     let (mut nodes, mut normals, mut weights) = (Vec::new(), Vec::new(), Vec::new());
     for e in edges {
@@ -233,13 +234,14 @@ fn nodal_quadrature(
         for (k, v) in e.nodes().enumerate() {
             let i = *index.entry(v).or_insert_with(|| {
                 nodes.push(v);
-                normals.push([0.0, 0.0]);
+                normals.push([0.0; DIM]);
                 weights.push(0.0);
                 nodes.len() - 1
             });
             weights[i] += w[k];
-            normals[i][0] += len * n[0];
-            normals[i][1] += len * n[1];
+            for c in 0..DIM {
+                normals[i][c] += len * n[c];
+            }
         }
     }
     for n in &mut normals {
@@ -256,7 +258,7 @@ fn nodal_quadrature(
 fn covered_part(
     mesh: &Mesh,
     e: &Edge,
-    n: [f64; 2],
+    n: Vector,
     partner: &Mesh,
     partner_edges: &[Edge],
 ) -> (f64, f64) {
@@ -334,33 +336,28 @@ fn partial_edge_weights(order: Order, len: f64, t0: f64, t1: f64) -> [f64; 3] {
     }
 }
 
-fn cross(a: [f64; 2], b: [f64; 2]) -> f64 {
+fn cross(a: Vector, b: Vector) -> f64 {
     a[0] * b[1] - a[1] * b[0]
 }
 
 /// Intersects the ray x + t n with the edges (facing the ray) and returns the signed distance t
 /// of the nearest hit and the partner node coefficients there.
-fn project(
-    x: [f64; 2],
-    n: [f64; 2],
-    mesh: &Mesh,
-    edges: &[Edge],
-) -> Option<(f64, Vec<(usize, f64)>)> {
+fn project(x: Point, n: Vector, mesh: &Mesh, edges: &[Edge]) -> Option<(f64, Vec<(usize, f64)>)> {
     let p = mesh.nodes();
     let mut best: Option<(f64, Vec<(usize, f64)>)> = None;
     for e in edges {
         let (ne, len) = mesh.edge_normal(e);
         // Only edges facing the point: their outward normal opposes n.
-        if ne[0] * n[0] + ne[1] * n[1] >= -1e-3 {
+        if dot(ne, n) >= -1e-3 {
             continue;
         }
         let (a, b) = (p[e.a], p[e.b]);
-        let dir = [b[0] - a[0], b[1] - a[1]];
+        let dir: Vector = std::array::from_fn(|c| b[c] - a[c]);
         let den = cross(n, dir);
         if den.abs() < 1e-14 * len {
             continue;
         }
-        let ax = [a[0] - x[0], a[1] - x[1]];
+        let ax: Vector = std::array::from_fn(|c| a[c] - x[c]);
         let t = cross(ax, dir) / den;
         let s = cross(ax, n) / den;
         let tol = 1e-9;

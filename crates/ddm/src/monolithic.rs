@@ -21,6 +21,7 @@ use faer::Mat;
 use nalgebra::{DMatrix, SymmetricEigen};
 
 use contactdd_core::rigid::{describe, free_modes, RigidBasis};
+use contactdd_core::{component_of, dof, node_of, num_dofs, DIM};
 
 use crate::contact::Interface;
 use crate::error::SetupError;
@@ -57,7 +58,7 @@ pub fn solve_monolithic(model: &Model) -> Result<MonolithicSolution, SetupError>
     let mut index = Vec::new();
     let mut n = 0;
     for body in &model.bodies {
-        let idx: Vec<Option<usize>> = (0..2 * body.mesh.num_nodes())
+        let idx: Vec<Option<usize>> = (0..num_dofs(body.mesh.num_nodes()))
             .map(|d| {
                 body.constraints.get(d).is_none().then(|| {
                     n += 1;
@@ -158,18 +159,18 @@ fn contact_terms(
             let pq = &interface.points[q];
             terms.push((pq.body, pq.node, pq.normal, c));
         }
-        for a in 0..2 {
-            let Some(row) = num.index[p.body][2 * p.node + a] else {
+        for a in 0..DIM {
+            let Some(row) = num.index[p.body][dof(p.node, a)] else {
                 continue;
             };
             rhs[row] += k * p.gap * p.normal[a];
             for &(b, v, n, c) in &terms {
-                for e in 0..2 {
+                for e in 0..DIM {
                     let coef = k * p.normal[a] * c * n[e];
-                    match num.index[b][2 * v + e] {
+                    match num.index[b][dof(v, e)] {
                         Some(col) => trip.push(Triplet::new(row, col, coef)),
                         None => {
-                            let ud = model.bodies[b].constraints.get(2 * v + e).unwrap_or(0.0);
+                            let ud = model.bodies[b].constraints.get(dof(v, e)).unwrap_or(0.0);
                             rhs[row] -= coef * ud;
                         }
                     }
@@ -191,7 +192,7 @@ fn rigid_candidates(model: &Model, num: &Numbering) -> (Vec<Vec<f64>>, Vec<Strin
             let mut z = vec![0.0; num.n];
             for (d, idx) in num.index[b].iter().enumerate() {
                 if let Some(i) = idx {
-                    z[*i] = basis.motion(body.mesh.nodes()[d / 2], &v)[d % 2];
+                    z[*i] = basis.motion(body.mesh.nodes()[node_of(d)], &v)[component_of(d)];
                 }
             }
             out.push(z);
@@ -298,7 +299,7 @@ fn full_displacements(model: &Model, num: &Numbering, u: &[f64]) -> Vec<Vec<f64>
         .iter()
         .enumerate()
         .map(|(b, body)| {
-            (0..2 * body.mesh.num_nodes())
+            (0..num_dofs(body.mesh.num_nodes()))
                 .map(|d| match num.index[b][d] {
                     Some(i) => u[i],
                     None => body.constraints.get(d).unwrap_or(0.0),
@@ -318,9 +319,9 @@ fn normal_displacements(
         .points
         .iter()
         .map(|p| {
-            (0..2)
+            (0..DIM)
                 .map(|a| {
-                    let d = 2 * p.node + a;
+                    let d = dof(p.node, a);
                     let v = match num.index[p.body][d] {
                         Some(i) => u[i],
                         None => model.bodies[p.body].constraints.get(d).unwrap_or(0.0),

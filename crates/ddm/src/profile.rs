@@ -1,5 +1,7 @@
 //! Prescribed gap profiles, added to the geometric normal gap of a contact pair.
 
+use contactdd_core::Point;
+
 /// Which coordinate of a contact node a profile is a function of.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
 #[serde(rename_all = "kebab-case")]
@@ -36,7 +38,7 @@ pub enum GapProfile {
 
 impl GapProfile {
     /// The profile's value at point `p`.
-    pub fn at(&self, p: [f64; 2]) -> f64 {
+    pub fn at(&self, p: Point) -> f64 {
         match *self {
             GapProfile::Notch {
                 r0,

@@ -3,7 +3,7 @@
 use std::collections::BTreeMap;
 
 use contactdd_core::post::stresses;
-use contactdd_core::Mesh;
+use contactdd_core::{Mesh, Vector, DIM};
 
 use crate::contact::Interface;
 use crate::iteration::{Accelerator, Breakdown, CoarseMode, Record, Stop};
@@ -59,8 +59,8 @@ pub struct PairResult {
 
 impl PairResult {
     /// Total contact force on side `side`: Σ w σ_n n (the force the other body exerts).
-    pub fn force_on(&self, side: usize) -> [f64; 2] {
-        let mut f = [0.0, 0.0];
+    pub fn force_on(&self, side: usize) -> Vector {
+        let mut f = [0.0; DIM];
         for i in (0..self.side.len()).filter(|&i| self.side[i] == side) {
             f[0] += self.weight[i] * self.pressure[i] * self.nx[i];
             f[1] += self.weight[i] * self.pressure[i] * self.ny[i];

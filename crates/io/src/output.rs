@@ -42,7 +42,7 @@ use std::path::{Path, PathBuf};
 
 use serde_json::{json, Value};
 
-use contactdd_core::Order;
+use contactdd_core::{num_dofs, Order, Vector, DIM};
 use contactdd_ddm::solution::{BodyResult, PairResult, Solution};
 use contactdd_ddm::sweep::SweepRun;
 use contactdd_ddm::{Gamma, Model, MonolithicSolution};
@@ -139,9 +139,9 @@ fn gamma_json(gamma: Gamma) -> Value {
 }
 
 /// Total applied force `[fx, fy]` of a body (the sum of its nodal load vector).
-pub fn applied_load(load: &[f64]) -> [f64; 2] {
-    load.chunks(2).fold([0.0, 0.0], |s, f| {
-        [s[0] + f[0], s[1] + f.get(1).copied().unwrap_or(0.0)]
+pub fn applied_load(load: &[f64]) -> Vector {
+    load.chunks(DIM).fold([0.0; DIM], |s, f| {
+        std::array::from_fn(|c| s[c] + f.get(c).copied().unwrap_or(0.0))
     })
 }
 
@@ -156,7 +156,7 @@ fn bodies_json(model: &Model) -> Value {
                 "name": b.name,
                 "nodes": nodes,
                 "elements": b.mesh.num_cells(),
-                "dofs": (2 * nodes).saturating_sub(prescribed),
+                "dofs": num_dofs(nodes).saturating_sub(prescribed),
                 "order": match b.mesh.order() {
                     Order::P1 => "p1",
                     Order::P2 => "p2",

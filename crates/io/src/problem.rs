@@ -42,7 +42,7 @@ use std::path::PathBuf;
 use serde::de::{self, Deserializer, Visitor};
 use serde::{Deserialize, Serialize, Serializer};
 
-use contactdd_core::{Component, Diagonal, Order, Plane};
+use contactdd_core::{Component, Diagonal, Order, Plane, Vector};
 
 use contactdd_ddm::profile::Along;
 use contactdd_ddm::{Gamma, Method};
@@ -137,7 +137,7 @@ pub enum MeshSpec {
         order: Option<Order>,
         /// Added to every node after scaling (default `[0, 0]`).
         #[serde(default, skip_serializing_if = "Option::is_none")]
-        translate: Option<[f64; 2]>,
+        translate: Option<Vector>,
         /// Every coordinate is multiplied by this factor > 0 first (default 1).
         #[serde(default, skip_serializing_if = "Option::is_none")]
         scale: Option<f64>,
@@ -177,12 +177,12 @@ pub enum LoadSpec {
         /// Boundary name.
         boundary: String,
         /// Force per unit length.
-        value: [f64; 2],
+        value: Vector,
     },
     /// Uniform body force `[fx, fy]` per unit area.
     BodyForce {
         /// Force per unit area.
-        value: [f64; 2],
+        value: Vector,
     },
 }
 

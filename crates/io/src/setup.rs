@@ -31,7 +31,7 @@ use std::path::{Path, PathBuf};
 
 use contactdd_core::{
     BodyError, Constraints, Edge, ElasticBody, Load, Material, Mesh, MeshError, Order, Plane,
-    Rectangle,
+    Point, Rectangle, DIM,
 };
 
 use contactdd_ddm::iteration::ANDERSON_DEPTH;
@@ -608,8 +608,8 @@ pub fn mesh(body: &str, spec: &MeshSpec, base_dir: &Path) -> Result<Mesh, LoadEr
                 )
                 .into());
             }
-            let shift = translate.unwrap_or([0.0, 0.0]);
-            if !(shift[0].is_finite() && shift[1].is_finite()) {
+            let shift = translate.unwrap_or([0.0; DIM]);
+            if !shift.iter().all(|x| x.is_finite()) {
                 return Err(body_error(
                     body,
                     "mesh.translate",
@@ -628,9 +628,9 @@ pub fn mesh(body: &str, spec: &MeshSpec, base_dir: &Path) -> Result<Mesh, LoadEr
                     path: path.display().to_string(),
                     source,
                 })?;
-            if scale != 1.0 || shift != [0.0, 0.0] {
+            if scale != 1.0 || shift != [0.0; DIM] {
                 mesh = mesh
-                    .map_nodes(|p| [scale * p[0] + shift[0], scale * p[1] + shift[1]])
+                    .map_nodes(|p| std::array::from_fn(|c| scale * p[c] + shift[c]))
                     .map_err(|e| mesh_error(body, "mesh", e))?;
             }
             match (order, mesh.order()) {
@@ -655,7 +655,7 @@ pub fn mesh(body: &str, spec: &MeshSpec, base_dir: &Path) -> Result<Mesh, LoadEr
 /// node sets) → a validated mesh of body `body`, with the errors of a mesh read from a file.
 pub fn mesh_from_arrays(
     body: &str,
-    nodes: Vec<[f64; 2]>,
+    nodes: Vec<Point>,
     order: Order,
     cells: Vec<usize>,
     boundaries: BTreeMap<String, Vec<Edge>>,

@@ -20,6 +20,7 @@ use std::io::{Error, ErrorKind};
 use std::path::Path;
 
 use contactdd_core::mesh::{Mesh, Order};
+use contactdd_core::DIM;
 
 use crate::atomic::write_atomic;
 use crate::number::push_f64;
@@ -65,7 +66,7 @@ pub fn vtu_string(
     if let Some(values) = displacement {
         arrays.push(PointField {
             name: "displacement",
-            components: 2,
+            components: DIM,
             values,
         });
     }
