@@ -6,10 +6,7 @@
 use std::time::Instant;
 
 use contactdd::cases;
-use contactdd::ddm::iteration::ANDERSON_DEPTH;
-use contactdd::ddm::{
-    prepare, solve, Accelerator, CoarseMode, Gamma, Hooks, Method, Model, Settings,
-};
+use contactdd::ddm::{prepare, solve, CoarseMode, Gamma, Hooks, Method, Model, Settings};
 use contactdd::io::load_file;
 
 /// The settings compared: the default two-level iteration, today's one-level `auto`, the coarse
@@ -36,26 +33,11 @@ fn variants() -> Vec<(&'static str, Settings)> {
         (
             "anderson+chains",
             tight(Settings {
-                method: Method::ActiveSet,
-                gamma: Gamma::Constant(1.0),
-                accelerator: Accelerator::Anderson {
-                    depth: ANDERSON_DEPTH,
-                },
-                ..Settings::default()
+                coarse: CoarseMode::Chains,
+                ..Settings::anderson()
             }),
         ),
-        (
-            "anderson",
-            tight(Settings {
-                method: Method::ActiveSet,
-                gamma: Gamma::Constant(1.0),
-                accelerator: Accelerator::Anderson {
-                    depth: ANDERSON_DEPTH,
-                },
-                coarse: CoarseMode::Off,
-                ..Settings::default()
-            }),
-        ),
+        ("anderson", tight(Settings::anderson())),
     ];
     if let Ok(only) = std::env::var("VARIANTS") {
         v.retain(|(n, _)| only.split(',').any(|o| o == *n));

@@ -101,10 +101,15 @@ pub fn stiff_under_soft(c: f64) -> Model {
         &[("right", Component::X)],
         Some(("top", 0.01 * e / 10.0)),
     );
-    let mut pair = top_bottom("interface", 0, 1, c, 1.0);
+    notch_pair("stiff-under-soft", lower, upper, c)
+}
+
+/// Two bodies of the notch geometry in contact across y = 1 with the paper's notch profile.
+fn notch_pair(name: &str, lower: ElasticBody, upper: ElasticBody, c: f64) -> Model {
+    let mut pair = top_bottom("notch", 0, 1, c, 1.0);
     pair.profile = Some(notch_profile(0.05, 1.0, 4.0));
     Model {
-        name: "stiff-under-soft".into(),
+        name: name.into(),
         plane: Plane::Strain,
         bodies: vec![lower, upper],
         pairs: vec![pair],
@@ -212,12 +217,5 @@ pub fn non_matching_notch(c: f64) -> Model {
         &[("right", Component::X)],
         Some(("top", q)),
     );
-    let mut pair = top_bottom("notch", 0, 1, c, 1.0);
-    pair.profile = Some(notch_profile(0.05, 1.0, 4.0));
-    Model {
-        name: "non-matching-notch".into(),
-        plane: Plane::Strain,
-        bodies: vec![lower, upper],
-        pairs: vec![pair],
-    }
+    notch_pair("non-matching-notch", lower, upper, c)
 }

@@ -4,27 +4,13 @@
 //! two threads.
 
 use contactdd::cases;
-use contactdd::ddm::iteration::ANDERSON_DEPTH;
 use contactdd::ddm::{
-    prepare, solve, solve_monolithic, Accelerator, CoarseMode, Gamma, Hooks, Method, Model,
-    Settings, Solution,
+    prepare, solve, solve_monolithic, CoarseMode, Hooks, Model, Settings, Solution,
 };
 
 fn run(model: &Model, settings: &Settings) -> Solution {
     let prepared = prepare(model).unwrap();
     solve(model, &prepared, settings, Hooks::default()).unwrap()
-}
-
-fn anderson() -> Settings {
-    Settings {
-        method: Method::ActiveSet,
-        gamma: Gamma::Constant(1.0),
-        accelerator: Accelerator::Anderson {
-            depth: ANDERSON_DEPTH,
-        },
-        coarse: CoarseMode::Off,
-        ..Settings::default()
-    }
 }
 
 /// A column of N blocks held only by their contacts: with the default settings the iteration
@@ -86,7 +72,7 @@ fn two_level_and_anderson_agree_with_the_monolithic_solution() {
             coarse: CoarseMode::All,
             ..Settings::default()
         },
-        anderson(),
+        Settings::anderson(),
     ];
     for model in &models {
         let reference = solve_monolithic(model).unwrap();
@@ -119,7 +105,7 @@ fn two_level_and_anderson_agree_with_the_monolithic_solution() {
 #[test]
 fn two_level_and_anderson_give_the_same_bits_on_one_and_two_threads() {
     let model = cases::column(12, 0.5);
-    for settings in [Settings::default(), anderson()] {
+    for settings in [Settings::default(), Settings::anderson()] {
         let on = |threads: usize| {
             let pool = rayon::ThreadPoolBuilder::new()
                 .num_threads(threads)

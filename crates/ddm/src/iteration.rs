@@ -95,6 +95,22 @@ impl Settings {
     }
 }
 
+impl Settings {
+    /// Anderson acceleration of `active-set` sweeps (γ = 1 for the first step) without coarse
+    /// correction; the other values as in [`Settings::default`].
+    pub fn anderson() -> Settings {
+        Settings {
+            method: Method::ActiveSet,
+            gamma: Gamma::Constant(1.0),
+            accelerator: Accelerator::Anderson {
+                depth: ANDERSON_DEPTH,
+            },
+            coarse: CoarseMode::Off,
+            ..Settings::default()
+        }
+    }
+}
+
 impl Default for Settings {
     /// The two-level iteration: `newton-kurchatov` Robin sweeps with Aitken's `auto` relaxation
     /// and the rigid-body coarse correction of chains of floating bodies; tolerance 1e−6; the
