@@ -2,7 +2,7 @@
 //! pairs. This is solver input, built from a problem file by the `contactdd-io` crate or directly
 //! in code.
 
-use contactdd_core::{ElasticBody, Material, Plane};
+use contactdd_core::{ElasticBody, Plane};
 
 use crate::profile::GapProfile;
 
@@ -24,12 +24,11 @@ pub enum Penalty {
 
 impl Penalty {
     /// θ for a pair of materials.
-    pub fn theta(&self, plane: Plane, a: &Material, b: &Material) -> f64 {
+    pub fn theta(&self, a: &ElasticBody, b: &ElasticBody) -> f64 {
+        let modulus = |body: &ElasticBody| body.material.plane_modulus(body.plane);
         match *self {
             Penalty::Theta(t) => t,
-            Penalty::RodModel { c, h } => {
-                c * h * (1.0 / a.plane_modulus(plane) + 1.0 / b.plane_modulus(plane))
-            }
+            Penalty::RodModel { c, h } => c * h * (1.0 / modulus(a) + 1.0 / modulus(b)),
         }
     }
 }
@@ -55,7 +54,8 @@ pub struct ContactPair {
 pub struct Model {
     /// Problem name.
     pub name: String,
-    /// Plane strain or stress (all bodies).
+    /// Plane strain or stress, as a description of the problem: every body carries its own
+    /// (`ElasticBody::plane`), and stiffness, stresses and penalty read only the body's.
     pub plane: Plane,
     /// The bodies.
     pub bodies: Vec<ElasticBody>,
@@ -68,7 +68,7 @@ impl Model {
     pub fn theta(&self, p: usize) -> f64 {
         let pair = &self.pairs[p];
         let (a, b) = (&self.bodies[pair.bodies[0]], &self.bodies[pair.bodies[1]]);
-        pair.penalty.theta(self.plane, &a.material, &b.material)
+        pair.penalty.theta(a, b)
     }
 
     /// θ of every pair.

@@ -243,7 +243,7 @@ pub fn body_results(
         .zip(displacements)
         .enumerate()
         .map(|(b, (body, u))| {
-            let st = stresses(&body.mesh, &body.material, model.plane, &u);
+            let st = stresses(&body.mesh, &body.material, body.plane, &u);
             let mut pressure = vec![0.0; body.mesh.num_nodes()];
             for (j, p) in interface.points.iter().enumerate() {
                 if p.body == b && p.has_partner() {

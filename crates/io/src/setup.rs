@@ -246,7 +246,7 @@ impl ModelBuilder {
 
     /// Adds a `[[contact]]` entry between two of the bodies added so far.
     pub fn add_pair(&mut self, spec: &ContactSpec) -> Result<(), SetupError> {
-        let p = pair(spec, &self.bodies, &self.pairs, self.plane)?;
+        let p = pair(spec, &self.bodies, &self.pairs)?;
         self.pairs.push(p);
         Ok(())
     }
@@ -670,7 +670,6 @@ pub fn pair(
     spec: &ContactSpec,
     bodies: &[ElasticBody],
     earlier: &[ContactPair],
-    plane: Plane,
 ) -> Result<ContactPair, SetupError> {
     let name = spec.pair_name();
     let mut ids = [0usize; 2];
@@ -708,7 +707,7 @@ pub fn pair(
     }
     let penalty = penalty(&name, &spec.penalty)?;
     let (a, b) = (&bodies[ids[0]], &bodies[ids[1]]);
-    let theta = penalty.theta(plane, &a.material, &b.material);
+    let theta = penalty.theta(a, b);
     if !(theta.is_finite() && theta > 0.0) {
         return Err(pair_error(
             &name,

@@ -70,8 +70,7 @@ fn notch_toml_is_the_benchmark_model() {
     for (p, q) in file.pairs.iter().zip(&code.pairs) {
         let theta = |m: &Model, pair: &ContactPair| {
             let [a, b] = pair.bodies;
-            pair.penalty
-                .theta(m.plane, &m.bodies[a].material, &m.bodies[b].material)
+            pair.penalty.theta(&m.bodies[a], &m.bodies[b])
         };
         assert_eq!(theta(file, p), theta(&code, q));
     }
