@@ -7,6 +7,7 @@ use contactdd_core::{
     Component, Constraints, Diagonal, ElasticBody, Load, Material, Order, Plane, Rectangle,
 };
 use contactdd_ddm::benchmark::Notch;
+use contactdd_ddm::contact::Interface;
 use contactdd_ddm::iteration::iterate;
 use contactdd_ddm::{
     prepare, solve, sweep, CoarseMode, ContactPair, Gamma, Hooks, Method, Model, Penalty, Settings,
@@ -181,5 +182,25 @@ fn two_level(c: &mut Criterion) {
     group.finish();
 }
 
-criterion_group!(benches, notch, threads, two_level);
+/// Contact search (projection of every contact point and the covered part of every contact edge)
+/// on a long strip: the notch geometry with m − 1 cells along the contact line.
+fn contact_search(c: &mut Criterion) {
+    let mut group = c.benchmark_group("contact_search");
+    group.sample_size(10);
+    for m in [1000, 2000, 4000] {
+        let model = Notch {
+            nx: m - 1,
+            ny: 4,
+            ..Notch::default()
+        }
+        .model()
+        .expect("model");
+        group.bench_function(BenchmarkId::new("interface", m), |b| {
+            b.iter(|| Interface::new(&model).expect("interface"))
+        });
+    }
+    group.finish();
+}
+
+criterion_group!(benches, notch, threads, two_level, contact_search);
 criterion_main!(benches);

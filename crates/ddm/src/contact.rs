@@ -14,7 +14,11 @@ use std::ops::Range;
 
 use contactdd_core::element::{edge_nodal_weights, edge_shape};
 use contactdd_core::geometry::dot;
+use contactdd_core::mesh::dist;
 use contactdd_core::{Edge, Mesh, Order, Point, Vector, DIM};
+
+use rstar::primitives::{GeomWithData, Rectangle};
+use rstar::{RTree, AABB};
 
 use crate::error::SetupError;
 use crate::model::Model;
@@ -85,6 +89,8 @@ impl Interface {
             weights: Vec<f64>,
         }
         let mut sides = Vec::new();
+        // The contact boundary of every (pair, side), indexed for the projections.
+        let mut boundaries: Vec<EdgeIndex> = Vec::with_capacity(2 * model.pairs.len());
         for (p, pair) in model.pairs.iter().enumerate() {
             let mut zone = Vec::with_capacity(2);
             for s in 0..2 {
@@ -102,11 +108,10 @@ impl Interface {
                         })?;
                 zone.push((b, &body.mesh, edges));
             }
+            let index = [0, 1].map(|s| EdgeIndex::new(zone[s].1, zone[s].2));
             for s in 0..2 {
                 let (b, mesh, edges) = zone[s];
-                let (_, other_mesh, other_edges) = zone[1 - s];
-                let (nodes, normals, weights) =
-                    nodal_quadrature(mesh, edges, other_mesh, other_edges);
+                let (nodes, normals, weights) = nodal_quadrature(mesh, edges, &index[1 - s]);
                 sides.push(Side {
                     body: b,
                     pair: p,
@@ -115,6 +120,7 @@ impl Interface {
                     weights,
                 });
             }
+            boundaries.extend(index);
         }
         // Global numbering: body by body, then pair by pair, then node order.
         let nb = model.bodies.len();
@@ -136,7 +142,7 @@ impl Interface {
             let pair = &model.pairs[side.pair];
             let other = i ^ 1; // sides come in pairs (2p, 2p + 1)
             let partner_side = &sides[other];
-            let (a, b) = (&model.bodies[side.body], &model.bodies[partner_side.body]);
+            let a = &model.bodies[side.body];
             let theta = model.theta(side.pair);
             if !(theta.is_finite() && theta > 0.0) {
                 return Err(SetupError::Pair {
@@ -144,13 +150,6 @@ impl Interface {
                     message: format!("the penalty θ must be positive and finite, got {theta}"),
                 });
             }
-            let partner_edges =
-                b.mesh
-                    .boundary(&pair.boundaries[other % 2])
-                    .map_err(|e| SetupError::Pair {
-                        pair: pair.name.clone(),
-                        message: e.to_string(),
-                    })?;
             let partner_index: HashMap<usize, usize> = partner_side
                 .nodes
                 .iter()
@@ -160,7 +159,7 @@ impl Interface {
             for (k, &v) in side.nodes.iter().enumerate() {
                 let x = a.mesh.nodes()[v];
                 let n = side.normals[k];
-                let hit = project(x, n, &b.mesh, partner_edges);
+                let hit = boundaries[other].project(x, n);
                 let (gap, partner) = match hit {
                     Some((t, coeffs)) => (
                         t,
@@ -222,14 +221,13 @@ impl Interface {
 fn nodal_quadrature(
     mesh: &Mesh,
     edges: &[Edge],
-    partner: &Mesh,
-    partner_edges: &[Edge],
+    partner: &EdgeIndex,
 ) -> (Vec<usize>, Vec<Vector>, Vec<f64>) {
     let mut index: HashMap<usize, usize> = HashMap::new();
     let (mut nodes, mut normals, mut weights) = (Vec::new(), Vec::new(), Vec::new());
     for e in edges {
         let (n, len) = mesh.edge_normal(e);
-        let (t0, t1) = covered_part(mesh, e, n, partner, partner_edges);
+        let (t0, t1) = covered_part(mesh, e, n, partner);
         let w = partial_edge_weights(mesh.order(), len, t0, t1);
         for (k, v) in e.nodes().enumerate() {
             let i = *index.entry(v).or_insert_with(|| {
@@ -255,18 +253,12 @@ fn nodal_quadrature(
 
 /// The parameter interval [t0, t1] ⊂ [0, 1] of edge `e` whose normal rays hit the partner
 /// boundary (empty as t0 = t1 = 0). Found by sampling and bisection.
-fn covered_part(
-    mesh: &Mesh,
-    e: &Edge,
-    n: Vector,
-    partner: &Mesh,
-    partner_edges: &[Edge],
-) -> (f64, f64) {
+fn covered_part(mesh: &Mesh, e: &Edge, n: Vector, partner: &EdgeIndex) -> (f64, f64) {
     const SAMPLES: usize = 8;
     let (a, b) = (mesh.nodes()[e.a], mesh.nodes()[e.b]);
     let hits = |t: f64| {
         let x = [a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1])];
-        project(x, n, partner, partner_edges).is_some()
+        partner.project(x, n).is_some()
     };
     let covered: Vec<bool> = (0..=SAMPLES)
         .map(|i| hits(i as f64 / SAMPLES as f64))
@@ -340,9 +332,99 @@ fn cross(a: Vector, b: Vector) -> f64 {
     a[0] * b[1] - a[1] * b[0]
 }
 
+/// The edges of one contact boundary in an R-tree of their bounding boxes, for the ray
+/// projections of the partner's points: each query looks only at the edges near the ray, so
+/// projecting all m points of a zone costs O(m log m) instead of O(m²).
+pub struct EdgeIndex<'m> {
+    mesh: &'m Mesh,
+    edges: &'m [Edge],
+    tree: RTree<GeomWithData<Rectangle<Point>, usize>>,
+    /// Centre and half-diagonal of the bounding box of all the edges.
+    centre: Point,
+    radius: f64,
+    /// First search half-length: the mean edge length.
+    start: f64,
+}
+
+impl<'m> EdgeIndex<'m> {
+    /// Indexes `edges` of `mesh`.
+    pub fn new(mesh: &'m Mesh, edges: &'m [Edge]) -> EdgeIndex<'m> {
+        let p = mesh.nodes();
+        let boxes: Vec<GeomWithData<Rectangle<Point>, usize>> = edges
+            .iter()
+            .enumerate()
+            .map(|(k, e)| {
+                let (a, b) = (p[e.a], p[e.b]);
+                // Inflated by the projection's tolerance on the edge parameter (1e−9).
+                let pad = 1e-8 * dist(a, b) + f64::MIN_POSITIVE;
+                let lo = [a[0].min(b[0]) - pad, a[1].min(b[1]) - pad];
+                let hi = [a[0].max(b[0]) + pad, a[1].max(b[1]) + pad];
+                GeomWithData::new(Rectangle::from_corners(lo, hi), k)
+            })
+            .collect();
+        let (mut lo, mut hi) = ([f64::INFINITY; DIM], [f64::NEG_INFINITY; DIM]);
+        for e in edges {
+            for v in [e.a, e.b] {
+                for c in 0..DIM {
+                    lo[c] = lo[c].min(p[v][c]);
+                    hi[c] = hi[c].max(p[v][c]);
+                }
+            }
+        }
+        let total: f64 = edges.iter().map(|e| dist(p[e.a], p[e.b])).sum();
+        EdgeIndex {
+            mesh,
+            edges,
+            tree: RTree::bulk_load(boxes),
+            centre: std::array::from_fn(|c| 0.5 * (lo[c] + hi[c])),
+            radius: 0.5 * dist(lo, hi),
+            start: (total / edges.len().max(1) as f64).max(f64::MIN_POSITIVE),
+        }
+    }
+
+    /// The nearest hit of the ray x + t n (see [`project`]): edges are searched in growing boxes
+    /// around the segment [x − R n, x + R n] until a hit with |t| ≤ R is found (no nearer hit can
+    /// lie outside the box) or the box holds every edge.
+    pub fn project(&self, x: Point, n: Vector) -> Option<(f64, Vec<(usize, f64)>)> {
+        if self.edges.is_empty() {
+            return None;
+        }
+        let reach = dist(x, self.centre) + self.radius;
+        let mut r = self.start;
+        loop {
+            let (a, b) = (
+                [x[0] - r * n[0], x[1] - r * n[1]],
+                [x[0] + r * n[0], x[1] + r * n[1]],
+            );
+            let envelope = AABB::from_corners(
+                [a[0].min(b[0]), a[1].min(b[1])],
+                [a[0].max(b[0]), a[1].max(b[1])],
+            );
+            let mut near: Vec<usize> = self
+                .tree
+                .locate_in_envelope_intersecting(&envelope)
+                .map(|g| g.data)
+                .collect();
+            // The edge order of a full scan, so that ties go to the same edge.
+            near.sort_unstable();
+            let hit = project(x, n, self.mesh, near.iter().map(|&k| &self.edges[k]));
+            match hit {
+                Some((t, _)) if t.abs() <= r => return hit,
+                _ if r > reach => return hit,
+                _ => r *= 2.0,
+            }
+        }
+    }
+}
+
 /// Intersects the ray x + t n with the edges (facing the ray) and returns the signed distance t
 /// of the nearest hit and the partner node coefficients there.
-fn project(x: Point, n: Vector, mesh: &Mesh, edges: &[Edge]) -> Option<(f64, Vec<(usize, f64)>)> {
+fn project<'e>(
+    x: Point,
+    n: Vector,
+    mesh: &Mesh,
+    edges: impl IntoIterator<Item = &'e Edge>,
+) -> Option<(f64, Vec<(usize, f64)>)> {
     let p = mesh.nodes();
     let mut best: Option<(f64, Vec<(usize, f64)>)> = None;
     for e in edges {
@@ -373,4 +455,44 @@ fn project(x: Point, n: Vector, mesh: &Mesh, edges: &[Edge]) -> Option<(f64, Vec
         best = Some((t, coeffs));
     }
     best
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use contactdd_core::{Diagonal, Rectangle};
+
+    /// The R-tree search finds exactly the hit of a scan over all edges (same t, same edge and
+    /// coefficients), for rays from many points in many directions, hitting or missing.
+    #[test]
+    fn the_edge_index_finds_the_same_hit_as_a_full_scan() {
+        let mesh = Rectangle {
+            origin: [0.0, 0.0],
+            corner: [3.0, 1.0],
+            nx: 37,
+            ny: 3,
+            diagonal: Diagonal::Right,
+            mirror: false,
+            order: Order::P1,
+        }
+        .mesh()
+        .unwrap()
+        .map_nodes(|p| [p[0], p[1] + 0.1 * (2.0 * p[0]).sin() * p[1]])
+        .unwrap();
+        let edges = mesh.boundary("top").unwrap();
+        let index = EdgeIndex::new(&mesh, edges);
+        let mut checked = 0;
+        for i in 0..200 {
+            let x = [
+                -0.5 + 4.0 * (i as f64 * 0.618).fract(),
+                1.05 + 0.3 * (i as f64 * 0.37).fract(),
+            ];
+            let angle = -std::f64::consts::FRAC_PI_2 + 1.4 * ((i as f64 * 0.29).fract() - 0.5);
+            let n = [angle.cos(), angle.sin()];
+            let (fast, slow) = (index.project(x, n), project(x, n, &mesh, edges));
+            assert_eq!(fast, slow, "ray {i} from {x:?} along {n:?}");
+            checked += usize::from(slow.is_some());
+        }
+        assert!(checked > 100, "only {checked} rays hit");
+    }
 }
