@@ -671,7 +671,20 @@ pub fn pair(
     bodies: &[ElasticBody],
     earlier: &[ContactPair],
 ) -> Result<ContactPair, SetupError> {
-    let name = spec.pair_name();
+    let mut name = spec.pair_name();
+    if name.is_empty() {
+        // No name and no bodies: the entry's position is all that identifies it.
+        name = format!("contact[{}]", earlier.len());
+    }
+    for (key, list) in [("bodies", &spec.bodies), ("boundaries", &spec.boundaries)] {
+        if list.len() != 2 {
+            return Err(pair_error(
+                &name,
+                key,
+                format!("needs exactly 2 entries, got {}", list.len()),
+            ));
+        }
+    }
     let mut ids = [0usize; 2];
     for (s, body) in spec.bodies.iter().enumerate() {
         ids[s] = bodies.iter().position(|b| b.name == *body).ok_or_else(|| {
@@ -734,7 +747,7 @@ pub fn pair(
     Ok(ContactPair {
         name,
         bodies: ids,
-        boundaries: spec.boundaries.clone(),
+        boundaries: [spec.boundaries[0].clone(), spec.boundaries[1].clone()],
         penalty,
         profile,
     })

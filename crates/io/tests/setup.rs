@@ -489,6 +489,54 @@ fn pair_naming_one_body_twice_or_an_unknown_body() {
 }
 
 #[test]
+fn pair_lists_need_exactly_two_entries() {
+    let cases = [
+        (
+            "bodies = [\"lower\", \"upper\"]",
+            "bodies = [\"lower\", \"upper\", \"lower\"]",
+            "bodies",
+            "3",
+        ),
+        (
+            "bodies = [\"lower\", \"upper\"]",
+            "bodies = [\"lower\"]",
+            "bodies",
+            "1",
+        ),
+        (
+            "boundaries = [\"top\", \"bottom\"]",
+            "boundaries = [\"top\", \"bottom\", \"missing\"]",
+            "boundaries",
+            "3",
+        ),
+        (
+            "boundaries = [\"top\", \"bottom\"]",
+            "boundaries = []",
+            "boundaries",
+            "0",
+        ),
+    ];
+    for (find, replace, key, count) in cases {
+        let m = error_of(&small_with(find, replace));
+        assert_contains(
+            &m,
+            &[
+                "contact pair '",
+                &format!("{key}: "),
+                "exactly 2",
+                &format!("got {count}"),
+            ],
+        );
+    }
+    // A named pair is named by its name.
+    let m = error_of(&small_with(
+        "bodies = [\"lower\", \"upper\"]",
+        "name = \"joint\"\nbodies = [\"lower\", \"upper\", \"x\"]",
+    ));
+    assert_contains(&m, &["contact pair 'joint'", "bodies: "]);
+}
+
+#[test]
 fn unknown_material() {
     let m = error_of(&small_with("material = \"steel\"", "material = \"stel\""));
     assert_contains(
