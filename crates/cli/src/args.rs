@@ -101,7 +101,8 @@ pub struct SweepArgs {
     /// 0.05:0.85:0.05,auto.
     #[arg(long, value_name = "LIST", default_value = "0.1:1:0.1", value_parser = parse_gamma_list)]
     pub gamma: GammaList,
-    /// CSV file to write [default: ./<problem name>-sweep.csv].
+    /// CSV file to write; an existing path must be a regular file (never a link, FIFO or device)
+    /// [default: ./<problem name>-sweep.csv].
     #[arg(long, value_name = "PATH")]
     pub out: Option<PathBuf>,
     /// Solver options.
