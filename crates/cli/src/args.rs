@@ -7,6 +7,7 @@ use clap::{Args, Parser, Subcommand};
 
 use contactdd_ddm::iteration::ANDERSON_DEPTH;
 use contactdd_ddm::{Accelerator, CoarseMode, Gamma, Method};
+use contactdd_io::setup::MAX_THREADS;
 
 const EXIT_CODES: &str = "\
 Exit codes:
@@ -51,7 +52,7 @@ pub struct Common {
     #[arg(long, value_name = "K", value_parser = clap::value_parser!(u64).range(1..))]
     pub max_iter: Option<u64>,
     /// Worker threads (overrides solver.threads; default: all cores).
-    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u64).range(1..=1024))]
+    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u64).range(1..=MAX_THREADS as u64))]
     pub threads: Option<u64>,
 }
 
@@ -126,7 +127,7 @@ pub struct MonolithicArgs {
     #[arg(long, value_name = "DIR")]
     pub out: Option<PathBuf>,
     /// Worker threads (default: all cores).
-    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u64).range(1..=1024))]
+    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u64).range(1..=MAX_THREADS as u64))]
     pub threads: Option<u64>,
 }
 

@@ -49,6 +49,11 @@ use crate::problem::{
 /// keeps absurd inputs from exhausting memory while allocating the mesh.
 pub const MAX_RECTANGLE_CELLS: usize = 4_000_000;
 
+/// Most worker threads a problem file (`solver.threads`) or the command line (`--threads`) may ask
+/// for: more than any machine this runs on, low enough that a typo cannot make the thread pool
+/// exhaust the system.
+pub const MAX_THREADS: usize = 1024;
+
 /// A resolved problem: the file's data and the solver input built from it.
 #[derive(Clone, Debug)]
 pub struct Loaded {
@@ -321,8 +326,8 @@ fn solver_error(key: &str, message: impl std::fmt::Display) -> SetupError {
 }
 
 /// A `[solver]` table applied to `base`: every key given is checked and replaces the value of
-/// `base`, absent keys keep it. `threads` is checked (≥ 1) but is not part of [`Settings`]; read
-/// it from `spec`.
+/// `base`, absent keys keep it. `threads` is checked (1 to [`MAX_THREADS`]) but is not part of
+/// [`Settings`]; read it from `spec`.
 pub fn settings(spec: &SolverSpec, base: &Settings) -> Result<Settings, SetupError> {
     let mut s = base.clone();
     if let Some(method) = spec.method {
@@ -367,8 +372,15 @@ pub fn settings(spec: &SolverSpec, base: &Settings) -> Result<Settings, SetupErr
             *slot = v;
         }
     }
-    if spec.threads == Some(0) {
-        return Err(solver_error("threads", "must be at least 1, got 0"));
+    match spec.threads {
+        Some(0) => return Err(solver_error("threads", "must be at least 1, got 0")),
+        Some(n) if n > MAX_THREADS => {
+            return Err(solver_error(
+                "threads",
+                format!("must be at most {MAX_THREADS}, got {n}"),
+            ))
+        }
+        _ => {}
     }
     Ok(s)
 }

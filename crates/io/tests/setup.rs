@@ -657,6 +657,11 @@ fn bad_solver_settings() {
     assert_contains(&m, &["solver: max-iter", "at least 1"]);
     let m = error_of(&format!("{SMALL}\n[solver]\nthreads = 0\n"));
     assert_contains(&m, &["solver: threads", "at least 1"]);
+    // The command line's cap (`--threads`) holds for the file too.
+    let m = error_of(&format!("{SMALL}\n[solver]\nthreads = 1025\n"));
+    assert_contains(&m, &["solver: threads", "at most 1024", "1025"]);
+    let ok = format!("{SMALL}\n[solver]\nthreads = 1024\n");
+    assert!(load_str(&ok, "ok.toml", Path::new(".")).is_ok());
     let m = error_of(&format!("{SMALL}\n[solver]\nmethod = \"fastest\"\n"));
     assert_contains(&m, &["unknown variant `fastest`", "newton-kurchatov"]);
     let m = error_of(&format!("{SMALL}\n[solver]\nu0 = nan\n"));
