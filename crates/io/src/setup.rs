@@ -40,6 +40,7 @@ use contactdd_ddm::{
 };
 
 use crate::error::LoadError;
+use crate::number::format_f64 as num;
 use crate::problem::{
     AcceleratorSpec, BodySpec, CoarseSpec, ContactSpec, GammaSpec, GapSpec, LoadSpec, MaterialSpec,
     MeshSpec, PenaltySpec, Problem, SolverSpec, SupportSpec,
@@ -341,7 +342,7 @@ pub fn settings(spec: &SolverSpec, base: &Settings) -> Result<Settings, SetupErr
         if !(tol.is_finite() && tol > 0.0) {
             return Err(solver_error(
                 "tol",
-                format!("must be a positive number, got {tol}"),
+                format!("must be a positive number, got {}", num(tol)),
             ));
         }
         s.tol = tol;
@@ -350,7 +351,7 @@ pub fn settings(spec: &SolverSpec, base: &Settings) -> Result<Settings, SetupErr
         if !(e.is_finite() && e > 0.0) {
             return Err(solver_error(
                 "equilibrium-tol",
-                format!("must be a positive number, got {e}"),
+                format!("must be a positive number, got {}", num(e)),
             ));
         }
         s.equilibrium_tol = e;
@@ -367,7 +368,7 @@ pub fn settings(spec: &SolverSpec, base: &Settings) -> Result<Settings, SetupErr
     ] {
         if let Some(v) = v {
             if !v.is_finite() {
-                return Err(solver_error(key, format!("must be finite, got {v}")));
+                return Err(solver_error(key, format!("must be finite, got {}", num(v))));
             }
             *slot = v;
         }
@@ -416,7 +417,7 @@ pub fn gamma(spec: GammaSpec) -> Result<Gamma, SetupError> {
         GammaSpec::Value(g) if g.is_finite() && g > 0.0 => Ok(Gamma::Constant(g)),
         GammaSpec::Value(g) => Err(solver_error(
             "gamma",
-            format!("must be a positive number or \"auto\", got {g}"),
+            format!("must be a positive number or \"auto\", got {}", num(g)),
         )),
     }
 }
@@ -533,7 +534,7 @@ pub fn body_on_mesh(
             return Err(body_error(
                 name,
                 &format!("{key}.value"),
-                format!("must be finite, got {v}"),
+                format!("must be finite, got {}", num(*v)),
             ));
         }
         if let LoadSpec::Pressure { boundary, .. } | LoadSpec::Traction { boundary, .. } = l {
@@ -587,7 +588,8 @@ pub fn mesh(body: &str, spec: &MeshSpec, base_dir: &Path) -> Result<Mesh, LoadEr
                         key,
                         format!(
                             "need a finite range [min, max] with min < max, got [{}, {}]",
-                            r[0], r[1]
+                            num(r[0]),
+                            num(r[1])
                         ),
                     )
                     .into());
@@ -616,7 +618,7 @@ pub fn mesh(body: &str, spec: &MeshSpec, base_dir: &Path) -> Result<Mesh, LoadEr
                 return Err(body_error(
                     body,
                     "mesh.scale",
-                    format!("must be a positive number, got {scale}"),
+                    format!("must be a positive number, got {}", num(scale)),
                 )
                 .into());
             }
@@ -625,7 +627,7 @@ pub fn mesh(body: &str, spec: &MeshSpec, base_dir: &Path) -> Result<Mesh, LoadEr
                 return Err(body_error(
                     body,
                     "mesh.translate",
-                    format!("must be finite, got [{}, {}]", shift[0], shift[1]),
+                    format!("must be finite, got [{}, {}]", num(shift[0]), num(shift[1])),
                 )
                 .into());
             }
@@ -737,7 +739,7 @@ pub fn pair(
         return Err(pair_error(
             &name,
             "penalty",
-            format!("θ = {theta} is not a positive finite number"),
+            format!("θ = {} is not a positive finite number", num(theta)),
         ));
     }
     let profile = spec
@@ -773,7 +775,7 @@ fn penalty(pair: &str, spec: &PenaltySpec) -> Result<Penalty, SetupError> {
             Err(pair_error(
                 pair,
                 &format!("penalty.{key}"),
-                format!("must be a positive finite number, got {v}"),
+                format!("must be a positive finite number, got {}", num(v)),
             ))
         }
     };
@@ -814,7 +816,7 @@ fn gap_profile(pair: &str, spec: &GapSpec) -> Result<GapProfile, SetupError> {
             Err(pair_error(
                 pair,
                 &format!("gap.{key}"),
-                format!("must be {what}, got {v}"),
+                format!("must be {what}, got {}", num(v)),
             ))
         }
     };

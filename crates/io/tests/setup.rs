@@ -724,6 +724,52 @@ fn other_resolve_errors() {
 }
 
 #[test]
+fn error_messages_stay_short() {
+    // Very long or deeply nested lines are echoed as a short excerpt, not whole.
+    let long = format!("{SMALL}\n[solver]\ntol = \"{}\"\n", "x".repeat(3_000_000));
+    let nested = format!(
+        "{SMALL}\n[solver]\ntol = {}{}\n",
+        "[".repeat(100_000),
+        "]".repeat(100_000)
+    );
+    let tables = format!(
+        "{SMALL}\n[solver]\ntol = {}{}\n",
+        "{a=".repeat(50_000),
+        "}".repeat(50_000)
+    );
+    for text in [long, nested, tables] {
+        let m = error_of(&text);
+        assert!(m.len() < 2000, "{} bytes: {}", m.len(), &m[..500]);
+        assert_contains(&m, &["line ", "…"]);
+    }
+    // Echoed numbers are short: an exponent instead of 300 digits.
+    let cases = [
+        (small_with("young = 1000.0", "young = -1e-300"), "-1e-300"),
+        (format!("{SMALL}\n[solver]\ngamma = -1e300\n"), "-1e300"),
+        (format!("{SMALL}\n[solver]\ntol = -1e300\n"), "-1e300"),
+        (
+            small_with(
+                "penalty = { c = 0.05, h = 1.0 }",
+                "penalty = { theta = -1e-300 }",
+            ),
+            "-1e-300",
+        ),
+        (
+            small_with(
+                "x = [0.0, 2.0], y = [0.0, 1.0]",
+                "x = [1e300, -1e300], y = [0.0, 1.0]",
+            ),
+            "[1e300, -1e300]",
+        ),
+    ];
+    for (text, number) in cases {
+        let m = error_of(&text);
+        assert!(m.len() < 300, "{} bytes: {m}", m.len());
+        assert_contains(&m, &[number]);
+    }
+}
+
+#[test]
 fn missing_file() {
     let err = load_file(Path::new("no/such/problem.toml")).expect_err("no such file");
     assert_contains(&err.to_string(), &["no/such/problem.toml"]);
