@@ -470,8 +470,8 @@ impl Problem {
     ) -> PyResult<()> {
         let mut spec = ContactSpec {
             name,
-            bodies: [bodies.0, bodies.1],
-            boundaries: [boundaries.0, boundaries.1],
+            bodies: vec![bodies.0, bodies.1],
+            boundaries: vec![boundaries.0, boundaries.1],
             penalty: PenaltySpec { c, h, theta },
             gap: None,
         };

@@ -7,6 +7,7 @@ use clap::{Args, Parser, Subcommand};
 
 use contactdd_ddm::iteration::ANDERSON_DEPTH;
 use contactdd_ddm::{Accelerator, CoarseMode, Gamma, Method};
+use contactdd_io::setup::MAX_THREADS;
 
 const EXIT_CODES: &str = "\
 Exit codes:
@@ -51,7 +52,7 @@ pub struct Common {
     #[arg(long, value_name = "K", value_parser = clap::value_parser!(u64).range(1..))]
     pub max_iter: Option<u64>,
     /// Worker threads (overrides solver.threads; default: all cores).
-    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u64).range(1..=1024))]
+    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u64).range(1..=MAX_THREADS as u64))]
     pub threads: Option<u64>,
 }
 
@@ -101,7 +102,8 @@ pub struct SweepArgs {
     /// 0.05:0.85:0.05,auto.
     #[arg(long, value_name = "LIST", default_value = "0.1:1:0.1", value_parser = parse_gamma_list)]
     pub gamma: GammaList,
-    /// CSV file to write [default: ./<problem name>-sweep.csv].
+    /// CSV file to write; an existing path must be a regular file (never a link, FIFO or device)
+    /// [default: ./<problem name>-sweep.csv].
     #[arg(long, value_name = "PATH")]
     pub out: Option<PathBuf>,
     /// Solver options.
@@ -125,7 +127,7 @@ pub struct MonolithicArgs {
     #[arg(long, value_name = "DIR")]
     pub out: Option<PathBuf>,
     /// Worker threads (default: all cores).
-    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u64).range(1..=1024))]
+    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u64).range(1..=MAX_THREADS as u64))]
     pub threads: Option<u64>,
 }
 

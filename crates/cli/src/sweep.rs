@@ -7,6 +7,7 @@ use anyhow::{Context, Result};
 
 use contactdd_ddm::sweep::SweepRun;
 use contactdd_ddm::{prepare, sweep as dd_sweep, Gamma, Method, Stop};
+use contactdd_io::atomic::check_output_path;
 use contactdd_io::output::{safe_file_name, sweep_csv, write_atomic};
 
 use crate::args::SweepArgs;
@@ -25,6 +26,8 @@ pub fn sweep(args: SweepArgs) -> Result<Exit> {
         .out
         .clone()
         .unwrap_or_else(|| PathBuf::from(format!("{}-sweep.csv", safe_file_name(&model.name))));
+    // Checked again when writing; checking first saves a whole sweep when the path is refused.
+    check_output_path(&out).with_context(|| format!("cannot write '{}'", out.display()))?;
     let runs = with_threads(threads, || {
         progress(&format!(
             "assembling and factorising {}…",

@@ -401,6 +401,53 @@ fn bad_command_lines_exit_1_and_help_exits_0() {
     let _ = std::fs::remove_dir_all(&dir);
 }
 
+/// `--out` and the results folder never replace a symlink or a FIFO (renaming over it would
+/// turn it into a regular file): exit 1, a message naming the path, the link left as it was.
+#[cfg(unix)]
+#[test]
+fn output_paths_that_are_not_regular_files_are_refused() {
+    let dir = temp_dir("special-out");
+    std::fs::write(dir.join("pair.toml"), PAIR).unwrap();
+    std::fs::write(dir.join("target.csv"), "keep").unwrap();
+    std::os::unix::fs::symlink("target.csv", dir.join("link.csv")).unwrap();
+    let mut refused = vec![("link.csv", "symbolic link")];
+    // mkfifo may be missing on a minimal system; the symlink cases still run.
+    if Command::new("mkfifo")
+        .arg(dir.join("fifo.csv"))
+        .status()
+        .is_ok_and(|s| s.success())
+    {
+        refused.push(("fifo.csv", "FIFO"));
+    }
+    for (path, what) in refused {
+        let out = contactdd(
+            &dir,
+            &["sweep", "pair.toml", "--gamma", "0.5", "--out", path],
+        );
+        assert_eq!(out.status.code(), Some(1), "{path}: {}", stderr(&out));
+        assert_clean_stderr(&out);
+        let err = stderr(&out);
+        assert!(err.contains(path) && err.contains(what), "{err}");
+    }
+    let link = std::fs::symlink_metadata(dir.join("link.csv")).unwrap();
+    assert!(link.file_type().is_symlink());
+    assert_eq!(
+        std::fs::read_to_string(dir.join("target.csv")).unwrap(),
+        "keep"
+    );
+    // A result file of `solve` that is a symlink is refused the same way.
+    std::fs::create_dir_all(dir.join("res")).unwrap();
+    std::os::unix::fs::symlink("../target.csv", dir.join("res/summary.json")).unwrap();
+    let out = contactdd(&dir, &["solve", "pair.toml", "--out", "res"]);
+    assert_eq!(out.status.code(), Some(1), "{}", stderr(&out));
+    assert!(stderr(&out).contains("symbolic link"), "{}", stderr(&out));
+    assert_eq!(
+        std::fs::read_to_string(dir.join("target.csv")).unwrap(),
+        "keep"
+    );
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
 #[test]
 fn command_line_options_override_the_file() {
     let dir = temp_dir("override");

@@ -120,10 +120,10 @@ pub enum GmshError {
 #[derive(Debug, Error, Clone, PartialEq)]
 pub enum MaterialError {
     /// E must be positive and finite.
-    #[error("Young's modulus must be positive and finite, got {0}")]
+    #[error("Young's modulus must be positive and finite, got {}", short(*.0))]
     YoungModulus(f64),
     /// ν must lie in (−1, 0.5).
-    #[error("Poisson's ratio must lie in (-1, 0.5), got {0}")]
+    #[error("Poisson's ratio must lie in (-1, 0.5), got {}", short(*.0))]
     PoissonRatio(f64),
 }
 
@@ -195,4 +195,14 @@ pub enum SupportError {
         /// Value.
         value: f64,
     },
+}
+
+/// `x` for a message: `Display` (shortest round trip) unless that is long, as for 1e-300; then with
+/// an exponent. The rule of `contactdd_io::number`, which this crate cannot depend on.
+fn short(x: f64) -> String {
+    if x == 0.0 || !x.is_finite() || (1e-4..1e15).contains(&x.abs()) {
+        format!("{x}")
+    } else {
+        format!("{x:e}")
+    }
 }

@@ -5,11 +5,12 @@
 //!
 //! - `$MeshFormat`: `version file-type data-size`; only ASCII (`file-type` 0) versions 4.1 and 2.2
 //!   are read, binary files are reported as [`GmshError::Unsupported`].
-//! - `$PhysicalNames`: `count`, then `dim tag "name"` lines.
+//! - `$PhysicalNames`: `count`, then `dim tag "name"` lines. A group named twice, one name for two
+//!   groups of one dimension, or a name for a group without elements is an error at its line.
 //! - `$Entities` (4.1 only): the geometric points, curves, surfaces and volumes with their
 //!   physical tags. In 4.1 elements refer to an entity, and the entity to its physical groups.
 //! - `$Nodes`: in 4.1, blocks of `dim entity parametric count` followed by the node tags, then one
-//!   `x y z [u [v]]` line per node; in 2.2, `count` then `tag x y z` lines.
+//!   `x y z [u [v]]` line per node; in 2.2, `count` then `tag x y z` lines. Node tags start at 1.
 //! - `$Elements`: in 4.1, blocks of `dim entity type count` followed by `tag node...` lines; in 2.2,
 //!   `count` then `tag type ntags tag... node...` lines (the first tag is the physical group).
 //!
@@ -92,6 +93,8 @@ struct RawElement {
 struct RawMsh {
     /// Physical names by (dimension, tag).
     names: HashMap<(u8, i64), String>,
+    /// The `$PhysicalNames` line of each name, for errors.
+    name_lines: HashMap<(u8, i64), usize>,
     /// Physical tags of each (dimension, entity tag), from `$Entities`.
     entities: HashMap<(u8, i64), Vec<i64>>,
     /// Node coordinates in file order.
@@ -359,7 +362,28 @@ impl RawMsh {
             if name.is_empty() {
                 return Err(tokens.error(line, "expected a quoted physical name"));
             }
+            // Either would silently merge or drop groups: a boundary would not be what was drawn.
+            if let Some(old) = self.names.get(&(dim, tag)) {
+                return Err(tokens.error(
+                    line,
+                    format!("{dim}D physical group {tag} is named twice ('{old}' and '{name}')"),
+                ));
+            }
+            if let Some(((_, other), _)) = self
+                .names
+                .iter()
+                .find(|((d, _), n)| *d == dim && n.as_str() == name)
+            {
+                return Err(tokens.error(
+                    line,
+                    format!(
+                        "physical name '{name}' is used by two {dim}D groups ({other} and {tag}); \
+                         give each group its own name"
+                    ),
+                ));
+            }
             self.names.insert((dim, tag), name.to_string());
+            self.name_lines.insert((dim, tag), line);
         }
         Ok(())
     }
@@ -395,6 +419,13 @@ impl RawMsh {
     }
 
     fn add_node(&mut self, line: usize, tag: u64, xyz: [f64; 3]) -> Result<(), GmshError> {
+        if tag == 0 {
+            // Gmsh numbers nodes from 1; a 0 is a damaged or hand-made file.
+            return Err(GmshError::Parse {
+                line,
+                message: "node tag 0: Gmsh node tags start at 1".to_string(),
+            });
+        }
         if self.node_index.insert(tag, self.coords.len()).is_some() {
             return Err(GmshError::Parse {
                 line,
@@ -551,6 +582,7 @@ impl RawMsh {
     /// Assembles and validates the mesh: the triangles' order and nodes, the nodes renumbered,
     /// the elements sorted into cells, boundaries and node sets, then [`Mesh::new`].
     fn build(self) -> Result<Mesh, GmshError> {
+        self.check_names_used()?;
         let (order, used) = self.triangle_order_and_nodes()?;
         let (nodes, new_index) = self.renumber_nodes(&used)?;
         let (cells, boundaries, node_sets) = self.sort_elements(order, &nodes, &new_index)?;
@@ -561,6 +593,31 @@ impl RawMsh {
             )),
             e => GmshError::Mesh(e),
         })
+    }
+
+    /// Checks that every `$PhysicalNames` entry names a group some element belongs to: a name
+    /// with a mistyped tag would otherwise leave its boundary unnamed (called by its number).
+    fn check_names_used(&self) -> Result<(), GmshError> {
+        let mut used = BTreeSet::new();
+        for element in &self.elements {
+            let dim = kind_dim(element.kind);
+            used.extend(self.physicals(element).iter().map(|&tag| (dim, tag)));
+        }
+        let unused = self
+            .name_lines
+            .iter()
+            .filter(|(key, _)| !used.contains(*key))
+            .min_by_key(|(_, &line)| line);
+        match unused {
+            Some((&(dim, tag), &line)) => Err(GmshError::Parse {
+                line,
+                message: format!(
+                    "physical name '{}' is given to {dim}D group {tag}, which has no elements",
+                    self.group_name(dim, tag)
+                ),
+            }),
+            None => Ok(()),
+        }
     }
 
     /// The index in `coords` of node `tag` of `element`.
@@ -727,7 +784,8 @@ fn read_format(tokens: &mut Tokens<'_>) -> Result<Version, GmshError> {
     let (line, version) = tokens.next()?;
     let version = match version {
         "4.1" => Version::V4,
-        "2.2" | "2.1" | "2" | "2.0" => Version::V2,
+        // Older 2.x files differ in details this reader does not check: only 2.2 is read.
+        "2.2" => Version::V2,
         other => {
             return Err(GmshError::Unsupported(format!(
                 "line {line}: MSH format version {other}; save the mesh as version 4.1 or 2.2 \

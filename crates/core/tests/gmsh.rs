@@ -139,6 +139,43 @@ fn clockwise_p2_triangle_is_reoriented_with_its_mid_nodes() {
     assert!(signed_area2(&mesh, 0) > 0.0);
 }
 
+/// The MSH 2.2 file of [`msh22_is_read`].
+const MSH22: &str = "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n\
+                     $PhysicalNames\n2\n1 7 \"fixed side\"\n2 9 \"plate\"\n$EndPhysicalNames\n\
+                     $Nodes\n4\n1 0 0 0\n2 2 0 0\n3 2 1 0\n4 0 1 0\n$EndNodes\n\
+                     $Elements\n5\n1 1 2 7 1 1 2\n2 1 2 8 2 3 4\n3 15 2 0 1 1\n\
+                     4 2 2 9 1 1 2 3\n5 2 2 9 1 1 3 4\n$EndElements\n";
+
+#[test]
+fn ambiguous_names_versions_and_node_tags_are_rejected() {
+    assert!(parse_msh(MSH22).is_ok());
+    let names = "2\n1 7 \"fixed side\"\n2 9 \"plate\"";
+    let with_names = |new: &str| MSH22.replacen(names, new, 1);
+    // One name for two groups of one dimension would merge them.
+    let twice = with_names("3\n1 7 \"side\"\n1 8 \"side\"\n2 9 \"plate\"");
+    let result = parse_msh(&twice);
+    assert!(format!("{result:?}").contains("side"), "{result:?}");
+    assert_eq!(parse_error_line(result), 7);
+    // One group named twice.
+    let renamed = with_names("3\n1 7 \"a\"\n1 7 \"b\"\n2 9 \"plate\"");
+    assert_eq!(parse_error_line(parse_msh(&renamed)), 7);
+    // A name for a group that no element belongs to (a misspelt tag).
+    let ghost = with_names("3\n1 7 \"fixed side\"\n1 5 \"ghost\"\n2 9 \"plate\"");
+    let result = parse_msh(&ghost);
+    assert!(format!("{result:?}").contains("ghost"), "{result:?}");
+    assert_eq!(parse_error_line(result), 7);
+    // Only the versions this reader knows.
+    for version in ["2.0", "2.1", "2"] {
+        let old = MSH22.replacen("2.2 0 8", &format!("{version} 0 8"), 1);
+        let result = parse_msh(&old);
+        assert!(format!("{result:?}").contains("line 2"), "{result:?}");
+        assert!(is_unsupported(result), "{version}");
+    }
+    // Gmsh node tags start at 1.
+    let zero = MSH22.replacen("4 0 1 0\n", "0 0 1 0\n", 1);
+    assert_eq!(parse_error_line(parse_msh(&zero)), 14);
+}
+
 #[test]
 fn msh22_is_read() {
     let text = "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n\

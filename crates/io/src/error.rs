@@ -18,7 +18,7 @@ pub enum LoadError {
         source: std::io::Error,
     },
     /// TOML syntax or schema error (the message names the key and line).
-    #[error("{file}: {}", source.to_string().trim_end())]
+    #[error("{file}: {}", excerpt(&source.to_string()))]
     Toml {
         /// The file (or source name) being parsed.
         file: String,
@@ -47,4 +47,35 @@ pub enum LoadError {
         /// The error.
         error: Box<LoadError>,
     },
+}
+
+/// Longest line of a parser message that is echoed whole; longer lines end in `…`.
+pub const MAX_ECHOED_LINE: usize = 200;
+
+/// A parser message with every line cut to [`MAX_ECHOED_LINE`] characters: the parser echoes the
+/// offending source line, which can be megabytes long (a huge string, deeply nested brackets).
+/// Line and column numbers are in the first line, so nothing needed is lost.
+pub fn excerpt(message: &str) -> String {
+    let lines: Vec<String> = message
+        .trim_end()
+        .lines()
+        .map(|line| match line.char_indices().nth(MAX_ECHOED_LINE) {
+            Some((cut, _)) => format!("{}…", &line[..cut]),
+            None => line.to_string(),
+        })
+        .collect();
+    lines.join("\n")
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn long_lines_are_cut() {
+        assert_eq!(excerpt("a\nb\n"), "a\nb");
+        let long = "é".repeat(MAX_ECHOED_LINE + 1);
+        let cut = excerpt(&format!("head\n{long}"));
+        assert_eq!(cut, format!("head\n{}…", "é".repeat(MAX_ECHOED_LINE)));
+    }
 }

@@ -193,10 +193,11 @@ pub struct ContactSpec {
     /// Pair name; default `"<body1>-<body2>"`.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub name: Option<String>,
-    /// The two (distinct) body names.
-    pub bodies: [String; 2],
-    /// The contact boundary of each body, in the same order.
-    pub boundaries: [String; 2],
+    /// The two (distinct) body names. A list rather than an array so that a wrong length is
+    /// reported by [`crate::setup`] with the pair's name (serde would drop extra entries).
+    pub bodies: Vec<String>,
+    /// The contact boundary of each body, in the same order (exactly two, like `bodies`).
+    pub boundaries: Vec<String>,
     /// Penalty: either `{ c, h }` (rod model) or `{ theta }`.
     pub penalty: PenaltySpec,
     /// Prescribed gap profile added to the geometric normal gap.
@@ -205,11 +206,9 @@ pub struct ContactSpec {
 }
 
 impl ContactSpec {
-    /// The pair's name: `name`, or `"<body1>-<body2>"`.
+    /// The pair's name: `name`, or the body names joined by `-` (`"<body1>-<body2>"`).
     pub fn pair_name(&self) -> String {
-        self.name
-            .clone()
-            .unwrap_or_else(|| format!("{}-{}", self.bodies[0], self.bodies[1]))
+        self.name.clone().unwrap_or_else(|| self.bodies.join("-"))
     }
 }
 

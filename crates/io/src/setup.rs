@@ -40,6 +40,7 @@ use contactdd_ddm::{
 };
 
 use crate::error::LoadError;
+use crate::number::format_f64 as num;
 use crate::problem::{
     AcceleratorSpec, BodySpec, CoarseSpec, ContactSpec, GammaSpec, GapSpec, LoadSpec, MaterialSpec,
     MeshSpec, PenaltySpec, Problem, SolverSpec, SupportSpec,
@@ -48,6 +49,11 @@ use crate::problem::{
 /// Largest number of rectangle cells (nx · ny) per body: far beyond what the solver handles, but it
 /// keeps absurd inputs from exhausting memory while allocating the mesh.
 pub const MAX_RECTANGLE_CELLS: usize = 4_000_000;
+
+/// Most worker threads a problem file (`solver.threads`) or the command line (`--threads`) may ask
+/// for: more than any machine this runs on, low enough that a typo cannot make the thread pool
+/// exhaust the system.
+pub const MAX_THREADS: usize = 1024;
 
 /// A resolved problem: the file's data and the solver input built from it.
 #[derive(Clone, Debug)]
@@ -321,8 +327,8 @@ fn solver_error(key: &str, message: impl std::fmt::Display) -> SetupError {
 }
 
 /// A `[solver]` table applied to `base`: every key given is checked and replaces the value of
-/// `base`, absent keys keep it. `threads` is checked (≥ 1) but is not part of [`Settings`]; read
-/// it from `spec`.
+/// `base`, absent keys keep it. `threads` is checked (1 to [`MAX_THREADS`]) but is not part of
+/// [`Settings`]; read it from `spec`.
 pub fn settings(spec: &SolverSpec, base: &Settings) -> Result<Settings, SetupError> {
     let mut s = base.clone();
     if let Some(method) = spec.method {
@@ -336,7 +342,7 @@ pub fn settings(spec: &SolverSpec, base: &Settings) -> Result<Settings, SetupErr
         if !(tol.is_finite() && tol > 0.0) {
             return Err(solver_error(
                 "tol",
-                format!("must be a positive number, got {tol}"),
+                format!("must be a positive number, got {}", num(tol)),
             ));
         }
         s.tol = tol;
@@ -345,7 +351,7 @@ pub fn settings(spec: &SolverSpec, base: &Settings) -> Result<Settings, SetupErr
         if !(e.is_finite() && e > 0.0) {
             return Err(solver_error(
                 "equilibrium-tol",
-                format!("must be a positive number, got {e}"),
+                format!("must be a positive number, got {}", num(e)),
             ));
         }
         s.equilibrium_tol = e;
@@ -362,13 +368,20 @@ pub fn settings(spec: &SolverSpec, base: &Settings) -> Result<Settings, SetupErr
     ] {
         if let Some(v) = v {
             if !v.is_finite() {
-                return Err(solver_error(key, format!("must be finite, got {v}")));
+                return Err(solver_error(key, format!("must be finite, got {}", num(v))));
             }
             *slot = v;
         }
     }
-    if spec.threads == Some(0) {
-        return Err(solver_error("threads", "must be at least 1, got 0"));
+    match spec.threads {
+        Some(0) => return Err(solver_error("threads", "must be at least 1, got 0")),
+        Some(n) if n > MAX_THREADS => {
+            return Err(solver_error(
+                "threads",
+                format!("must be at most {MAX_THREADS}, got {n}"),
+            ))
+        }
+        _ => {}
     }
     Ok(s)
 }
@@ -404,7 +417,7 @@ pub fn gamma(spec: GammaSpec) -> Result<Gamma, SetupError> {
         GammaSpec::Value(g) if g.is_finite() && g > 0.0 => Ok(Gamma::Constant(g)),
         GammaSpec::Value(g) => Err(solver_error(
             "gamma",
-            format!("must be a positive number or \"auto\", got {g}"),
+            format!("must be a positive number or \"auto\", got {}", num(g)),
         )),
     }
 }
@@ -521,7 +534,7 @@ pub fn body_on_mesh(
             return Err(body_error(
                 name,
                 &format!("{key}.value"),
-                format!("must be finite, got {v}"),
+                format!("must be finite, got {}", num(*v)),
             ));
         }
         if let LoadSpec::Pressure { boundary, .. } | LoadSpec::Traction { boundary, .. } = l {
@@ -575,7 +588,8 @@ pub fn mesh(body: &str, spec: &MeshSpec, base_dir: &Path) -> Result<Mesh, LoadEr
                         key,
                         format!(
                             "need a finite range [min, max] with min < max, got [{}, {}]",
-                            r[0], r[1]
+                            num(r[0]),
+                            num(r[1])
                         ),
                     )
                     .into());
@@ -604,7 +618,7 @@ pub fn mesh(body: &str, spec: &MeshSpec, base_dir: &Path) -> Result<Mesh, LoadEr
                 return Err(body_error(
                     body,
                     "mesh.scale",
-                    format!("must be a positive number, got {scale}"),
+                    format!("must be a positive number, got {}", num(scale)),
                 )
                 .into());
             }
@@ -613,7 +627,7 @@ pub fn mesh(body: &str, spec: &MeshSpec, base_dir: &Path) -> Result<Mesh, LoadEr
                 return Err(body_error(
                     body,
                     "mesh.translate",
-                    format!("must be finite, got [{}, {}]", shift[0], shift[1]),
+                    format!("must be finite, got [{}, {}]", num(shift[0]), num(shift[1])),
                 )
                 .into());
             }
@@ -671,7 +685,20 @@ pub fn pair(
     bodies: &[ElasticBody],
     earlier: &[ContactPair],
 ) -> Result<ContactPair, SetupError> {
-    let name = spec.pair_name();
+    let mut name = spec.pair_name();
+    if name.is_empty() {
+        // No name and no bodies: the entry's position is all that identifies it.
+        name = format!("contact[{}]", earlier.len());
+    }
+    for (key, list) in [("bodies", &spec.bodies), ("boundaries", &spec.boundaries)] {
+        if list.len() != 2 {
+            return Err(pair_error(
+                &name,
+                key,
+                format!("needs exactly 2 entries, got {}", list.len()),
+            ));
+        }
+    }
     let mut ids = [0usize; 2];
     for (s, body) in spec.bodies.iter().enumerate() {
         ids[s] = bodies.iter().position(|b| b.name == *body).ok_or_else(|| {
@@ -712,7 +739,7 @@ pub fn pair(
         return Err(pair_error(
             &name,
             "penalty",
-            format!("θ = {theta} is not a positive finite number"),
+            format!("θ = {} is not a positive finite number", num(theta)),
         ));
     }
     let profile = spec
@@ -734,7 +761,7 @@ pub fn pair(
     Ok(ContactPair {
         name,
         bodies: ids,
-        boundaries: spec.boundaries.clone(),
+        boundaries: [spec.boundaries[0].clone(), spec.boundaries[1].clone()],
         penalty,
         profile,
     })
@@ -748,7 +775,7 @@ fn penalty(pair: &str, spec: &PenaltySpec) -> Result<Penalty, SetupError> {
             Err(pair_error(
                 pair,
                 &format!("penalty.{key}"),
-                format!("must be a positive finite number, got {v}"),
+                format!("must be a positive finite number, got {}", num(v)),
             ))
         }
     };
@@ -789,7 +816,7 @@ fn gap_profile(pair: &str, spec: &GapSpec) -> Result<GapProfile, SetupError> {
             Err(pair_error(
                 pair,
                 &format!("gap.{key}"),
-                format!("must be {what}, got {v}"),
+                format!("must be {what}, got {}", num(v)),
             ))
         }
     };

@@ -489,6 +489,54 @@ fn pair_naming_one_body_twice_or_an_unknown_body() {
 }
 
 #[test]
+fn pair_lists_need_exactly_two_entries() {
+    let cases = [
+        (
+            "bodies = [\"lower\", \"upper\"]",
+            "bodies = [\"lower\", \"upper\", \"lower\"]",
+            "bodies",
+            "3",
+        ),
+        (
+            "bodies = [\"lower\", \"upper\"]",
+            "bodies = [\"lower\"]",
+            "bodies",
+            "1",
+        ),
+        (
+            "boundaries = [\"top\", \"bottom\"]",
+            "boundaries = [\"top\", \"bottom\", \"missing\"]",
+            "boundaries",
+            "3",
+        ),
+        (
+            "boundaries = [\"top\", \"bottom\"]",
+            "boundaries = []",
+            "boundaries",
+            "0",
+        ),
+    ];
+    for (find, replace, key, count) in cases {
+        let m = error_of(&small_with(find, replace));
+        assert_contains(
+            &m,
+            &[
+                "contact pair '",
+                &format!("{key}: "),
+                "exactly 2",
+                &format!("got {count}"),
+            ],
+        );
+    }
+    // A named pair is named by its name.
+    let m = error_of(&small_with(
+        "bodies = [\"lower\", \"upper\"]",
+        "name = \"joint\"\nbodies = [\"lower\", \"upper\", \"x\"]",
+    ));
+    assert_contains(&m, &["contact pair 'joint'", "bodies: "]);
+}
+
+#[test]
 fn unknown_material() {
     let m = error_of(&small_with("material = \"steel\"", "material = \"stel\""));
     assert_contains(
@@ -609,6 +657,11 @@ fn bad_solver_settings() {
     assert_contains(&m, &["solver: max-iter", "at least 1"]);
     let m = error_of(&format!("{SMALL}\n[solver]\nthreads = 0\n"));
     assert_contains(&m, &["solver: threads", "at least 1"]);
+    // The command line's cap (`--threads`) holds for the file too.
+    let m = error_of(&format!("{SMALL}\n[solver]\nthreads = 1025\n"));
+    assert_contains(&m, &["solver: threads", "at most 1024", "1025"]);
+    let ok = format!("{SMALL}\n[solver]\nthreads = 1024\n");
+    assert!(load_str(&ok, "ok.toml", Path::new(".")).is_ok());
     let m = error_of(&format!("{SMALL}\n[solver]\nmethod = \"fastest\"\n"));
     assert_contains(&m, &["unknown variant `fastest`", "newton-kurchatov"]);
     let m = error_of(&format!("{SMALL}\n[solver]\nu0 = nan\n"));
@@ -668,6 +721,52 @@ fn other_resolve_errors() {
         &m,
         &["contact pair 'lower-upper'", "contact[0] and contact[1]"],
     );
+}
+
+#[test]
+fn error_messages_stay_short() {
+    // Very long or deeply nested lines are echoed as a short excerpt, not whole.
+    let long = format!("{SMALL}\n[solver]\ntol = \"{}\"\n", "x".repeat(3_000_000));
+    let nested = format!(
+        "{SMALL}\n[solver]\ntol = {}{}\n",
+        "[".repeat(100_000),
+        "]".repeat(100_000)
+    );
+    let tables = format!(
+        "{SMALL}\n[solver]\ntol = {}{}\n",
+        "{a=".repeat(50_000),
+        "}".repeat(50_000)
+    );
+    for text in [long, nested, tables] {
+        let m = error_of(&text);
+        assert!(m.len() < 2000, "{} bytes: {}", m.len(), &m[..500]);
+        assert_contains(&m, &["line ", "…"]);
+    }
+    // Echoed numbers are short: an exponent instead of 300 digits.
+    let cases = [
+        (small_with("young = 1000.0", "young = -1e-300"), "-1e-300"),
+        (format!("{SMALL}\n[solver]\ngamma = -1e300\n"), "-1e300"),
+        (format!("{SMALL}\n[solver]\ntol = -1e300\n"), "-1e300"),
+        (
+            small_with(
+                "penalty = { c = 0.05, h = 1.0 }",
+                "penalty = { theta = -1e-300 }",
+            ),
+            "-1e-300",
+        ),
+        (
+            small_with(
+                "x = [0.0, 2.0], y = [0.0, 1.0]",
+                "x = [1e300, -1e300], y = [0.0, 1.0]",
+            ),
+            "[1e300, -1e300]",
+        ),
+    ];
+    for (text, number) in cases {
+        let m = error_of(&text);
+        assert!(m.len() < 300, "{} bytes: {m}", m.len());
+        assert_contains(&m, &[number]);
+    }
 }
 
 #[test]
