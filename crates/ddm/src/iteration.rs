@@ -230,12 +230,12 @@ impl State {
         state
     }
 
-    /// Makes (`u`, `t`) the new current state: k−1 ← k ← new.
-    fn advance(&mut self, interface: &Interface, u: &mut Vec<f64>) {
+    /// Makes `u`, with its pair sums `s`, the new current state: k−1 ← k ← new.
+    fn advance(&mut self, u: &mut Vec<f64>, s: &mut Vec<f64>) {
         std::mem::swap(&mut self.u_prev, &mut self.u);
         std::mem::swap(&mut self.u, u);
         std::mem::swap(&mut self.s_prev, &mut self.s);
-        interface.sum_normal(&self.u, &mut self.s);
+        std::mem::swap(&mut self.s, s);
     }
 }
 
@@ -277,10 +277,8 @@ fn first_breakdown(
     })
 }
 
-/// Closed points and total normal contact force Σ w |σ_n| per body for the state `un`.
-fn contact_summary(interface: &Interface, un: &[f64], nb: usize) -> (Vec<usize>, Vec<f64>) {
-    let mut s = vec![0.0; un.len()];
-    interface.sum_normal(un, &mut s);
+/// Closed points and total normal contact force Σ w |σ_n| per body for the pair sums `s`.
+fn contact_summary(interface: &Interface, s: &[f64], nb: usize) -> (Vec<usize>, Vec<f64>) {
     let (mut active, mut force) = (vec![0usize; nb], vec![0.0; nb]);
     for (j, p) in interface.points.iter().enumerate() {
         if p.overlap(s[j]) < 0.0 {
@@ -306,8 +304,9 @@ struct Buffers {
     /// The sweep's outputs Ũ and T̃.
     tilde: Vec<f64>,
     t_tilde: Vec<f64>,
-    /// The proposed next state.
+    /// The proposed next state and its pair sums.
     next: Vec<f64>,
+    s_next: Vec<f64>,
     /// The state before the coarse correction.
     input: Vec<f64>,
     input_t: Vec<f64>,
@@ -357,16 +356,28 @@ impl Update {
     }
 
     /// Makes `buf.next` and `t` the next state (Anderson: from the accelerated combination unless
-    /// the iteration has converged, when the sweep's output is the result).
-    fn commit(&mut self, gamma: f64, converged: bool, u: &[f64], t: &mut [f64], buf: &mut Buffers) {
+    /// the iteration has converged, when the sweep's output is the result). Returns false if
+    /// `buf.next` is no longer the proposed state.
+    fn commit(
+        &mut self,
+        gamma: f64,
+        converged: bool,
+        u: &[f64],
+        t: &mut [f64],
+        buf: &mut Buffers,
+    ) -> bool {
         match self {
             Update::Relax(relax) => {
                 relax.update(u, &buf.next);
                 for j in 0..t.len() {
                     t[j] = gamma * buf.t_tilde[j] + (1.0 - gamma) * t[j];
                 }
+                true
             }
-            Update::Anderson { .. } if converged => t.copy_from_slice(&buf.t_tilde),
+            Update::Anderson { .. } if converged => {
+                t.copy_from_slice(&buf.t_tilde);
+                true
+            }
             Update::Anderson {
                 memory,
                 first_gamma,
@@ -374,6 +385,7 @@ impl Update {
                 buf.next.copy_from_slice(&buf.input);
                 t.copy_from_slice(&buf.input_t);
                 memory.advance(&mut buf.next, t, &buf.tilde, &buf.t_tilde, *first_gamma);
+                false
             }
         }
     }
@@ -392,6 +404,7 @@ pub fn iterate(prepared: &Prepared, settings: &Settings, hooks: Hooks<'_>) -> Ou
         tilde: vec![0.0; m],
         t_tilde: vec![0.0; m],
         next: vec![0.0; m],
+        s_next: vec![0.0; m],
         input: vec![0.0; m],
         input_t: vec![0.0; m],
     };
@@ -437,7 +450,8 @@ pub fn iterate(prepared: &Prepared, settings: &Settings, hooks: Hooks<'_>) -> Ou
             };
             break;
         }
-        let (active, contact_force) = contact_summary(interface, &buf.next, nb);
+        interface.sum_normal(&buf.next, &mut buf.s_next);
+        let (active, contact_force) = contact_summary(interface, &buf.s_next, nb);
         let record = Record {
             k,
             gamma,
@@ -449,9 +463,11 @@ pub fn iterate(prepared: &Prepared, settings: &Settings, hooks: Hooks<'_>) -> Ou
             f(&record);
         }
         let converged = update.converged(&record, settings.tol);
-        update.commit(gamma, converged, &state.u, &mut state.t, &mut buf);
+        if !update.commit(gamma, converged, &state.u, &mut state.t, &mut buf) {
+            interface.sum_normal(&buf.next, &mut buf.s_next);
+        }
         history.push(record);
-        state.advance(interface, &mut buf.next);
+        state.advance(&mut buf.next, &mut buf.s_next);
         if converged {
             stop = Stop::Converged;
             break;
