@@ -1,5 +1,6 @@
 //! The domain decomposition: setup of the notch benchmark, one iteration, a full solve per method,
-//! the 45-run γ sweep, and an 8-body stack with 1 and 2 threads.
+//! the 45-run γ sweep, an 8-body stack with 1 and 2 threads, columns of floating blocks, the
+//! Hertz example at two penalties, and the contact search.
 //!
 //! Run: `cargo bench --bench ddm`.
 
@@ -157,21 +158,24 @@ fn threads(c: &mut Criterion) {
 }
 
 /// A column of floating blocks (`contactdd::cases::column`, c = 0.5, tolerance 1e−6): the solve
-/// after setup with the default two-level iteration, against the one-level iteration where it
-/// converges (8 blocks; from 16 blocks on it loses contact).
+/// after setup with the default interface Newton method and with the two-level sweeps, against
+/// the one-level iteration where it converges (8 blocks; from 16 blocks on it loses contact).
 fn two_level(c: &mut Criterion) {
     let mut group = c.benchmark_group("column");
     group.sample_size(10);
     let one_level = Settings {
         coarse: CoarseMode::Off,
         max_iter: 5000,
-        ..Settings::default()
+        ..Settings::two_level()
     };
     for n in [8, 64] {
         let model = contactdd::cases::column(n, 0.5);
         let prepared = prepare(&model).expect("prepare");
-        group.bench_function(BenchmarkId::new("two_level_solve", n), |b| {
+        group.bench_function(BenchmarkId::new("newton_solve", n), |b| {
             b.iter(|| solve(&model, &prepared, &Settings::default(), Hooks::default()))
+        });
+        group.bench_function(BenchmarkId::new("two_level_solve", n), |b| {
+            b.iter(|| solve(&model, &prepared, &Settings::two_level(), Hooks::default()))
         });
         if n == 8 {
             group.bench_function(BenchmarkId::new("one_level_solve", n), |b| {
@@ -202,5 +206,37 @@ fn contact_search(c: &mut Criterion) {
     group.finish();
 }
 
-criterion_group!(benches, notch, threads, two_level, contact_search);
+/// The Hertz example (`examples/hertz.toml`) with the default interface Newton method at its own
+/// stiff penalty θ = 8e−9 and at a 100× softer θ = 8e−7: the solve after setup. The iteration
+/// count, and so the cost, should not grow with the penalty stiffness.
+fn stiff_penalty(c: &mut Criterion) {
+    let mut group = c.benchmark_group("hertz");
+    group.sample_size(10);
+    for theta in [8e-7, 8e-9] {
+        let mut model = contactdd::io::load_file(std::path::Path::new("examples/hertz.toml"))
+            .expect("the shipped example")
+            .model;
+        for pair in &mut model.pairs {
+            pair.penalty = Penalty::Theta(theta);
+        }
+        let prepared = prepare(&model).expect("prepare");
+        let settings = Settings {
+            tol: 1e-9,
+            ..Settings::default()
+        };
+        group.bench_function(BenchmarkId::new("newton_solve", theta), |b| {
+            b.iter(|| solve(&model, &prepared, &settings, Hooks::default()))
+        });
+    }
+    group.finish();
+}
+
+criterion_group!(
+    benches,
+    notch,
+    threads,
+    two_level,
+    stiff_penalty,
+    contact_search
+);
 criterion_main!(benches);

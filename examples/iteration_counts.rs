@@ -1,5 +1,5 @@
 //! Iteration counts and wall times of the hard cases of `contactdd::cases` under the paper's
-//! relaxed iteration and the two-level accelerated default.
+//! relaxed iteration, the two-level sweeps and the interface Newton default.
 //!
 //! Run: `cargo run --release --example iteration_counts [filter]`
 
@@ -9,8 +9,8 @@ use contactdd::cases;
 use contactdd::ddm::{prepare, solve, CoarseMode, Gamma, Hooks, Method, Model, Settings};
 use contactdd::io::load_file;
 
-/// The settings compared: the default two-level iteration, today's one-level `auto`, the coarse
-/// correction on every floating body, and Anderson acceleration.
+/// The settings compared: the interface Newton default, the two-level sweeps, the one-level
+/// `auto`, the coarse correction on every floating body, and Anderson acceleration.
 fn variants() -> Vec<(&'static str, Settings)> {
     let tight = |s: Settings| Settings {
         tol: 1e-6,
@@ -19,6 +19,7 @@ fn variants() -> Vec<(&'static str, Settings)> {
     };
     let mut v = vec![
         ("default", tight(Settings::default())),
+        ("two-level", tight(Settings::two_level())),
         (
             "one-level auto",
             tight(Settings::paper(Method::NewtonKurchatov, Gamma::Auto)),
@@ -27,7 +28,7 @@ fn variants() -> Vec<(&'static str, Settings)> {
             "coarse all",
             tight(Settings {
                 coarse: CoarseMode::All,
-                ..Settings::default()
+                ..Settings::two_level()
             }),
         ),
         (

@@ -20,7 +20,7 @@ fn base() -> Settings {
         gamma: Gamma::Auto,
         tol: 1e-3,
         max_iter: 1000,
-        ..Settings::default()
+        ..Settings::two_level()
     }
 }
 

@@ -22,7 +22,7 @@ fn columns_of_floating_blocks_converge_in_a_count_independent_of_their_length() 
     let mut counts = Vec::new();
     for n in [8, 16, 32, 64] {
         let model = cases::column(n, 0.5);
-        let sol = run(&model, &Settings::default());
+        let sol = run(&model, &Settings::two_level());
         assert!(sol.converged, "{n} blocks: {:?}", sol.message);
         assert!(
             sol.iterations <= 40,
@@ -53,12 +53,12 @@ fn the_one_level_iteration_fails_where_the_two_level_one_converges() {
     let model = cases::column(16, 0.5);
     let one_level = Settings {
         coarse: CoarseMode::Off,
-        ..Settings::default()
+        ..Settings::two_level()
     };
     assert!(!run(&model, &one_level).converged);
 }
 
-/// Every accelerator and coarse mode converges to the monolithic penalty solution.
+/// Every accelerator and coarse mode, and the interface Newton default, converges to the monolithic penalty solution.
 #[test]
 fn two_level_and_anderson_agree_with_the_monolithic_solution() {
     let models = [
@@ -68,9 +68,10 @@ fn two_level_and_anderson_agree_with_the_monolithic_solution() {
     ];
     let variants = [
         Settings::default(),
+        Settings::two_level(),
         Settings {
             coarse: CoarseMode::All,
-            ..Settings::default()
+            ..Settings::two_level()
         },
         Settings::anderson(),
     ];
@@ -100,12 +101,17 @@ fn two_level_and_anderson_agree_with_the_monolithic_solution() {
     }
 }
 
-/// Bodies solve in parallel; the coarse problem and the accelerator are sequential: the result is
+/// Bodies solve in parallel; the coarse problem, the accelerator and the interface Newton
+/// factorisation are sequential: the result is
 /// the same to the last bit on one and on two threads.
 #[test]
 fn two_level_and_anderson_give_the_same_bits_on_one_and_two_threads() {
     let model = cases::column(12, 0.5);
-    for settings in [Settings::default(), Settings::anderson()] {
+    for settings in [
+        Settings::default(),
+        Settings::two_level(),
+        Settings::anderson(),
+    ] {
         let on = |threads: usize| {
             let pool = rayon::ThreadPoolBuilder::new()
                 .num_threads(threads)

@@ -118,8 +118,10 @@ fn with_threads<T: Send>(
 ///     threads: worker threads (default: the problem's, else all cores).
 ///     check: raise :class:`ConvergenceError` if the solve does not converge (default); with
 ///         ``False`` the result is returned regardless (see ``Result.converged``).
-///     accelerator: ``"none"`` (relaxation with γ) or ``"anderson"``.
-///     coarse: the rigid-body coarse correction: ``"chains"`` (the default: floating bodies that
+///     accelerator: ``"newton"`` (the default: the interface semismooth Newton
+///         method, which uses neither method nor γ), ``"none"`` (Robin sweeps relaxed with
+///         γ; the default when ``method`` or ``gamma`` is given) or ``"anderson"``.
+///     coarse: the rigid-body coarse correction: ``"chains"`` (the sweeps' default: floating bodies that
 ///         touch each other), ``"all"`` or ``"off"``. A constant ``gamma`` alone selects the
 ///         paper's one-level iteration (accelerator ``"none"``, coarse ``"off"``).
 ///

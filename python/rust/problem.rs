@@ -500,7 +500,9 @@ impl Problem {
     ///     u0: initial normal displacement u⁰ₙ on the contact zones.
     ///     u_prev: initial u⁻¹ₙ of the two-point methods.
     ///     threads: worker threads (default: all cores).
-    ///     accelerator: ``"none"`` (relaxation with γ) or ``"anderson"``.
+    ///     accelerator: ``"newton"`` (the default: the interface semismooth Newton
+    ///         method, which uses neither method nor γ), ``"none"`` (Robin sweeps relaxed with
+    ///         γ; the default when ``method`` or ``gamma`` is given) or ``"anderson"``.
     ///     coarse: the rigid-body coarse correction: ``"chains"`` (floating bodies that touch
     ///         each other), ``"all"`` or ``"off"``. A constant ``gamma`` alone selects the
     ///         paper's one-level iteration (no accelerator, coarse ``"off"``).

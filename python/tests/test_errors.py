@@ -245,7 +245,7 @@ def test_solver_names_use_the_schema():
     p = body_problem()
     with pytest.raises(ContactddError) as e:
         p.solver(accelerator="fast")
-    assert str(e.value) == "solver: accelerator: unknown variant `fast`, expected `none` or `anderson`"
+    assert str(e.value) == "solver: accelerator: unknown variant `fast`, expected one of `none`, `anderson`, `newton`"
     with pytest.raises(ContactddError) as e:
         p.solver(gamma="fast")
     assert str(e.value) == 'solver: gamma: expected a positive number or "auto", got "fast"'

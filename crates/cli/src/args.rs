@@ -71,7 +71,8 @@ pub struct SolveArgs {
     /// one-level iteration (no accelerator, no coarse correction).
     #[arg(long, value_name = "G", value_parser = parse_gamma)]
     pub gamma: Option<Gamma>,
-    /// Accelerator: none (relaxation with γ) or anderson.
+    /// Iteration: newton (the interface Newton method, the default unless --method or --gamma is
+    /// given), none (Robin sweeps relaxed with γ) or anderson (sweeps with Anderson acceleration).
     #[arg(long, value_name = "A", value_parser = parse_accelerator)]
     pub accelerator: Option<Accelerator>,
     /// Rigid-body coarse correction: off, chains (floating bodies touching each other) or all.
@@ -159,8 +160,9 @@ fn parse_accelerator(s: &str) -> Result<Accelerator, String> {
         "anderson" => Ok(Accelerator::Anderson {
             depth: ANDERSON_DEPTH,
         }),
+        "newton" => Ok(Accelerator::Newton),
         _ => Err(format!(
-            "unknown accelerator '{s}' (expected none or anderson)"
+            "unknown accelerator '{s}' (expected none, anderson or newton)"
         )),
     }
 }

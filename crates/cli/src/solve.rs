@@ -52,6 +52,9 @@ pub fn solve(args: SolveArgs) -> Result<Exit> {
     let loaded = load(&args.file)?;
     let t_load = start.elapsed().as_secs_f64();
     let mut settings = loaded.settings.clone();
+    if args.accelerator.is_none() && (args.method.is_some() || args.gamma.is_some()) {
+        settings.use_sweeps();
+    }
     if let Some(m) = args.method {
         settings.method = m;
     }
@@ -64,9 +67,13 @@ pub fn solve(args: SolveArgs) -> Result<Exit> {
     }
     if let Some(a) = args.accelerator {
         settings.accelerator = a;
-        if a != Accelerator::None {
-            settings.coarse = CoarseMode::Off;
-        }
+        // Sweeps with relaxation get the coarse correction, except the paper's constant γ.
+        let paper = matches!(settings.gamma, Gamma::Constant(_));
+        settings.coarse = if a == Accelerator::None && !paper {
+            CoarseMode::Chains
+        } else {
+            CoarseMode::Off
+        };
     }
     if let Some(c) = args.coarse {
         settings.coarse = c;
@@ -90,14 +97,11 @@ pub fn solve(args: SolveArgs) -> Result<Exit> {
         let table = IterationTable::new(model);
         if !quiet {
             say!(
-                "solving {}: {}, {}, method {}, gamma {}, accelerator {}, coarse {}, tol {:e}, max-iter {}",
+                "solving {}: {}, {}, {}, tol {:e}, max-iter {}",
                 model.name,
                 count(model.bodies.len(), "body", "bodies"),
                 count(model.pairs.len(), "contact pair", "contact pairs"),
-                settings.method,
-                settings.gamma,
-                settings.accelerator,
-                settings.coarse,
+                settings.scheme(),
                 settings.tol,
                 settings.max_iter
             );
@@ -123,8 +127,9 @@ pub fn solve(args: SolveArgs) -> Result<Exit> {
 
         let outcome = if sol.converged {
             format!(
-                "converged in {} iterations ({}, gamma {})",
-                sol.iterations, sol.method, sol.gamma
+                "converged in {} iterations ({})",
+                sol.iterations,
+                settings.scheme()
             )
         } else {
             format!(

@@ -103,6 +103,12 @@ impl Coarse {
         }
     }
 
+    /// The free rigid modes of every floating body on the contact points: per body the range of
+    /// its mode numbers, and per point the normal value ρ_jq of each mode q of its body.
+    pub fn floating_modes(&self) -> (&[Range<usize>], &[Vec<f64>]) {
+        (&self.all.range, &self.all.rho)
+    }
+
     /// Moves the bodies that `mode` selects rigidly into balance in the state (`un`, `t`).
     /// Returns the number of Newton steps taken.
     pub fn correct(

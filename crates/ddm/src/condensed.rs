@@ -138,6 +138,22 @@ impl CondensedBody {
         self.nodes.is_empty()
     }
 
+    /// B = C₀ D₀: the change of the normal displacements per unit change of τ = D₀⁻¹ T (the
+    /// interface load in displacement units). B maps a rigid motion's normal values to themselves.
+    pub fn load_response(&self) -> Mat<f64> {
+        Mat::from_fn(self.len(), self.len(), |i, j| self.c0[(i, j)] * self.d0[j])
+    }
+
+    /// The reference spring stiffnesses D₀ = w/θ.
+    pub fn reference_springs(&self) -> &[f64] {
+        &self.d0
+    }
+
+    /// f₀ = Nᵀ K₀⁻¹ f: the normal displacements under the body's load alone.
+    pub fn free_response(&self) -> &[f64] {
+        &self.f0
+    }
+
     /// The factorised operator.
     pub fn operator(&self) -> &FactoredBody {
         &self.op

@@ -36,6 +36,8 @@ pub enum Accelerator {
         /// Memory: the number of secant pairs kept.
         depth: usize,
     },
+    /// The interface semismooth Newton method of [`crate::newton`] (the method and γ are unused).
+    Newton,
 }
 
 impl std::fmt::Display for Accelerator {
@@ -43,6 +45,7 @@ impl std::fmt::Display for Accelerator {
         match self {
             Accelerator::None => f.write_str("none"),
             Accelerator::Anderson { depth } => write!(f, "anderson({depth})"),
+            Accelerator::Newton => f.write_str("newton"),
         }
     }
 }
@@ -111,16 +114,56 @@ impl Settings {
     }
 }
 
-impl Default for Settings {
-    /// The two-level iteration: `newton-kurchatov` Robin sweeps with Aitken's `auto` relaxation
-    /// and the rigid-body coarse correction of chains of floating bodies; tolerance 1e−6; the
-    /// paper's initial values u^0 = 1e−4, u^{−1} = 2e−4.
-    fn default() -> Settings {
+impl Settings {
+    /// The two-level sweeps: `newton-kurchatov` Robin sweeps with Aitken's `auto` relaxation and
+    /// the rigid-body coarse correction of chains of floating bodies; the other values as in
+    /// [`Settings::default`].
+    pub fn two_level() -> Settings {
         Settings {
             method: Method::NewtonKurchatov,
             gamma: Gamma::Auto,
             accelerator: Accelerator::None,
             coarse: CoarseMode::Chains,
+            ..Settings::default()
+        }
+    }
+
+    /// Called when a Robin rule (a method or γ) is asked for without an accelerator: the
+    /// interface Newton method uses neither, so it gives way to the two-level sweeps.
+    pub fn use_sweeps(&mut self) {
+        if self.accelerator == Accelerator::Newton {
+            self.accelerator = Accelerator::None;
+            self.coarse = CoarseMode::Chains;
+        }
+    }
+
+    /// The iteration in words: `interface newton`, or the method and γ rule, with the accelerator
+    /// and coarse mode when used.
+    pub fn scheme(&self) -> String {
+        if self.accelerator == Accelerator::Newton {
+            return "interface newton".into();
+        }
+        let mut text = format!("{}, gamma {}", self.method, self.gamma);
+        if self.accelerator != Accelerator::None {
+            text += &format!(", accelerator {}", self.accelerator);
+        }
+        if self.coarse != CoarseMode::Off {
+            text += &format!(", coarse {}", self.coarse);
+        }
+        text
+    }
+}
+
+impl Default for Settings {
+    /// The interface Newton method ([`crate::newton`]); tolerance 1e−6; the paper's initial
+    /// values u^0 = 1e−4, u^{−1} = 2e−4. The method and γ (`newton-kurchatov`, `auto`) are those of
+    /// the sweeps a caller switches to with [`Settings::use_sweeps`].
+    fn default() -> Settings {
+        Settings {
+            method: Method::NewtonKurchatov,
+            gamma: Gamma::Auto,
+            accelerator: Accelerator::Newton,
+            coarse: CoarseMode::Off,
             tol: 1e-6,
             equilibrium_tol: EQUILIBRIUM_TOL,
             max_iter: 500,
@@ -315,7 +358,9 @@ struct Buffers {
 impl Update {
     fn new(settings: &Settings) -> Update {
         match settings.accelerator {
-            Accelerator::None => Update::Relax(Relaxation::new(settings.gamma)),
+            Accelerator::None | Accelerator::Newton => {
+                Update::Relax(Relaxation::new(settings.gamma))
+            }
             Accelerator::Anderson { depth } => Update::Anderson {
                 memory: Anderson::new(depth),
                 first_gamma: match settings.gamma {
@@ -393,6 +438,14 @@ impl Update {
 
 /// Runs the iteration on a prepared model.
 pub fn iterate(prepared: &Prepared, settings: &Settings, hooks: Hooks<'_>) -> Outcome {
+    if settings.accelerator == Accelerator::Newton {
+        return crate::newton::iterate(prepared, settings, hooks);
+    }
+    sweeps(prepared, settings, hooks)
+}
+
+/// The Robin sweeps, relaxed or accelerated.
+fn sweeps(prepared: &Prepared, settings: &Settings, hooks: Hooks<'_>) -> Outcome {
     let start = Instant::now();
     let interface = &prepared.interface;
     let (m, nb) = (interface.len(), prepared.bodies.len());

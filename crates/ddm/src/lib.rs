@@ -20,6 +20,7 @@ pub mod iteration;
 pub mod method;
 pub mod model;
 pub mod monolithic;
+pub mod newton;
 pub mod profile;
 pub mod relaxation;
 pub mod robin_sweep;

@@ -26,6 +26,8 @@ pub enum Breakdown {
     NonFinite,
     /// The displacements grew beyond any physical size.
     Growth,
+    /// The interface Newton steps no longer reduce the residual.
+    NoDescent,
 }
 
 /// Per-body buffers, allocated once per solve.

@@ -6,7 +6,7 @@ use contactdd_core::post::stresses;
 use contactdd_core::{Mesh, Vector, DIM};
 
 use crate::contact::Interface;
-use crate::iteration::{Accelerator, Breakdown, CoarseMode, Record, Stop};
+use crate::iteration::{Accelerator, Breakdown, CoarseMode, Record, Settings, Stop};
 use crate::method::Method;
 use crate::model::Model;
 use crate::relaxation::Gamma;
@@ -110,10 +110,13 @@ pub struct Solution {
 pub fn stop_message(
     stop: &Stop,
     model: &Model,
-    method: Method,
+    settings: &Settings,
     history: &[Record],
-    tol: f64,
 ) -> Option<String> {
+    if settings.accelerator == Accelerator::Newton {
+        return newton_message(stop, model, history, settings.tol);
+    }
+    let (method, tol) = (settings.method, settings.tol);
     let body = |b: usize| body_name(model, b);
     match stop {
         Stop::Converged => None,
@@ -157,6 +160,56 @@ pub fn stop_message(
                 "diverged: the displacements of body '{}' grew without bound at iteration {iteration}; try a smaller gamma",
                 body(*b)
             ),
+            Breakdown::NoDescent => format!(
+                "diverged: the iteration stopped making progress at iteration {iteration} (body '{}')",
+                body(*b)
+            ),
+        }),
+    }
+}
+
+/// The message for a non-converged outcome of the interface Newton method.
+fn newton_message(stop: &Stop, model: &Model, history: &[Record], tol: f64) -> Option<String> {
+    let body = |b: usize| body_name(model, b);
+    let steps = history.len();
+    match stop {
+        Stop::Converged => None,
+        Stop::MaxIterations => {
+            let worst = history
+                .last()
+                .map(|r| r.rel_change.iter().cloned().fold(0.0, f64::max))
+                .unwrap_or(f64::NAN);
+            Some(format!(
+                "not converged after {steps} Newton steps (largest relative change {worst:.3e} > tolerance {tol:.1e}); raise max-iter, or try the Robin sweeps (accelerator = \"none\")"
+            ))
+        }
+        Stop::Interrupted => Some(format!("interrupted after {steps} Newton steps")),
+        Stop::Stalled { residual, limit } => Some(format!(
+            "stalled: the Newton steps converged, but the contact forces that the fields carry differ from those of the contact pressures by {residual:.2e} of the total contact force (more than equilibrium-tol = {limit:.1e}); with non-matching meshes each body integrates its own pressures, so a body held only by contact may not balance: refine the coarser contact mesh"
+        )),
+        Stop::Diverged {
+            body: b,
+            iteration,
+            reason,
+        } => Some(match reason {
+            Breakdown::LostContact => format!(
+                "diverged: body '{}' has no closed contact point at Newton step {iteration} and nothing else holds it: check that its loads press it against its partners",
+                body(*b)
+            ),
+            Breakdown::NoDescent => format!(
+                "diverged: the Newton steps stopped reducing the residual at step {iteration}; try the Robin sweeps (accelerator = \"none\")"
+            ),
+            Breakdown::Singular => format!(
+                "diverged: the interface Newton system became singular at step {iteration}; try the Robin sweeps (accelerator = \"none\")"
+            ),
+            Breakdown::NonFinite => format!(
+                "diverged: non-finite values in body '{}' at Newton step {iteration}",
+                body(*b)
+            ),
+            Breakdown::Growth => format!(
+                "diverged: the displacements of body '{}' grew without bound at Newton step {iteration}: is it held?",
+                body(*b)
+            ),
         }),
     }
 }
@@ -178,6 +231,7 @@ pub fn short_reason(model: &Model, stop: &Stop) -> String {
                 Breakdown::Singular => "singular Robin problem",
                 Breakdown::NonFinite => "non-finite values",
                 Breakdown::Growth => "growth",
+                Breakdown::NoDescent => "no progress",
             };
             format!(
                 "{}: {what} at iteration {iteration}",

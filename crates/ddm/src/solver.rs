@@ -130,13 +130,7 @@ pub fn solve(
     };
     Ok(Solution {
         converged: stop == Stop::Converged,
-        message: stop_message(
-            &stop,
-            model,
-            settings.method,
-            &outcome.history,
-            settings.tol,
-        ),
+        message: stop_message(&stop, model, settings, &outcome.history),
         stop,
         iterations: outcome.iterations,
         method: settings.method,

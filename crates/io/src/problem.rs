@@ -307,6 +307,8 @@ pub enum AcceleratorSpec {
     None,
     /// Anderson acceleration (IQN-ILS).
     Anderson,
+    /// The interface semismooth Newton method.
+    Newton,
 }
 
 /// `coarse`: which floating bodies the rigid-body coarse correction moves.

@@ -388,14 +388,19 @@ pub fn settings(spec: &SolverSpec, base: &Settings) -> Result<Settings, SetupErr
 
 /// The accelerator and the coarse correction. A constant γ without an `accelerator` or `coarse`
 /// key asks for the paper's one-level iteration, so those keys then default to `none` and `off`;
-/// with `accelerator = "anderson"`, `coarse` defaults to `off`.
+/// a `method` or `gamma = "auto"` alone asks for the two-level sweeps (the default interface
+/// Newton method uses neither); with `accelerator = "anderson"`, `coarse` defaults to `off`.
 fn iteration_kind(spec: &SolverSpec, s: &mut Settings) {
     let paper = matches!(spec.gamma, Some(GammaSpec::Value(_)));
+    if spec.accelerator.is_none() && (spec.method.is_some() || spec.gamma.is_some()) {
+        s.use_sweeps();
+    }
     s.accelerator = match spec.accelerator {
         Some(AcceleratorSpec::Anderson) => Accelerator::Anderson {
             depth: ANDERSON_DEPTH,
         },
         Some(AcceleratorSpec::None) => Accelerator::None,
+        Some(AcceleratorSpec::Newton) => Accelerator::Newton,
         None if paper => Accelerator::None,
         None => s.accelerator,
     };
@@ -404,8 +409,10 @@ fn iteration_kind(spec: &SolverSpec, s: &mut Settings) {
         Some(CoarseSpec::Chains) => CoarseMode::Chains,
         Some(CoarseSpec::All) => CoarseMode::All,
         // Anderson's secant columns and the coarse step's rigid jumps do not mix well (measured:
-        // docs/two-level.md), so an accelerated solve runs without coarse correction unless asked.
+        // docs/two-level.md), so an accelerated solve runs without coarse correction unless asked;
+        // the interface Newton method handles rigid motions itself.
         None if paper || s.accelerator != Accelerator::None => CoarseMode::Off,
+        None if spec.accelerator == Some(AcceleratorSpec::None) => CoarseMode::Chains,
         None => s.coarse,
     };
 }

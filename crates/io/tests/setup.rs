@@ -867,9 +867,9 @@ fn errors_keep_their_typed_cause() {
     }
 }
 
-/// Which iteration a `[solver]` table selects: nothing → the two-level default; a constant γ
-/// alone → the paper's one-level iteration; `auto` keeps the coarse correction; Anderson runs
-/// without it unless asked; explicit keys win.
+/// Which iteration a `[solver]` table selects: nothing → the interface Newton default; a constant
+/// γ alone → the paper's one-level iteration; `auto` or a method alone → the two-level sweeps;
+/// Anderson runs without the coarse correction unless asked; explicit keys win.
 #[test]
 fn solver_keys_select_the_iteration() {
     let kind = |solver: &str| {
@@ -882,7 +882,19 @@ fn solver_keys_select_the_iteration() {
     let anderson = Accelerator::Anderson {
         depth: contactdd_ddm::iteration::ANDERSON_DEPTH,
     };
-    assert_eq!(kind(""), (Accelerator::None, CoarseMode::Chains));
+    assert_eq!(kind(""), (Accelerator::Newton, CoarseMode::Off));
+    assert_eq!(
+        kind("method = \"active-set\""),
+        (Accelerator::None, CoarseMode::Chains)
+    );
+    assert_eq!(
+        kind("accelerator = \"none\""),
+        (Accelerator::None, CoarseMode::Chains)
+    );
+    assert_eq!(
+        kind("accelerator = \"newton\""),
+        (Accelerator::Newton, CoarseMode::Off)
+    );
     assert_eq!(kind("gamma = 0.5"), (Accelerator::None, CoarseMode::Off));
     assert_eq!(
         kind("gamma = \"auto\""),

@@ -1,0 +1,578 @@
+//! The interface Newton iteration: the penalty problem on the condensed interface, solved for all
+//! contact points at once by a semismooth Newton (primal–dual active set) method. The algorithm
+//! and its sources are in `docs/interface-newton.md`.
+//!
+//! Every body is condensed onto its contact points ([`CondensedBody`]): with τ = D₀⁻¹T the
+//! interface load in displacement units, its normal displacements are U_b = f₀ + B_b τ_b with
+//! B_b = C₀D₀. Point j carries the penetration-like q_j = U_j − τ_j = θ_j p_j (p the contact
+//! pressure), and the penalty law q = max(0, s − d) is the complementarity problem
+//!   q ≥ 0,  s − d − q ≤ 0,  q (s − d − q) = 0,
+//! written as q_j = max(0, q_j + ρ_j (s_j − d_j − q_j)) for any ρ_j > 0. Point j counts as closed
+//! when the argument of the max is positive. ρ = 1 would be the penalty's own rule (closed where
+//! s > d); ρ_j = 1 − B_jj, the body's share in the stiffness of the point with its spring, is the
+//! primal–dual active set rule with the body's own stiffness as scale, which decides on the
+//! pressure rather than on a penetration of the size of θ·p and so does not flip points at the
+//! edge of the contact zone back and forth when θ is small. For a fixed closed set χ the
+//! equations are linear:
+//!   R_j = τ_j − U_j − χ_j (d_j − s_j) = 0,
+//! and the Jacobian J = I − (I − χA) B (s = A U) has row e_j − B_j· for an open point and
+//! e_j + Σ_k c_jk B_k· for a closed one (the point's own B row cancels). J is sparse by bodies:
+//! dense blocks of the size of one body's contact zone, coupled only across closed pairs.
+//!
+//! Each step solves J δ = −R by sparse LU and takes the full step unless ‖R̂‖ (R with closed rows
+//! scaled by ρ: the complementarity residual) exceeds the worst of the last few accepted states;
+//! then it backtracks. Two safeguards keep J regular:
+//! - rigid motions that no closed contact resists (two floating bodies moving together) are in
+//!   the kernel of J; they are found from the bodies' free rigid modes, and the step is kept
+//!   orthogonal to them by a bordered system (their residual is left to the bodies' balance,
+//!   which the solver checks);
+//! - a floating body with no closed point uses all its partnered points as closed in J, which
+//!   moves it towards its partners.
+//!
+//! The bodies' responses B_b τ_b are evaluated in parallel; the factorisation is sequential, so
+//! the result does not depend on the number of threads.
+
+use std::ops::Range;
+use std::sync::atomic::Ordering;
+use std::time::Instant;
+
+use faer::dyn_stack::{MemBuffer, MemStack};
+use faer::sparse::linalg::lu::{factorize_symbolic_lu, LuSymbolicParams, NumericLu};
+use faer::sparse::linalg::SupernodalThreshold;
+use faer::sparse::{SparseColMat, Triplet};
+use faer::{Conj, Mat, Par};
+use nalgebra::{DMatrix, SymmetricEigen};
+use rayon::prelude::*;
+
+use crate::condensed::CondensedBody;
+use crate::contact::Interface;
+use crate::iteration::{Hooks, Outcome, Record, Settings, Stop};
+use crate::robin_sweep::Breakdown;
+use crate::solver::Prepared;
+
+/// Accepted states whose worst ‖R‖ the line search compares with (Grippo, Lampariello & Lucidi's
+/// non-monotone rule; 10 is their choice).
+const WINDOW: usize = 10;
+/// Halvings of the step at most in the line search.
+const MAX_HALVINGS: usize = 12;
+/// Sufficient decrease of ‖R‖ per unit step length (Armijo).
+const ARMIJO: f64 = 1e-4;
+
+/// Runs the interface Newton iteration on a prepared model.
+pub fn iterate(prepared: &Prepared, settings: &Settings, hooks: Hooks<'_>) -> Outcome {
+    let start = Instant::now();
+    let system = System::new(prepared);
+    let mut run = Run::new(&system, prepared, settings);
+    let (stop, iterations) = run.solve(settings, hooks);
+    let t_load = system.loads(&run.tau);
+    Outcome {
+        stop,
+        iterations,
+        un: run.state.u,
+        t_load,
+        history: run.history,
+        seconds: start.elapsed().as_secs_f64(),
+    }
+}
+
+/// The condensed interface problem.
+struct System<'a> {
+    interface: &'a Interface,
+    bodies: &'a [CondensedBody],
+    /// B_b = C₀D₀ of every body.
+    response: Vec<Mat<f64>>,
+    /// Free rigid modes of the floating bodies: mode range per body, normal values per point.
+    mode_range: &'a [Range<usize>],
+    modes: &'a [Vec<f64>],
+    /// Owning body of every point.
+    body_of: Vec<usize>,
+    /// ρ_j = 1 − B_jj ∈ (0, 1]: the share of the body in the stiffness of point j with its
+    /// reference spring; the complementarity rule's scale.
+    rho: Vec<f64>,
+    /// Points with zero quadrature weight (D₀ = 0): they carry no force, and τ_j = 0.
+    weightless: Vec<bool>,
+}
+
+/// U, s and R at one τ.
+#[derive(Clone)]
+struct Evaluation {
+    u: Vec<f64>,
+    s: Vec<f64>,
+    r: Vec<f64>,
+    /// The points the complementarity rule counts as closed.
+    closed: Vec<bool>,
+}
+
+impl Evaluation {
+    /// R̂: the residual of the complementarity function, whose closed rows are ρ R.
+    fn scaled_residual(&self, rho: &[f64]) -> Vec<f64> {
+        (0..self.r.len())
+            .map(|j| {
+                if self.closed[j] {
+                    rho[j] * self.r[j]
+                } else {
+                    self.r[j]
+                }
+            })
+            .collect()
+    }
+}
+
+impl<'a> System<'a> {
+    fn new(prepared: &'a Prepared) -> System<'a> {
+        let (mode_range, modes) = prepared.coarse.floating_modes();
+        System {
+            interface: &prepared.interface,
+            bodies: &prepared.bodies,
+            response: prepared
+                .bodies
+                .par_iter()
+                .map(CondensedBody::load_response)
+                .collect(),
+            mode_range,
+            modes,
+            body_of: prepared.interface.points.iter().map(|p| p.body).collect(),
+            rho: prepared
+                .bodies
+                .iter()
+                .flat_map(|b| {
+                    let bm = b.load_response();
+                    (0..b.len())
+                        .map(move |j| (1.0 - bm[(j, j)]).clamp(1e-8, 1.0))
+                        .collect::<Vec<_>>()
+                })
+                .collect(),
+            weightless: prepared
+                .bodies
+                .iter()
+                .flat_map(|b| b.reference_springs().iter().map(|&d| d == 0.0))
+                .collect(),
+        }
+    }
+
+    fn len(&self) -> usize {
+        self.interface.len()
+    }
+
+    fn range(&self, b: usize) -> Range<usize> {
+        self.interface.body_range[b].clone()
+    }
+
+    /// U(τ), s(U) and R(τ); the bodies in parallel.
+    fn evaluate(&self, tau: &[f64]) -> Evaluation {
+        let u: Vec<f64> = (0..self.bodies.len())
+            .into_par_iter()
+            .flat_map_iter(|b| {
+                let range = self.range(b);
+                let (f0, bm) = (self.bodies[b].free_response(), &self.response[b]);
+                let tau_b = &tau[range.clone()];
+                (0..range.len()).map(move |i| {
+                    f0[i]
+                        + tau_b
+                            .iter()
+                            .enumerate()
+                            .map(|(j, t)| bm[(i, j)] * t)
+                            .sum::<f64>()
+                })
+            })
+            .collect();
+        let mut s = vec![0.0; u.len()];
+        self.interface.sum_normal(&u, &mut s);
+        let points = &self.interface.points;
+        let closed: Vec<bool> = (0..u.len())
+            .map(|j| {
+                let p = &points[j];
+                if self.weightless[j] || !p.has_partner() {
+                    return false;
+                }
+                let q = u[j] - tau[j];
+                q + self.rho[j] * (s[j] - p.gap - q) > 0.0
+            })
+            .collect();
+        let r = (0..u.len())
+            .map(|j| {
+                if self.weightless[j] {
+                    tau[j]
+                } else if closed[j] {
+                    tau[j] - u[j] - (points[j].gap - s[j])
+                } else {
+                    tau[j] - u[j]
+                }
+            })
+            .collect();
+        Evaluation { u, s, r, closed }
+    }
+
+    /// The interface loads T = D₀τ.
+    fn loads(&self, tau: &[f64]) -> Vec<f64> {
+        (0..self.bodies.len())
+            .flat_map(|b| {
+                let d0 = self.bodies[b].reference_springs();
+                tau[self.range(b)]
+                    .iter()
+                    .zip(d0)
+                    .map(|(t, d)| t * d)
+                    .collect::<Vec<_>>()
+            })
+            .collect()
+    }
+
+    /// The points treated as closed in J: the closed points, and every partnered point of a
+    /// floating body that has no closed point.
+    fn jacobian_set(&self, eval: &Evaluation) -> Vec<bool> {
+        let points = &self.interface.points;
+        let mut chi = eval.closed.clone();
+        for b in 0..self.bodies.len() {
+            let range = self.range(b);
+            if !self.mode_range[b].is_empty() && !chi[range.clone()].iter().any(|&c| c) {
+                for j in range {
+                    chi[j] = points[j].has_partner();
+                }
+            }
+        }
+        chi
+    }
+
+    /// An orthonormal basis of the rigid motions of floating bodies that the closed points `chi`
+    /// do not resist: motions of the whole interface that keep every closed pair sum.
+    fn kernel(&self, chi: &[bool]) -> Vec<Vec<f64>> {
+        let k = self.mode_range.iter().map(|r| r.end).max().unwrap_or(0);
+        if k == 0 {
+            return Vec::new();
+        }
+        // Gram matrix of the closed pair sums' change per mode.
+        let mut gram = DMatrix::<f64>::zeros(k, k);
+        let mut row = vec![0.0; k];
+        for (j, p) in self.interface.points.iter().enumerate() {
+            if !chi[j] {
+                continue;
+            }
+            row.iter_mut().for_each(|v| *v = 0.0);
+            self.add_modes(j, 1.0, &mut row);
+            for &(q, c) in &p.partner {
+                self.add_modes(q, c, &mut row);
+            }
+            for a in 0..k {
+                if row[a] != 0.0 {
+                    for b in 0..k {
+                        gram[(a, b)] += row[a] * row[b];
+                    }
+                }
+            }
+        }
+        let scale = (0..k).map(|a| gram[(a, a)]).fold(0.0, f64::max);
+        let eig = SymmetricEigen::new(gram);
+        let mut basis: Vec<Vec<f64>> = Vec::new();
+        for (q, &lambda) in eig.eigenvalues.iter().enumerate() {
+            if lambda > 1e-10 * scale {
+                continue;
+            }
+            let v = eig.eigenvectors.column(q);
+            let mut z: Vec<f64> = (0..self.len())
+                .map(|j| {
+                    let b = self.body_of[j];
+                    self.mode_range[b]
+                        .clone()
+                        .zip(&self.modes[j])
+                        .map(|(m, r)| v[m] * r)
+                        .sum()
+                })
+                .collect();
+            for e in &basis {
+                let d = dot(e, &z);
+                z.iter_mut().zip(e).for_each(|(x, y)| *x -= d * y);
+            }
+            let n = dot(&z, &z).sqrt();
+            if n > 1e-8 {
+                z.iter_mut().for_each(|x| *x /= n);
+                basis.push(z);
+            }
+        }
+        basis
+    }
+
+    /// Adds c·ρ_j (the modes of point j's body) to `row`.
+    fn add_modes(&self, j: usize, c: f64, row: &mut [f64]) {
+        let b = self.body_of[j];
+        for (m, r) in self.mode_range[b].clone().zip(&self.modes[j]) {
+            row[m] += c * r;
+        }
+    }
+
+    /// The Newton step: solves [J Z; Zᵀ 0] [δ; μ] = [−R; 0].
+    fn step(&self, chi: &[bool], z: &[Vec<f64>], r: &[f64]) -> Option<Vec<f64>> {
+        let m = self.len();
+        let n = m + z.len();
+        let mut trip = Vec::new();
+        for (j, p) in self.interface.points.iter().enumerate() {
+            trip.push(Triplet::new(j, j, 1.0));
+            if self.weightless[j] {
+                continue;
+            }
+            if chi[j] {
+                for &(k, c) in &p.partner {
+                    self.push_row(&mut trip, j, k, c);
+                }
+            } else {
+                self.push_row(&mut trip, j, j, -1.0);
+            }
+        }
+        for (q, zq) in z.iter().enumerate() {
+            for (j, &v) in zq.iter().enumerate().filter(|(_, v)| **v != 0.0) {
+                trip.push(Triplet::new(j, m + q, v));
+                trip.push(Triplet::new(m + q, j, v));
+            }
+        }
+        let a = SparseColMat::<usize, f64>::try_new_from_triplets(n, n, &trip).ok()?;
+        let mut rhs = Mat::<f64>::from_fn(n, 1, |i, _| if i < m { -r[i] } else { 0.0 });
+        // Dense blocks per body: the supernodal factorisation uses dense kernels on them.
+        let params = LuSymbolicParams {
+            supernodal_flop_ratio_threshold: SupernodalThreshold::FORCE_SUPERNODAL,
+            ..Default::default()
+        };
+        let symbolic = factorize_symbolic_lu(a.symbolic(), params).ok()?;
+        let mut numeric = NumericLu::new();
+        let mut mem = MemBuffer::try_new(
+            symbolic.factorize_numeric_lu_scratch::<f64>(Par::Seq, Default::default()),
+        )
+        .ok()?;
+        let lu = symbolic
+            .factorize_numeric_lu(
+                &mut numeric,
+                a.as_ref(),
+                Par::Seq,
+                MemStack::new(&mut mem),
+                Default::default(),
+            )
+            .ok()?;
+        let mut mem =
+            MemBuffer::try_new(symbolic.solve_in_place_scratch::<f64>(1, Par::Seq)).ok()?;
+        lu.solve_in_place_with_conj(Conj::No, rhs.as_mut(), Par::Seq, MemStack::new(&mut mem));
+        let delta: Vec<f64> = (0..m).map(|i| rhs[(i, 0)]).collect();
+        delta.iter().all(|v| v.is_finite()).then_some(delta)
+    }
+
+    /// Pushes c·(row k of B) into row j: the entries B_k· over k's body.
+    fn push_row(&self, trip: &mut Vec<Triplet<usize, usize, f64>>, j: usize, k: usize, c: f64) {
+        let b = self.body_of[k];
+        let range = self.range(b);
+        let local = k - range.start;
+        let bm = &self.response[b];
+        for (i, col) in range.enumerate() {
+            let v = c * bm[(local, i)];
+            if v != 0.0 {
+                trip.push(Triplet::new(j, col, v));
+            }
+        }
+    }
+
+    /// ‖R‖ with the components along the kernel `z` removed (those are the bodies' balance,
+    /// which no step along z changes).
+    fn merit(&self, z: &[Vec<f64>], eval: &Evaluation) -> f64 {
+        let mut r = eval.scaled_residual(&self.rho);
+        for e in z {
+            let d = dot(e, &r);
+            r.iter_mut().zip(e).for_each(|(x, y)| *x -= d * y);
+        }
+        dot(&r, &r).sqrt()
+    }
+}
+
+fn dot(a: &[f64], b: &[f64]) -> f64 {
+    a.iter().zip(b).map(|(x, y)| x * y).sum()
+}
+
+/// The state of one Newton run.
+struct Run<'s, 'a> {
+    system: &'s System<'a>,
+    scale: &'s [f64],
+    tau: Vec<f64>,
+    state: Evaluation,
+    history: Vec<Record>,
+    /// ‖R‖ of the accepted states, for the non-monotone line search.
+    merits: Vec<f64>,
+}
+
+impl<'s, 'a> Run<'s, 'a> {
+    /// Starts from the paper's initial value u⁰ on every contact point.
+    fn new(system: &'s System<'a>, prepared: &'s Prepared, settings: &Settings) -> Self {
+        let mut tau = Vec::with_capacity(system.len());
+        for body in system.bodies {
+            let t = body.initial_load(&vec![settings.u0; body.len()]);
+            let springs = body.reference_springs();
+            tau.extend(
+                t.iter()
+                    .zip(springs)
+                    .map(|(t, &d)| if d > 0.0 { t / d } else { 0.0 }),
+            );
+        }
+        let state = system.evaluate(&tau);
+        Run {
+            system,
+            scale: &prepared.scale,
+            tau,
+            state,
+            history: Vec::new(),
+            merits: Vec::new(),
+        }
+    }
+
+    fn solve(&mut self, settings: &Settings, hooks: Hooks<'_>) -> (Stop, usize) {
+        // Consecutive steps whose line search found no decrease.
+        let mut failures = 0;
+        for k in 1..=settings.max_iter {
+            if hooks.cancel.is_some_and(|c| c.load(Ordering::Relaxed)) {
+                return (Stop::Interrupted, k - 1);
+            }
+            let chi = self.system.jacobian_set(&self.state);
+            let z = self.system.kernel(&chi);
+            let Some(delta) = self.system.step(&chi, &z, &self.state.r) else {
+                return (self.singular(k), k);
+            };
+            self.merits.push(self.system.merit(&z, &self.state));
+            let (alpha, next, decreased) = self.line_search(&z, &delta);
+            failures = if decreased { 0 } else { failures + 1 };
+            if failures >= WINDOW {
+                return (self.no_progress(k), k);
+            }
+            if let Some((body, reason)) = self.check(&next.u) {
+                let iteration = k;
+                return (
+                    Stop::Diverged {
+                        body,
+                        iteration,
+                        reason,
+                    },
+                    k,
+                );
+            }
+            let record = self.record(k, alpha, &next);
+            if let Some(f) = hooks.on_iteration {
+                f(&record);
+            }
+            let converged = alpha == 1.0 && record.rel_change.iter().all(|&r| r <= settings.tol);
+            self.history.push(record);
+            for (t, d) in self.tau.iter_mut().zip(&delta) {
+                *t += alpha * d;
+            }
+            self.state = next;
+            if converged {
+                return (Stop::Converged, k);
+            }
+        }
+        (Stop::MaxIterations, settings.max_iter)
+    }
+
+    /// Backtracks along δ until ‖R̂‖ decreases enough; returns the step length, the state there
+    /// and whether it decreased enough (if not, the shortest step tried).
+    fn line_search(&self, z: &[Vec<f64>], delta: &[f64]) -> (f64, Evaluation, bool) {
+        let f0 = self.system.merit(z, &self.state);
+        // Non-monotone: compare with the worst of the last few accepted states, so that the full
+        // active-set steps, which may raise ‖R‖ for a step or two, are taken.
+        let reference = self
+            .merits
+            .iter()
+            .rev()
+            .take(WINDOW)
+            .fold(f0, |a, &b| a.max(b));
+        let mut alpha = 1.0;
+        loop {
+            let trial: Vec<f64> = self
+                .tau
+                .iter()
+                .zip(delta)
+                .map(|(t, d)| t + alpha * d)
+                .collect();
+            let eval = self.system.evaluate(&trial);
+            let f = self.system.merit(z, &eval);
+            let halvings = (1.0 / alpha).log2().round() as usize;
+            let decreased = f <= (1.0 - ARMIJO * alpha) * reference;
+            if decreased || halvings >= MAX_HALVINGS || f.is_nan() {
+                return (alpha, eval, decreased);
+            }
+            alpha *= 0.5;
+        }
+    }
+
+    /// The first body with non-finite or too large normal displacements.
+    fn check(&self, u: &[f64]) -> Option<(usize, Breakdown)> {
+        (0..self.system.bodies.len()).find_map(|b| {
+            let v = &u[self.system.range(b)];
+            if !v.iter().all(|x| x.is_finite()) {
+                Some((b, Breakdown::NonFinite))
+            } else if v.iter().any(|x| x.abs() > self.scale[b]) {
+                Some((b, Breakdown::Growth))
+            } else {
+                None
+            }
+        })
+    }
+
+    /// The first floating body without a closed point: it has lost its hold.
+    fn unheld(&self) -> Option<usize> {
+        (0..self.system.bodies.len()).find(|&b| {
+            !self.system.mode_range[b].is_empty()
+                && !self.system.range(b).any(|j| self.state.closed[j])
+        })
+    }
+
+    /// The stop when the steps make no progress: a body that lost its hold, or no descent.
+    fn no_progress(&self, k: usize) -> Stop {
+        let (body, reason) = match self.unheld() {
+            Some(b) => (b, Breakdown::LostContact),
+            None => (0, Breakdown::NoDescent),
+        };
+        Stop::Diverged {
+            body,
+            iteration: k,
+            reason,
+        }
+    }
+
+    /// The stop for a singular Newton system: a body that lost its hold, or a singular system.
+    fn singular(&self, k: usize) -> Stop {
+        let (body, reason) = match self.unheld() {
+            Some(b) => (b, Breakdown::LostContact),
+            None => (0, Breakdown::Singular),
+        };
+        Stop::Diverged {
+            body,
+            iteration: k,
+            reason,
+        }
+    }
+
+    fn record(&self, k: usize, alpha: f64, next: &Evaluation) -> Record {
+        let interface = self.system.interface;
+        let nb = self.system.bodies.len();
+        let (mut active, mut force) = (vec![0usize; nb], vec![0.0; nb]);
+        for (j, p) in interface.points.iter().enumerate() {
+            if p.overlap(next.s[j]) < 0.0 {
+                active[p.body] += 1;
+                force[p.body] -= p.weight * p.pressure(next.s[j]);
+            }
+        }
+        let rel_change = (0..nb)
+            .map(|b| {
+                let range = self.system.range(b);
+                let (mut diff, mut norm) = (0.0, 0.0);
+                for j in range {
+                    diff += (next.u[j] - self.state.u[j]).powi(2);
+                    norm += next.u[j] * next.u[j];
+                }
+                if norm > 0.0 {
+                    (diff / norm).sqrt()
+                } else {
+                    diff.sqrt()
+                }
+            })
+            .collect();
+        Record {
+            k,
+            gamma: alpha,
+            rel_change,
+            active,
+            contact_force: force,
+        }
+    }
+}
