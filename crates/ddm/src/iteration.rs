@@ -283,7 +283,7 @@ impl State {
 }
 
 /// Per body: ‖a − b‖/‖a‖ over its points (‖a − b‖ if a = 0).
-fn relative_change(interface: &Interface, a: &[f64], b: &[f64]) -> Vec<f64> {
+pub(crate) fn relative_change(interface: &Interface, a: &[f64], b: &[f64]) -> Vec<f64> {
     interface
         .body_range
         .iter()
@@ -321,7 +321,11 @@ fn first_breakdown(
 }
 
 /// Closed points and total normal contact force Σ w |σ_n| per body for the pair sums `s`.
-fn contact_summary(interface: &Interface, s: &[f64], nb: usize) -> (Vec<usize>, Vec<f64>) {
+pub(crate) fn contact_summary(
+    interface: &Interface,
+    s: &[f64],
+    nb: usize,
+) -> (Vec<usize>, Vec<f64>) {
     let (mut active, mut force) = (vec![0usize; nb], vec![0.0; nb]);
     for (j, p) in interface.points.iter().enumerate() {
         if p.overlap(s[j]) < 0.0 {

@@ -46,7 +46,7 @@ use rayon::prelude::*;
 
 use crate::condensed::CondensedBody;
 use crate::contact::Interface;
-use crate::iteration::{Hooks, Outcome, Record, Settings, Stop};
+use crate::iteration::{contact_summary, relative_change, Hooks, Outcome, Record, Settings, Stop};
 use crate::robin_sweep::Breakdown;
 use crate::solver::Prepared;
 
@@ -427,13 +427,13 @@ impl<'s, 'a> Run<'s, 'a> {
             let chi = self.system.jacobian_set(&self.state);
             let z = self.system.kernel(&chi);
             let Some(delta) = self.system.step(&chi, &z, &self.state.r) else {
-                return (self.singular(k), k);
+                return (self.failure(k, Breakdown::Singular), k);
             };
             self.merits.push(self.system.merit(&z, &self.state));
             let (alpha, next, decreased) = self.line_search(&z, &delta);
             failures = if decreased { 0 } else { failures + 1 };
             if failures >= WINDOW {
-                return (self.no_progress(k), k);
+                return (self.failure(k, Breakdown::NoDescent), k);
             }
             if let Some((body, reason)) = self.check(&next.u) {
                 let iteration = k;
@@ -516,24 +516,12 @@ impl<'s, 'a> Run<'s, 'a> {
         })
     }
 
-    /// The stop when the steps make no progress: a body that lost its hold, or no descent.
-    fn no_progress(&self, k: usize) -> Stop {
+    /// The stop when the steps make no progress or J is singular: a body that lost its hold, or
+    /// `otherwise`.
+    fn failure(&self, k: usize, otherwise: Breakdown) -> Stop {
         let (body, reason) = match self.unheld() {
             Some(b) => (b, Breakdown::LostContact),
-            None => (0, Breakdown::NoDescent),
-        };
-        Stop::Diverged {
-            body,
-            iteration: k,
-            reason,
-        }
-    }
-
-    /// The stop for a singular Newton system: a body that lost its hold, or a singular system.
-    fn singular(&self, k: usize) -> Stop {
-        let (body, reason) = match self.unheld() {
-            Some(b) => (b, Breakdown::LostContact),
-            None => (0, Breakdown::Singular),
+            None => (0, otherwise),
         };
         Stop::Diverged {
             body,
@@ -544,35 +532,13 @@ impl<'s, 'a> Run<'s, 'a> {
 
     fn record(&self, k: usize, alpha: f64, next: &Evaluation) -> Record {
         let interface = self.system.interface;
-        let nb = self.system.bodies.len();
-        let (mut active, mut force) = (vec![0usize; nb], vec![0.0; nb]);
-        for (j, p) in interface.points.iter().enumerate() {
-            if p.overlap(next.s[j]) < 0.0 {
-                active[p.body] += 1;
-                force[p.body] -= p.weight * p.pressure(next.s[j]);
-            }
-        }
-        let rel_change = (0..nb)
-            .map(|b| {
-                let range = self.system.range(b);
-                let (mut diff, mut norm) = (0.0, 0.0);
-                for j in range {
-                    diff += (next.u[j] - self.state.u[j]).powi(2);
-                    norm += next.u[j] * next.u[j];
-                }
-                if norm > 0.0 {
-                    (diff / norm).sqrt()
-                } else {
-                    diff.sqrt()
-                }
-            })
-            .collect();
+        let (active, contact_force) = contact_summary(interface, &next.s, self.system.bodies.len());
         Record {
             k,
             gamma: alpha,
-            rel_change,
+            rel_change: relative_change(interface, &next.u, &self.state.u),
             active,
-            contact_force: force,
+            contact_force,
         }
     }
 }

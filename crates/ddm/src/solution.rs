@@ -121,10 +121,7 @@ pub fn stop_message(
     match stop {
         Stop::Converged => None,
         Stop::MaxIterations => {
-            let worst = history
-                .last()
-                .map(|r| r.rel_change.iter().cloned().fold(0.0, f64::max))
-                .unwrap_or(f64::NAN);
+            let worst = largest_change(history);
             Some(format!(
                 "not converged after {} iterations (largest relative change {worst:.3e} > tolerance {tol:.1e}); raise max-iter, try a smaller gamma, gamma = \"auto\" or another method",
                 history.len()
@@ -168,6 +165,14 @@ pub fn stop_message(
     }
 }
 
+/// The largest relative change of a body in the last record (NaN without records).
+fn largest_change(history: &[Record]) -> f64 {
+    history
+        .last()
+        .map(|r| r.rel_change.iter().cloned().fold(0.0, f64::max))
+        .unwrap_or(f64::NAN)
+}
+
 /// The message for a non-converged outcome of the interface Newton method.
 fn newton_message(stop: &Stop, model: &Model, history: &[Record], tol: f64) -> Option<String> {
     let body = |b: usize| body_name(model, b);
@@ -175,10 +180,7 @@ fn newton_message(stop: &Stop, model: &Model, history: &[Record], tol: f64) -> O
     match stop {
         Stop::Converged => None,
         Stop::MaxIterations => {
-            let worst = history
-                .last()
-                .map(|r| r.rel_change.iter().cloned().fold(0.0, f64::max))
-                .unwrap_or(f64::NAN);
+            let worst = largest_change(history);
             Some(format!(
                 "not converged after {steps} Newton steps (largest relative change {worst:.3e} > tolerance {tol:.1e}); raise max-iter, or try the Robin sweeps (accelerator = \"none\")"
             ))
