@@ -121,27 +121,23 @@ impl Evaluation {
 impl<'a> System<'a> {
     fn new(prepared: &'a Prepared) -> System<'a> {
         let (mode_range, modes) = prepared.coarse.floating_modes();
+        let response: Vec<Mat<f64>> = prepared
+            .bodies
+            .par_iter()
+            .map(CondensedBody::load_response)
+            .collect();
+        let rho = response
+            .iter()
+            .flat_map(|bm| (0..bm.nrows()).map(move |j| (1.0 - bm[(j, j)]).clamp(1e-8, 1.0)))
+            .collect();
         System {
             interface: &prepared.interface,
             bodies: &prepared.bodies,
-            response: prepared
-                .bodies
-                .par_iter()
-                .map(CondensedBody::load_response)
-                .collect(),
+            response,
             mode_range,
             modes,
             body_of: prepared.interface.points.iter().map(|p| p.body).collect(),
-            rho: prepared
-                .bodies
-                .iter()
-                .flat_map(|b| {
-                    let bm = b.load_response();
-                    (0..b.len())
-                        .map(move |j| (1.0 - bm[(j, j)]).clamp(1e-8, 1.0))
-                        .collect::<Vec<_>>()
-                })
-                .collect(),
+            rho,
             weightless: prepared
                 .bodies
                 .iter()
