@@ -462,15 +462,15 @@ impl<'s, 'a> Run<'s, 'a> {
     /// Backtracks along δ until ‖R̂‖ decreases enough; returns the step length, the state there
     /// and whether it decreased enough (if not, the shortest step tried).
     fn line_search(&self, z: &[Vec<f64>], delta: &[f64]) -> (f64, Evaluation, bool) {
-        let f0 = self.system.merit(z, &self.state);
-        // Non-monotone: compare with the worst of the last few accepted states, so that the full
-        // active-set steps, which may raise ‖R‖ for a step or two, are taken.
+        // Non-monotone: compare with the worst of the last few accepted states (the current one is
+        // the last entry), so that the full active-set steps, which may raise ‖R‖ for a step or
+        // two, are taken.
         let reference = self
             .merits
             .iter()
             .rev()
             .take(WINDOW)
-            .fold(f0, |a, &b| a.max(b));
+            .fold(0.0, |a: f64, &b| a.max(b));
         let mut alpha = 1.0;
         loop {
             let trial: Vec<f64> = self
