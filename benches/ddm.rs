@@ -11,7 +11,8 @@ use contactdd_ddm::benchmark::Notch;
 use contactdd_ddm::contact::Interface;
 use contactdd_ddm::iteration::iterate;
 use contactdd_ddm::{
-    prepare, solve, sweep, CoarseMode, ContactPair, Gamma, Hooks, Method, Model, Penalty, Settings,
+    prepare, solve, sweep, CoarseMode, ContactPair, Enforcement, Gamma, Hooks, Method, Model,
+    Penalty, Settings,
 };
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion};
 
@@ -78,6 +79,7 @@ fn stack(n: usize, cells: usize) -> Model {
             boundaries: ["top".into(), "bottom".into()],
             penalty: Penalty::RodModel { c: 0.05, h: 1.0 },
             profile: None,
+            enforcement: Enforcement::Penalty,
         })
         .collect();
     Model {

@@ -13,7 +13,7 @@ use contactdd_core::{
     Component, Constraints, Diagonal, ElasticBody, Load, Material, Mesh, Order, Plane, Rectangle,
 };
 use contactdd_ddm::profile::{Along, GapProfile};
-use contactdd_ddm::{ContactPair, Model, Penalty};
+use contactdd_ddm::{ContactPair, Enforcement, Model, Penalty};
 
 /// A structured rectangle mesh of `[x0, x1] × [y0, y1]`.
 pub fn rectangle(x: [f64; 2], y: [f64; 2], nx: usize, ny: usize, mirror: bool) -> Mesh {
@@ -68,6 +68,7 @@ pub fn top_bottom(name: &str, a: usize, b: usize, c: f64, h: f64) -> ContactPair
         boundaries: ["top".into(), "bottom".into()],
         penalty: Penalty::RodModel { c, h },
         profile: None,
+        enforcement: Enforcement::Penalty,
     }
 }
 

@@ -19,8 +19,8 @@ use serde::de::DeserializeOwned;
 use contactdd_core::{Edge, Material, Order, Plane, Point, DIM};
 use contactdd_ddm::{Gamma, Method, Model, Settings, SetupError};
 use contactdd_io::problem::{
-    AcceleratorSpec, BodySpec, CoarseSpec, ContactSpec, GammaSpec, GapSpec, LoadSpec, MaterialSpec,
-    MeshSpec, PenaltySpec, SolverSpec, SupportSpec,
+    AcceleratorSpec, BodySpec, CoarseSpec, ContactSpec, EnforcementSpec, GammaSpec, GapSpec,
+    LoadSpec, MaterialSpec, MeshSpec, PenaltySpec, SolverSpec, SupportSpec,
 };
 use contactdd_io::setup::{self, ModelBuilder};
 use contactdd_io::Loaded;
@@ -456,7 +456,9 @@ impl Problem {
     ///         ``{"kind": "notch", "r0": float, "b": float, "centre": float, "power": 1.5,
     ///         "along": "x"}`` or ``{"kind": "uniform", "value": float}``.
     ///     name: pair name (default ``"<body0>-<body1>"``).
-    #[pyo3(signature = (bodies, boundaries, c = None, h = None, theta = None, gap = None, name = None))]
+    ///     enforcement: ``"penalty"`` (the paper's formulation, the default) or ``"augmented"``
+    ///         (augmented Lagrangian: the exact unilateral contact for any penalty).
+    #[pyo3(signature = (bodies, boundaries, c = None, h = None, theta = None, gap = None, name = None, enforcement = None))]
     #[allow(clippy::too_many_arguments)]
     fn add_contact(
         &mut self,
@@ -467,6 +469,7 @@ impl Problem {
         theta: Option<f64>,
         gap: Option<&Bound<'_, PyAny>>,
         name: Option<String>,
+        enforcement: Option<&Bound<'_, PyAny>>,
     ) -> PyResult<()> {
         let mut spec = ContactSpec {
             name,
@@ -474,7 +477,17 @@ impl Problem {
             boundaries: vec![boundaries.0, boundaries.1],
             penalty: PenaltySpec { c, h, theta },
             gap: None,
+            enforcement: None,
         };
+        if let Some(e) = enforcement.filter(|e| !e.is_none()) {
+            let e: EnforcementSpec = parse(e, "enforcement")?.map_err(|message| {
+                setup_error(SetupError::Pair {
+                    pair: spec.pair_name(),
+                    message,
+                })
+            })?;
+            spec.enforcement = Some(e);
+        }
         if let Some(g) = gap.filter(|g| !g.is_none()) {
             let gap: GapSpec = parse(g, "gap")?.map_err(|message| {
                 setup_error(SetupError::Pair {

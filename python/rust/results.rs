@@ -196,6 +196,7 @@ fn stop_name(stop: &Stop) -> &'static str {
         Stop::Diverged { .. } => "diverged",
         Stop::Interrupted => "interrupted",
         Stop::Stalled { .. } => "stalled",
+        Stop::Unenforced { .. } => "unenforced",
     }
 }
 

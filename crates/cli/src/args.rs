@@ -6,7 +6,7 @@ use std::path::PathBuf;
 use clap::{Args, Parser, Subcommand};
 
 use contactdd_ddm::iteration::ANDERSON_DEPTH;
-use contactdd_ddm::{Accelerator, CoarseMode, Gamma, Method};
+use contactdd_ddm::{Accelerator, CoarseMode, Enforcement, Gamma, Method};
 use contactdd_io::setup::MAX_THREADS;
 
 const EXIT_CODES: &str = "\
@@ -78,6 +78,14 @@ pub struct SolveArgs {
     /// Rigid-body coarse correction: off, chains (floating bodies touching each other) or all.
     #[arg(long, value_name = "C", value_parser = parse_coarse)]
     pub coarse: Option<CoarseMode>,
+    /// Contact enforcement of every pair (overrides each pair's `enforcement`): penalty or
+    /// augmented (augmented Lagrangian: the exact unilateral contact for any θ).
+    #[arg(long, value_name = "E", value_parser = parse_enforcement)]
+    pub enforcement: Option<Enforcement>,
+    /// Augmented Lagrangian: the largest violation of the Signorini conditions, a length
+    /// (overrides solver.gap-tol).
+    #[arg(long, value_name = "L", value_parser = parse_positive)]
+    pub gap_tol: Option<f64>,
     /// Solver options.
     #[command(flatten)]
     pub common: Common,
@@ -174,6 +182,16 @@ fn parse_coarse(s: &str) -> Result<CoarseMode, String> {
         "all" => Ok(CoarseMode::All),
         _ => Err(format!(
             "unknown coarse mode '{s}' (expected off, chains or all)"
+        )),
+    }
+}
+
+fn parse_enforcement(s: &str) -> Result<Enforcement, String> {
+    match s {
+        "penalty" => Ok(Enforcement::Penalty),
+        "augmented" => Ok(Enforcement::Augmented),
+        _ => Err(format!(
+            "unknown enforcement '{s}' (expected penalty or augmented)"
         )),
     }
 }

@@ -79,7 +79,14 @@ pub fn solve(args: SolveArgs) -> Result<Exit> {
         settings.coarse = c;
     }
     let threads = apply_common(&args.common, &mut settings, loaded.threads);
-    let model = &loaded.model;
+    if let Some(g) = args.gap_tol {
+        settings.gap_tol = Some(g);
+    }
+    let mut model = loaded.model;
+    if let Some(e) = args.enforcement {
+        model.pairs.iter_mut().for_each(|p| p.enforcement = e);
+    }
+    let model = &model;
     let out = args
         .out
         .clone()

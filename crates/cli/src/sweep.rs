@@ -87,6 +87,7 @@ fn cell(run: &SweepRun) -> String {
         Stop::MaxIterations => "max".into(),
         Stop::Interrupted => "int".into(),
         Stop::Stalled { .. } => "stall".into(),
+        Stop::Unenforced { .. } => "unenf".into(),
         Stop::Diverged { .. } => format!("div@{}", run.iterations),
     }
 }

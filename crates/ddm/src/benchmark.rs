@@ -35,7 +35,7 @@ use contactdd_core::{
 };
 
 use crate::error::SetupError;
-use crate::model::{ContactPair, Model, Penalty};
+use crate::model::{ContactPair, Enforcement, Model, Penalty};
 use crate::profile::{Along, GapProfile};
 
 /// Parameters of the notch benchmark (defaults: the paper's values).
@@ -140,6 +140,7 @@ impl Notch {
                     power: 1.5,
                     along: Along::X,
                 }),
+                enforcement: Enforcement::Penalty,
             }],
         })
     }

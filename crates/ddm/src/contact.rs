@@ -40,6 +40,10 @@ pub struct ContactPoint {
     pub gap: f64,
     /// Penalty θ of the pair.
     pub theta: f64,
+    /// Lagrange multiplier estimate λ ≥ 0 of the augmented Lagrangian (a contact pressure; 0 for
+    /// the penalty formulation): the penalty acts on the gap d − θλ, so that the pressure is
+    /// λ + (s − d)/θ where positive (docs/augmented-lagrangian.md).
+    pub multiplier: f64,
     /// Interpolation of the partner's normal displacement at the projection: (global point index,
     /// coefficient). Empty if the normal ray misses the partner boundary (the point stays open).
     pub partner: Vec<(usize, f64)>,
@@ -51,17 +55,27 @@ impl ContactPoint {
         !self.partner.is_empty()
     }
 
-    /// The penalty overlap (d − s)⁻ ≤ 0 for the sum `s` of the normal displacements across the
-    /// pair (0 for a point without partner).
+    /// The gap the penalty acts on: d − θλ (d itself for the penalty formulation, λ = 0).
+    pub fn penalty_gap(&self) -> f64 {
+        if self.multiplier == 0.0 {
+            self.gap
+        } else {
+            self.gap - self.theta * self.multiplier
+        }
+    }
+
+    /// The penalty overlap (d − θλ − s)⁻ ≤ 0 for the sum `s` of the normal displacements across
+    /// the pair (0 for a point without partner).
     pub fn overlap(&self, s: f64) -> f64 {
         if self.has_partner() {
-            (self.gap - s).min(0.0)
+            (self.penalty_gap() - s).min(0.0)
         } else {
             0.0
         }
     }
 
-    /// The normal contact stress σ_n = (d − s)⁻/θ ≤ 0 (docs/method.md §2) for the sum `s`.
+    /// The normal contact stress σ_n = (d − θλ − s)⁻/θ ≤ 0 (docs/method.md §2; λ = 0 for the
+    /// penalty formulation) for the sum `s`.
     pub fn pressure(&self, s: f64) -> f64 {
         self.overlap(s) / self.theta
     }
@@ -179,6 +193,7 @@ impl Interface {
                     weight: side.weights[k],
                     gap: gap + profile,
                     theta,
+                    multiplier: 0.0,
                     partner,
                 });
             }

@@ -82,6 +82,12 @@ pub struct Settings {
     pub u0: f64,
     /// Initial u^{−1}_n (two-point methods).
     pub u_prev: f64,
+    /// Augmented Lagrangian pairs: the largest violation of the Signorini conditions (a length)
+    /// of a converged result; `None`: `tol` times the largest normal displacement of the contact
+    /// points ([`crate::augmented`]).
+    pub gap_tol: Option<f64>,
+    /// Augmented Lagrangian pairs: the cap on multiplier updates (inner solves).
+    pub max_updates: usize,
 }
 
 impl Settings {
@@ -169,6 +175,8 @@ impl Default for Settings {
             max_iter: 500,
             u0: 1e-4,
             u_prev: 2e-4,
+            gap_tol: None,
+            max_updates: 100,
         }
     }
 }
@@ -206,6 +214,16 @@ pub enum Stop {
     },
     /// Cancelled by the caller.
     Interrupted,
+    /// The inner solves converged, but the multiplier updates of an augmented Lagrangian pair
+    /// ran out before the Signorini conditions held to the gap tolerance.
+    Unenforced {
+        /// Multiplier updates taken.
+        updates: usize,
+        /// The largest violation of the Signorini conditions (length).
+        violation: f64,
+        /// The gap tolerance it exceeds.
+        limit: f64,
+    },
     /// The change met the tolerance, but the result is out of equilibrium (set by
     /// [`crate::solver::solve`], never by the iteration itself).
     Stalled {
@@ -253,8 +271,7 @@ struct State {
 
 impl State {
     /// The initial values u^0, u^{−1} and the loads T^0 that reproduce u^0.
-    fn initial(prepared: &Prepared, settings: &Settings) -> State {
-        let interface = &prepared.interface;
+    fn initial(prepared: &Prepared, interface: &Interface, settings: &Settings) -> State {
         let m = interface.len();
         let mut t = vec![0.0; m];
         for (b, body) in prepared.bodies.iter().enumerate() {
@@ -442,21 +459,39 @@ impl Update {
 
 /// Runs the iteration on a prepared model.
 pub fn iterate(prepared: &Prepared, settings: &Settings, hooks: Hooks<'_>) -> Outcome {
+    iterate_on(prepared, &prepared.interface, None, settings, hooks)
+}
+
+/// Runs the iteration on a prepared model with the contact points `interface` (the prepared
+/// ones, or a copy with other multipliers: [`crate::augmented`]). The interface Newton method
+/// starts from the interface loads `warm` when given (a previous outcome's `t_load`); the sweeps
+/// always start from the paper's initial values.
+pub fn iterate_on(
+    prepared: &Prepared,
+    interface: &Interface,
+    warm: Option<&[f64]>,
+    settings: &Settings,
+    hooks: Hooks<'_>,
+) -> Outcome {
     if settings.accelerator == Accelerator::Newton {
-        return crate::newton::iterate(prepared, settings, hooks);
+        return crate::newton::iterate(prepared, interface, warm, settings, hooks);
     }
-    sweeps(prepared, settings, hooks)
+    sweeps(prepared, interface, settings, hooks)
 }
 
 /// The Robin sweeps, relaxed or accelerated.
-fn sweeps(prepared: &Prepared, settings: &Settings, hooks: Hooks<'_>) -> Outcome {
+fn sweeps(
+    prepared: &Prepared,
+    interface: &Interface,
+    settings: &Settings,
+    hooks: Hooks<'_>,
+) -> Outcome {
     let start = Instant::now();
-    let interface = &prepared.interface;
     let (m, nb) = (interface.len(), prepared.bodies.len());
     let accelerated = settings.accelerator != Accelerator::None;
     let mut sweep = RobinSweep::new(interface, &prepared.bodies, settings.method, accelerated);
     let mut update = Update::new(settings);
-    let mut state = State::initial(prepared, settings);
+    let mut state = State::initial(prepared, interface, settings);
     let mut buf = Buffers {
         tilde: vec![0.0; m],
         t_tilde: vec![0.0; m],
@@ -496,7 +531,7 @@ fn sweeps(prepared: &Prepared, settings: &Settings, hooks: Hooks<'_>) -> Outcome
             if let Update::Relax(relax) = &mut update {
                 if relax.restart() {
                     // Start over from the initial values with a smaller γ cap.
-                    state = State::initial(prepared, settings);
+                    state = State::initial(prepared, interface, settings);
                     continue;
                 }
             }

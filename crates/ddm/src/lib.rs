@@ -11,6 +11,7 @@
 //! [`anderson`] acceleration) → [`Solution`]. This crate reads and writes no file format.
 
 pub mod anderson;
+pub mod augmented;
 pub mod benchmark;
 pub mod coarse;
 pub mod condensed;
@@ -31,7 +32,7 @@ pub mod sweep;
 pub use error::SetupError;
 pub use iteration::{Accelerator, CoarseMode, Hooks, Record, Settings, Stop};
 pub use method::Method;
-pub use model::{ContactPair, Model, Penalty};
+pub use model::{ContactPair, Enforcement, Model, Penalty};
 pub use monolithic::{solve_monolithic, MonolithicSolution};
 pub use profile::GapProfile;
 pub use relaxation::Gamma;

@@ -33,6 +33,27 @@ impl Penalty {
     }
 }
 
+/// How a contact pair enforces non-penetration.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Enforcement {
+    /// The paper's penalty formulation: the contact pressure is (s − d)⁺/θ, and the answer
+    /// depends on θ (the bodies interpenetrate by θ·p).
+    #[default]
+    Penalty,
+    /// The augmented Lagrangian (Uzawa) loop of [`crate::augmented`] around the penalty solves:
+    /// converges to the exact unilateral (Signorini) contact for any fixed θ.
+    Augmented,
+}
+
+impl std::fmt::Display for Enforcement {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(match self {
+            Enforcement::Penalty => "penalty",
+            Enforcement::Augmented => "augmented",
+        })
+    }
+}
+
 /// A contact pair: boundary `boundaries[0]` of body `bodies[0]` may touch boundary
 /// `boundaries[1]` of body `bodies[1]`.
 #[derive(Clone, Debug, PartialEq)]
@@ -47,6 +68,8 @@ pub struct ContactPair {
     pub penalty: Penalty,
     /// Prescribed gap profile added to the geometric gap (e.g. the notch).
     pub profile: Option<GapProfile>,
+    /// Penalty (the default) or augmented Lagrangian.
+    pub enforcement: Enforcement,
 }
 
 /// Bodies and contact pairs.
@@ -69,6 +92,13 @@ impl Model {
         let pair = &self.pairs[p];
         let (a, b) = (&self.bodies[pair.bodies[0]], &self.bodies[pair.bodies[1]]);
         pair.penalty.theta(a, b)
+    }
+
+    /// True if some pair uses the augmented Lagrangian.
+    pub fn is_augmented(&self) -> bool {
+        self.pairs
+            .iter()
+            .any(|p| p.enforcement == Enforcement::Augmented)
     }
 
     /// θ of every pair.

@@ -58,11 +58,18 @@ const MAX_HALVINGS: usize = 12;
 /// Sufficient decrease of ‖R‖ per unit step length (Armijo).
 const ARMIJO: f64 = 1e-4;
 
-/// Runs the interface Newton iteration on a prepared model.
-pub fn iterate(prepared: &Prepared, settings: &Settings, hooks: Hooks<'_>) -> Outcome {
+/// Runs the interface Newton iteration on a prepared model with the contact points `interface`,
+/// from the interface loads `warm` if given, else from the paper's initial value u⁰.
+pub fn iterate(
+    prepared: &Prepared,
+    interface: &Interface,
+    warm: Option<&[f64]>,
+    settings: &Settings,
+    hooks: Hooks<'_>,
+) -> Outcome {
     let start = Instant::now();
-    let system = System::new(prepared);
-    let mut run = Run::new(&system, prepared, settings);
+    let system = System::new(prepared, interface);
+    let mut run = Run::new(&system, prepared, warm, settings);
     let (stop, iterations) = run.solve(settings, hooks);
     let t_load = system.loads(&run.tau);
     Outcome {
@@ -119,7 +126,7 @@ impl Evaluation {
 }
 
 impl<'a> System<'a> {
-    fn new(prepared: &'a Prepared) -> System<'a> {
+    fn new(prepared: &'a Prepared, interface: &'a Interface) -> System<'a> {
         let (mode_range, modes) = prepared.coarse.floating_modes();
         let response: Vec<Mat<f64>> = prepared
             .bodies
@@ -131,12 +138,12 @@ impl<'a> System<'a> {
             .flat_map(|bm| (0..bm.nrows()).map(move |j| (1.0 - bm[(j, j)]).clamp(1e-8, 1.0)))
             .collect();
         System {
-            interface: &prepared.interface,
+            interface,
             bodies: &prepared.bodies,
             response,
             mode_range,
             modes,
-            body_of: prepared.interface.points.iter().map(|p| p.body).collect(),
+            body_of: interface.points.iter().map(|p| p.body).collect(),
             rho,
             weightless: prepared
                 .bodies
@@ -182,7 +189,7 @@ impl<'a> System<'a> {
                     return false;
                 }
                 let q = u[j] - tau[j];
-                q + self.rho[j] * (s[j] - p.gap - q) > 0.0
+                q + self.rho[j] * (s[j] - p.penalty_gap() - q) > 0.0
             })
             .collect();
         let r = (0..u.len())
@@ -190,7 +197,7 @@ impl<'a> System<'a> {
                 if self.weightless[j] {
                     tau[j]
                 } else if closed[j] {
-                    tau[j] - u[j] - (points[j].gap - s[j])
+                    tau[j] - u[j] - (points[j].penalty_gap() - s[j])
                 } else {
                     tau[j] - u[j]
                 }
@@ -378,6 +385,10 @@ fn dot(a: &[f64], b: &[f64]) -> f64 {
     a.iter().zip(b).map(|(x, y)| x * y).sum()
 }
 
+fn norm(a: &[f64]) -> f64 {
+    dot(a, a).sqrt()
+}
+
 /// The state of one Newton run.
 struct Run<'s, 'a> {
     system: &'s System<'a>,
@@ -390,11 +401,20 @@ struct Run<'s, 'a> {
 }
 
 impl<'s, 'a> Run<'s, 'a> {
-    /// Starts from the paper's initial value u⁰ on every contact point.
-    fn new(system: &'s System<'a>, prepared: &'s Prepared, settings: &Settings) -> Self {
+    /// Starts from the interface loads `warm`, or else from the paper's initial value u⁰ on
+    /// every contact point.
+    fn new(
+        system: &'s System<'a>,
+        prepared: &'s Prepared,
+        warm: Option<&[f64]>,
+        settings: &Settings,
+    ) -> Self {
         let mut tau = Vec::with_capacity(system.len());
-        for body in system.bodies {
-            let t = body.initial_load(&vec![settings.u0; body.len()]);
+        for (b, body) in system.bodies.iter().enumerate() {
+            let t = match warm {
+                Some(t) => t[system.range(b)].to_vec(),
+                None => body.initial_load(&vec![settings.u0; body.len()]),
+            };
             let springs = body.reference_springs();
             tau.extend(
                 t.iter()
@@ -446,7 +466,14 @@ impl<'s, 'a> Run<'s, 'a> {
             if let Some(f) = hooks.on_iteration {
                 f(&record);
             }
-            let converged = alpha == 1.0 && record.rel_change.iter().all(|&r| r <= settings.tol);
+            // A full step that leaves the closed set as it was solved the (then linear) equations:
+            // the primal–dual active set method's own stopping rule, confirmed by the residual
+            // (it keeps any part along the kernel z). Otherwise the relative change decides.
+            let exact = chi == self.state.closed
+                && next.closed == chi
+                && norm(&next.scaled_residual(&self.system.rho)) <= settings.tol * norm(&next.u);
+            let converged =
+                alpha == 1.0 && (exact || record.rel_change.iter().all(|&r| r <= settings.tol));
             self.history.push(record);
             for (t, d) in self.tau.iter_mut().zip(&delta) {
                 *t += alpha * d;

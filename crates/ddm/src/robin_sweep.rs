@@ -152,7 +152,7 @@ impl BodyInput<'_> {
             }
             let g = self.start + j;
             let (s, sp) = (self.s[g], self.s_prev[g]);
-            scratch.phi[j] = method.phi(p.gap, s, sp);
+            scratch.phi[j] = method.phi(p.penalty_gap(), s, sp);
             let kw = p.weight / p.theta;
             scratch.r[j] = kw * (scratch.phi[j] * self.un[j] + p.overlap(s));
         }

@@ -47,7 +47,7 @@ pub struct PairResult {
     pub gap: Vec<f64>,
     /// Normal contact stress σ_n = (d − s)⁻/θ (≤ 0).
     pub pressure: Vec<f64>,
-    /// True where closed (d − s < 0).
+    /// True where closed: the pressure is not zero (d − s < 0 for the penalty formulation).
     pub closed: Vec<bool>,
     /// Nodal quadrature weight of each point.
     pub weight: Vec<f64>,
@@ -58,6 +58,23 @@ pub struct PairResult {
 }
 
 impl PairResult {
+    /// The largest penetration max (s − d)⁺ over the points with a partner (a length; 0 if none).
+    pub fn max_penetration(&self) -> f64 {
+        self.gap
+            .iter()
+            .filter(|g| g.is_finite())
+            .fold(0.0, |m, &g| m.max(-g))
+    }
+
+    /// The complementarity residual: the largest |d − s| where the pressure is not zero (a
+    /// length). The exact unilateral contact has zero gap wherever it presses; the penalty
+    /// formulation leaves the penetration θ·p there.
+    pub fn complementarity(&self) -> f64 {
+        (0..self.gap.len())
+            .filter(|&i| self.pressure[i] < 0.0 && self.gap[i].is_finite())
+            .fold(0.0, |m, i| m.max(self.gap[i].abs()))
+    }
+
     /// Total contact force on side `side`: Σ w σ_n n (the force the other body exerts).
     pub fn force_on(&self, side: usize) -> Vector {
         let mut f = [0.0; DIM];
@@ -99,6 +116,11 @@ pub struct Solution {
     /// Per body, the equilibrium residual: the contact forces the fields carry against those of
     /// the reported pressures, relative to the total contact force ([`crate::solver::equilibrium`]).
     pub equilibrium: Vec<f64>,
+    /// Multiplier updates (inner solves) of the augmented Lagrangian pairs; 0 if every pair
+    /// uses the penalty formulation.
+    pub updates: usize,
+    /// The gap tolerance of the augmented Lagrangian pairs (a length; `None` without such pairs).
+    pub gap_tol: Option<f64>,
     /// Wall time per phase, seconds.
     pub timing: BTreeMap<String, f64>,
 }
@@ -128,6 +150,7 @@ pub fn stop_message(
             ))
         }
         Stop::Interrupted => Some(format!("interrupted after {} iterations", history.len())),
+        Stop::Unenforced { .. } => unenforced_message(stop),
         Stop::Stalled { residual, limit } => Some(format!(
             "stalled: after {} iterations the change is below the tolerance {tol:.1e}, but the contact forces that the fields carry differ from those of the contact pressures by {residual:.2e} of the total contact force (more than equilibrium-tol = {limit:.1e}); the iteration was still far from its fixed point: use a tighter tol, a larger gamma or gamma = \"auto\"",
             history.len()
@@ -165,6 +188,21 @@ pub fn stop_message(
     }
 }
 
+/// The message of [`Stop::Unenforced`] (the same for every iteration).
+fn unenforced_message(stop: &Stop) -> Option<String> {
+    let Stop::Unenforced {
+        updates,
+        violation,
+        limit,
+    } = stop
+    else {
+        return None;
+    };
+    Some(format!(
+        "not enforced: after {updates} multiplier updates the contact still violates the Signorini conditions by {violation:.3e} (gap-tol {limit:.3e}, a length); raise max-updates, or use a smaller penalty θ, which makes the updates contract faster"
+    ))
+}
+
 /// The largest relative change of a body in the last record (NaN without records).
 fn largest_change(history: &[Record]) -> f64 {
     history
@@ -186,6 +224,7 @@ fn newton_message(stop: &Stop, model: &Model, history: &[Record], tol: f64) -> O
             ))
         }
         Stop::Interrupted => Some(format!("interrupted after {steps} Newton steps")),
+        Stop::Unenforced { .. } => unenforced_message(stop),
         Stop::Stalled { residual, limit } => Some(format!(
             "stalled: the Newton steps converged, but the contact forces that the fields carry differ from those of the contact pressures by {residual:.2e} of the total contact force (more than equilibrium-tol = {limit:.1e}); with non-matching meshes each body integrates its own pressures, so a body held only by contact may not balance: refine the coarser contact mesh"
         )),
@@ -223,6 +262,7 @@ pub fn short_reason(model: &Model, stop: &Stop) -> String {
         Stop::MaxIterations => "max iterations".into(),
         Stop::Interrupted => "interrupted".into(),
         Stop::Stalled { .. } => "stalled (out of equilibrium)".into(),
+        Stop::Unenforced { .. } => "max multiplier updates".into(),
         Stop::Diverged {
             body,
             iteration,
@@ -276,7 +316,7 @@ pub fn pair_results(model: &Model, interface: &Interface, un: &[f64]) -> Vec<Pai
         r.y.push(x[1]);
         r.gap.push(gap);
         r.pressure.push(p.pressure(s[j]));
-        r.closed.push(gap < 0.0);
+        r.closed.push(p.overlap(s[j]) < 0.0);
         r.weight.push(p.weight);
         r.nx.push(p.normal[0]);
         r.ny.push(p.normal[1]);

@@ -2,6 +2,7 @@
 //! condensation on the contact points; nothing here depends on the method or γ), then iterate and
 //! recover the full fields.
 
+use std::borrow::Cow;
 use std::time::Instant;
 
 use rayon::prelude::*;
@@ -93,18 +94,34 @@ pub fn solve(
             )));
         }
     }
-    let outcome = iterate(prepared, settings, hooks);
+    if settings.max_updates == 0 {
+        return Err(SetupError::Solver("max-updates must be at least 1".into()));
+    }
+    if let Some(g) = settings.gap_tol {
+        if !(g > 0.0 && g.is_finite()) {
+            return Err(SetupError::Solver(format!(
+                "gap-tol must be a positive length, got {g}"
+            )));
+        }
+    }
+    let (outcome, interface, updates, gap_tol) = if model.is_augmented() {
+        let a = crate::augmented::solve(model, prepared, settings, hooks);
+        (a.outcome, a.interface, a.updates, Some(a.gap_tol))
+    } else {
+        let outcome = iterate(prepared, settings, hooks);
+        (outcome, Cow::Borrowed(&prepared.interface), 0, None)
+    };
     let t = Instant::now();
     let displacements = prepared
         .bodies
         .par_iter()
         .enumerate()
-        .map(|(b, body)| body.recover(&outcome.t_load[prepared.interface.body_range[b].clone()]))
+        .map(|(b, body)| body.recover(&outcome.t_load[interface.body_range[b].clone()]))
         .collect::<Result<Vec<_>, _>>()?;
     let t_recover = t.elapsed().as_secs_f64();
     let t = Instant::now();
-    let bodies = body_results(model, &prepared.interface, &outcome.un, displacements);
-    let contact = pair_results(model, &prepared.interface, &outcome.un);
+    let bodies = body_results(model, &interface, &outcome.un, displacements);
+    let contact = pair_results(model, &interface, &outcome.un);
     let t_post = t.elapsed().as_secs_f64();
     let mut timing: std::collections::BTreeMap<String, f64> =
         prepared.timing.iter().cloned().collect();
@@ -112,7 +129,7 @@ pub fn solve(
     timing.insert("recover".into(), t_recover);
     timing.insert("post".into(), t_post);
     let theta = model.thetas();
-    let equilibrium = equilibrium(&prepared.interface, &outcome.un, &outcome.t_load);
+    let equilibrium = equilibrium(&interface, &outcome.un, &outcome.t_load);
     // A NaN residual wins the fold: a non-finite result is out of equilibrium too.
     let worst = equilibrium.iter().fold(0.0f64, |m, &e| {
         if e.is_nan() || m.is_nan() {
@@ -142,6 +159,8 @@ pub fn solve(
         bodies,
         contact,
         equilibrium,
+        updates,
+        gap_tol,
         timing,
     })
 }

@@ -75,6 +75,7 @@ fn two_bodies(name: &str, lower: ElasticBody, upper: ElasticBody, penalty: Penal
             boundaries: ["top".into(), "bottom".into()],
             penalty,
             profile: None,
+            enforcement: Enforcement::Penalty,
         }],
     }
 }
@@ -278,6 +279,7 @@ fn stack(order: Order, n: usize) -> Model {
             boundaries: ["top".into(), "bottom".into()],
             penalty: Penalty::RodModel { c: 0.01, h: 1.0 },
             profile: Some(GapProfile::Uniform { value: 0.0 }),
+            enforcement: Enforcement::Penalty,
         })
         .collect();
     Model {

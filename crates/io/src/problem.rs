@@ -203,6 +203,29 @@ pub struct ContactSpec {
     /// Prescribed gap profile added to the geometric normal gap.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub gap: Option<GapSpec>,
+    /// `"penalty"` (the paper's formulation, the default) or `"augmented"` (augmented
+    /// Lagrangian: the exact unilateral contact for any θ).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub enforcement: Option<EnforcementSpec>,
+}
+
+/// `enforcement`: how a contact pair enforces non-penetration.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Deserialize, Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum EnforcementSpec {
+    /// The penalty formulation.
+    Penalty,
+    /// The augmented Lagrangian.
+    Augmented,
+}
+
+impl From<EnforcementSpec> for contactdd_ddm::Enforcement {
+    fn from(e: EnforcementSpec) -> Self {
+        match e {
+            EnforcementSpec::Penalty => contactdd_ddm::Enforcement::Penalty,
+            EnforcementSpec::Augmented => contactdd_ddm::Enforcement::Augmented,
+        }
+    }
 }
 
 impl ContactSpec {
@@ -288,6 +311,14 @@ pub struct SolverSpec {
     /// Iteration cap ≥ 1 (default 500).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub max_iter: Option<usize>,
+    /// Augmented Lagrangian pairs: the largest violation of the Signorini conditions of a
+    /// converged result, a length in the problem's units (default: `tol` times the largest normal
+    /// displacement of the contact points).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub gap_tol: Option<f64>,
+    /// Augmented Lagrangian pairs: the cap on multiplier updates ≥ 1 (default 100).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub max_updates: Option<usize>,
     /// Initial normal displacement u⁰ₙ on all contact points (default 1e-4).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub u0: Option<f64>,

@@ -362,6 +362,21 @@ pub fn settings(spec: &SolverSpec, base: &Settings) -> Result<Settings, SetupErr
         }
         s.max_iter = max_iter;
     }
+    if let Some(g) = spec.gap_tol {
+        if !(g.is_finite() && g > 0.0) {
+            return Err(solver_error(
+                "gap-tol",
+                format!("must be a positive length, got {}", num(g)),
+            ));
+        }
+        s.gap_tol = Some(g);
+    }
+    if let Some(n) = spec.max_updates {
+        if n == 0 {
+            return Err(solver_error("max-updates", "must be at least 1, got 0"));
+        }
+        s.max_updates = n;
+    }
     for (key, v, slot) in [
         ("u0", spec.u0, &mut s.u0),
         ("u-prev", spec.u_prev, &mut s.u_prev),
@@ -771,6 +786,7 @@ pub fn pair(
         boundaries: [spec.boundaries[0].clone(), spec.boundaries[1].clone()],
         penalty,
         profile,
+        enforcement: spec.enforcement.map(Into::into).unwrap_or_default(),
     })
 }
 

@@ -1,0 +1,227 @@
+//! Augmented Lagrangian enforcement: the exact unilateral (Signorini) contact as the limit of
+//! penalty solves with multipliers, for any fixed θ (`docs/augmented-lagrangian.md`).
+//!
+//! Every contact point of a pair with `enforcement = "augmented"` carries a multiplier estimate
+//! λ ≥ 0 (a pressure), and the penalty acts on the shifted gap d − θλ, so the pressure is
+//! p = (λ + (s − d)/θ)⁺. The inner problem is therefore the penalty problem with other gaps, and
+//! any iteration of this crate solves it unchanged. After each inner solve, the Uzawa
+//! (Powell–Hestenes) update sets λ to the pressure just found, and the next inner solve starts
+//! from the last interface loads. At a fixed point the gap d − s vanishes wherever λ > 0 and is
+//! non-negative elsewhere: the Signorini conditions.
+//!
+//! Stopping: after an inner solve with multipliers λ, every augmented point has the new pressure
+//! p and the gap g = d − s. Where p > 0 the exact solution has g = 0, and where p = 0 it has
+//! g ≥ 0; the loop stops when the largest violation of either, max(max_{p>0} |g|, max (−g)⁺),
+//! is below the gap tolerance (a length: `gap-tol`, or by default `tol` times the largest
+//! normal displacement of the contact points). The result is that inner solve: its pressures and
+//! fields are consistent with each other, and its multipliers are the reported pressures.
+
+use std::borrow::Cow;
+
+use crate::anderson::Anderson;
+use crate::contact::Interface;
+use crate::iteration::{iterate_on, Hooks, Outcome, Record, Settings, Stop, ANDERSON_DEPTH};
+use crate::model::{Enforcement, Model};
+use crate::solver::Prepared;
+
+/// The default gap tolerance, relative to the largest normal displacement of the contact points.
+pub const GAP_TOL: f64 = 1e-6;
+
+/// Updates without a new smallest violation after which the loop stops: the Signorini
+/// conditions cannot be met more closely (with non-matching meshes, both sides' nodes cannot all
+/// close exactly).
+pub const STALL: usize = 5;
+
+/// The outcome of the multiplier loop.
+pub struct Augmented<'p> {
+    /// The last inner solve; `iterations` and `history` count every inner iteration.
+    pub outcome: Outcome,
+    /// The contact points with the multipliers of the last inner solve.
+    pub interface: Cow<'p, Interface>,
+    /// Multiplier updates (inner solves) taken.
+    pub updates: usize,
+    /// The gap tolerance used (length).
+    pub gap_tol: f64,
+}
+
+/// Solves the model's contact problem with augmented Lagrangian enforcement on the pairs that
+/// ask for it (the others keep λ = 0, the penalty formulation).
+pub fn solve<'p>(
+    model: &Model,
+    prepared: &'p Prepared,
+    settings: &Settings,
+    hooks: Hooks<'_>,
+) -> Augmented<'p> {
+    let mut interface = prepared.interface.clone();
+    let augmented: Vec<bool> = interface
+        .points
+        .iter()
+        .map(|p| p.has_partner() && model.pairs[p.pair].enforcement == Enforcement::Augmented)
+        .collect();
+    let m = interface.len();
+    let mut history: Vec<Record> = Vec::new();
+    let mut memory = Anderson::new(ANDERSON_DEPTH);
+    let (mut lambda, mut warm) = (vec![0.0; m], None::<Vec<f64>>);
+    let mut gap_tol = settings.gap_tol.unwrap_or(f64::NAN);
+    let (mut best, mut since_best) = (f64::INFINITY, 0);
+    // The last converged inner solve that missed the tolerance, with its violation.
+    let mut last: Option<(Outcome, Interface, f64)> = None;
+    let mut updates = 0;
+    loop {
+        updates += 1;
+        let outcome = inner_solve(
+            prepared,
+            &interface,
+            warm.as_deref(),
+            settings,
+            hooks,
+            &mut history,
+        );
+        if outcome.stop != Stop::Converged {
+            // An inner solve that fails after earlier ones succeeded: return the last of those.
+            return match last {
+                Some((outcome, interface, violation)) => {
+                    unenforced(outcome, history, interface, updates - 1, violation, gap_tol)
+                }
+                None => finish(outcome, history, interface, updates, gap_tol),
+            };
+        }
+        if gap_tol.is_nan() {
+            let size = outcome.un.iter().fold(0.0, |m: f64, u| m.max(u.abs()));
+            gap_tol = GAP_TOL * size;
+        }
+        // G(λ): the pressures of this solve, on the augmented points.
+        let mut next: Vec<f64> = pressures(&interface, &outcome.un);
+        next.iter_mut()
+            .zip(&augmented)
+            .for_each(|(p, &a)| *p = if a { *p } else { 0.0 });
+        let violation = signorini_violation(&interface, &outcome.un, &augmented, &next);
+        if violation <= gap_tol {
+            return finish(outcome, history, interface, updates, gap_tol);
+        }
+        (best, since_best) = if violation < best {
+            (violation, 0)
+        } else {
+            (best, since_best + 1)
+        };
+        if since_best >= STALL || updates >= settings.max_updates {
+            return unenforced(outcome, history, interface, updates, violation, gap_tol);
+        }
+        // Uzawa's λ ← G(λ), accelerated over the earlier updates; the warm start's loads are
+        // combined with the same coefficients.
+        let mut loads = warm.unwrap_or_else(|| outcome.t_load.clone());
+        memory.advance(&mut lambda, &mut loads, &next, &outcome.t_load, 1.0);
+        let used = interface.clone();
+        for (j, p) in interface.points.iter_mut().enumerate() {
+            lambda[j] = if augmented[j] {
+                lambda[j].max(0.0)
+            } else {
+                0.0
+            };
+            p.multiplier = lambda[j];
+        }
+        warm = Some(loads);
+        last = Some((outcome, used, violation));
+    }
+}
+
+/// The result of the loop: `outcome` with the whole history.
+fn finish<'p>(
+    mut outcome: Outcome,
+    history: Vec<Record>,
+    interface: Interface,
+    updates: usize,
+    gap_tol: f64,
+) -> Augmented<'p> {
+    outcome.iterations = history.len();
+    outcome.history = history;
+    Augmented {
+        outcome,
+        interface: Cow::Owned(interface),
+        updates,
+        gap_tol,
+    }
+}
+
+/// A converged inner solve returned as [`Stop::Unenforced`].
+fn unenforced<'p>(
+    mut outcome: Outcome,
+    history: Vec<Record>,
+    interface: Interface,
+    updates: usize,
+    violation: f64,
+    gap_tol: f64,
+) -> Augmented<'p> {
+    outcome.stop = Stop::Unenforced {
+        updates,
+        violation,
+        limit: gap_tol,
+    };
+    finish(outcome, history, interface, updates, gap_tol)
+}
+
+/// One inner solve, its records numbered on from `history` (and appended to it).
+fn inner_solve(
+    prepared: &Prepared,
+    interface: &Interface,
+    warm: Option<&[f64]>,
+    settings: &Settings,
+    hooks: Hooks<'_>,
+    history: &mut Vec<Record>,
+) -> Outcome {
+    let offset = history.len();
+    let renumber = |r: &Record| Record {
+        k: r.k + offset,
+        ..r.clone()
+    };
+    let report = |r: &Record| {
+        if let Some(f) = hooks.on_iteration {
+            f(&renumber(r));
+        }
+    };
+    let inner = Hooks {
+        on_iteration: Some(&report),
+        cancel: hooks.cancel,
+    };
+    let mut outcome = iterate_on(prepared, interface, warm, settings, inner);
+    history.extend(outcome.history.drain(..).map(|r| renumber(&r)));
+    outcome
+}
+
+/// The pressure magnitude p = −σ_n ≥ 0 of every point.
+fn pressures(interface: &Interface, un: &[f64]) -> Vec<f64> {
+    let mut s = vec![0.0; un.len()];
+    interface.sum_normal(un, &mut s);
+    interface
+        .points
+        .iter()
+        .zip(&s)
+        .map(|(p, &s)| -p.pressure(s))
+        .collect()
+}
+
+/// The largest violation of the Signorini conditions over the `augmented` points: the gap
+/// |d − s| where the pressure is positive, the penetration (s − d)⁺ elsewhere.
+fn signorini_violation(
+    interface: &Interface,
+    un: &[f64],
+    augmented: &[bool],
+    pressure: &[f64],
+) -> f64 {
+    let mut s = vec![0.0; un.len()];
+    interface.sum_normal(un, &mut s);
+    interface
+        .points
+        .iter()
+        .enumerate()
+        .filter(|&(j, _)| augmented[j])
+        .map(|(j, p)| {
+            let gap = p.gap - s[j];
+            if pressure[j] > 0.0 {
+                gap.abs()
+            } else {
+                (-gap).max(0.0)
+            }
+        })
+        .fold(0.0, f64::max)
+}

@@ -1,0 +1,167 @@
+//! Augmented Lagrangian enforcement (`docs/augmented-lagrangian.md`): the exact unilateral contact
+//! for any penalty θ. The references are independent of the solver: the closed form of a recess
+//! between two pressed half-planes, force balance, the Signorini conditions themselves, and the
+//! same loop around a second inner iteration (the Robin sweeps).
+
+use contactdd::cases;
+use contactdd::ddm::benchmark::Notch;
+use contactdd::ddm::solution::PairResult;
+use contactdd::ddm::{prepare, solve, Enforcement, Hooks, Model, Settings, Solution, Stop};
+
+fn run(model: &Model, settings: &Settings) -> Solution {
+    let prepared = prepare(model).unwrap();
+    solve(model, &prepared, settings, Hooks::default()).unwrap()
+}
+
+fn augmented(mut model: Model) -> Model {
+    for pair in &mut model.pairs {
+        pair.enforcement = Enforcement::Augmented;
+    }
+    model
+}
+
+fn notch(c: f64) -> Model {
+    Notch {
+        c,
+        ..Notch::default()
+    }
+    .model()
+    .unwrap()
+}
+
+fn peak(pair: &PairResult) -> f64 {
+    pair.pressure.iter().fold(0.0f64, |m, p| m.max(p.abs()))
+}
+
+/// The contact half-width on side `side`, for a zone that is open near x = 0 and closed beyond:
+/// the pressure grows like √(x − a) past the edge a, so p² is extrapolated linearly to zero from
+/// the first two closed points.
+fn open_half_width(pair: &PairResult, side: usize) -> f64 {
+    let mut points: Vec<(f64, f64)> = (0..pair.x.len())
+        .filter(|&i| pair.side[i] == side)
+        .map(|i| (pair.x[i], pair.pressure[i].abs()))
+        .collect();
+    points.sort_by(|a, b| a.0.total_cmp(&b.0));
+    let first = points.iter().position(|p| p.1 > 0.0).unwrap();
+    let ((x1, p1), (x2, p2)) = (points[first], points[first + 1]);
+    x1 - p1 * p1 * (x2 - x1) / (p2 * p2 - p1 * p1)
+}
+
+/// The paper's notch with θ 100× apart: exact mode gives the same peak pressure and closed set to
+/// 1e−4, where the penalty solutions differ by percents.
+#[test]
+fn exact_mode_does_not_depend_on_the_penalty() {
+    let settings = Settings::default();
+    let solve_at = |c: f64, exact: bool| {
+        let model = if exact { augmented(notch(c)) } else { notch(c) };
+        let sol = run(&model, &settings);
+        assert!(sol.converged, "c = {c}: {:?}", sol.message);
+        sol
+    };
+    let (soft, stiff) = (solve_at(0.05, true), solve_at(0.0005, true));
+    let (a, b) = (&soft.contact[0], &stiff.contact[0]);
+    let change = (peak(a) - peak(b)).abs() / peak(b);
+    assert!(change <= 1e-4, "peak pressure changes by {change:.2e}");
+    assert_eq!(a.closed, b.closed, "the closed points differ");
+    let (pa, pb) = (solve_at(0.05, false), solve_at(0.0005, false));
+    let penalty_change = (peak(&pa.contact[0]) - peak(&pb.contact[0])).abs() / peak(&pb.contact[0]);
+    assert!(
+        penalty_change > 100.0 * change,
+        "the penalty itself changes by only {penalty_change:.2e}"
+    );
+}
+
+/// The result meets the Signorini conditions to the gap tolerance, carries the applied load, and
+/// reports how many multiplier updates it took.
+#[test]
+fn exact_mode_meets_the_signorini_conditions_and_balances_the_load() {
+    let sol = run(&augmented(notch(0.05)), &Settings::default());
+    assert!(sol.converged, "{:?}", sol.message);
+    let tol = sol.gap_tol.unwrap();
+    let pair = &sol.contact[0];
+    assert!(pair.max_penetration() <= tol, "{}", pair.max_penetration());
+    assert!(pair.complementarity() <= tol, "{}", pair.complementarity());
+    assert!(pair.pressure.iter().all(|&p| p <= 0.0));
+    for side in 0..2 {
+        let f = pair.force_on(side)[1].abs();
+        assert!(
+            (f - 8400.0).abs() <= 1e-6 * 8400.0,
+            "side {side} carries {f}"
+        );
+    }
+    assert!(sol.updates > 1);
+    // The penalty solution at the same θ penetrates by θ·p, far above the tolerance.
+    let penalty = run(&notch(0.05), &Settings::default());
+    assert!(penalty.contact[0].max_penetration() > 1e3 * tol);
+}
+
+/// Warm-started Newton solves: all the updates together cost at most 3× one penalty solve at the
+/// paper's θ.
+#[test]
+fn exact_mode_costs_a_few_penalty_solves() {
+    let settings = Settings::default();
+    let exact = run(&augmented(notch(0.05)), &settings);
+    let penalty = run(&notch(0.05), &settings);
+    assert!(
+        exact.iterations <= 3 * penalty.iterations,
+        "{} against {}",
+        exact.iterations,
+        penalty.iterations
+    );
+}
+
+/// A second inner iteration (the two-level Robin sweeps) reaches the same exact solution.
+#[test]
+fn the_sweeps_inside_the_loop_reach_the_same_solution() {
+    let model = augmented(notch(0.05));
+    let newton = run(&model, &Settings::default());
+    let sweeps = run(&model, &Settings::two_level());
+    assert!(sweeps.converged, "{:?}", sweeps.message);
+    let (a, b) = (&newton.contact[0], &sweeps.contact[0]);
+    let scale = peak(a);
+    for (p, q) in a.pressure.iter().zip(&b.pressure) {
+        assert!((p - q).abs() <= 1e-3 * scale, "{p} against {q}");
+    }
+}
+
+/// A recess between two large pressed blocks: the open half-width is that of two half-planes,
+/// a = b √(1 − q/q*), q* = 3 E* r₀ / (4 b), within 1 %.
+#[test]
+fn exact_mode_opens_the_recess_of_two_half_planes() {
+    let model = augmented(cases::recess(1.0, 0.05, 64));
+    let sol = run(&model, &Settings::default());
+    assert!(sol.converged, "{:?}", sol.message);
+    let e_star = 2.1e5 / (2.0 * (1.0 - 0.3f64.powi(2)));
+    let q_star = 3.0 * e_star * cases::RECESS_R0 / (4.0 * cases::RECESS_B);
+    let exact = cases::RECESS_B * (1.0 - cases::RECESS_Q / q_star).sqrt();
+    for side in 0..2 {
+        let a = open_half_width(&sol.contact[0], side);
+        let error = (a - exact).abs() / exact;
+        assert!(error <= 0.01, "side {side}: a = {a}, exact {exact}");
+    }
+}
+
+/// Non-matching meshes: both sides' nodes cannot all close exactly, so a tight gap tolerance is
+/// out of reach; the run says so instead of reporting a solution, and returns its last consistent
+/// state (fields and pressures of one inner solve, in equilibrium).
+#[test]
+fn an_exact_contact_out_of_reach_is_reported() {
+    let model = augmented(cases::non_matching_notch(0.05));
+    let settings = Settings {
+        gap_tol: Some(1e-14),
+        ..Settings::default()
+    };
+    let sol = run(&model, &settings);
+    assert!(!sol.converged);
+    assert!(
+        matches!(sol.stop, Stop::Unenforced { .. }),
+        "{:?}",
+        sol.stop
+    );
+    assert!(sol.message.unwrap().contains("multiplier updates"));
+    assert!(
+        sol.equilibrium.iter().all(|&e| e <= 1e-2),
+        "{:?}",
+        sol.equilibrium
+    );
+}
