@@ -63,9 +63,10 @@ pub fn solve<'p>(
     let mut memory = Anderson::new(ANDERSON_DEPTH);
     let (mut lambda, mut warm) = (vec![0.0; m], None::<Vec<f64>>);
     let mut gap_tol = settings.gap_tol.unwrap_or(f64::NAN);
-    let (mut best, mut since_best) = (f64::INFINITY, 0);
-    // The last converged inner solve that missed the tolerance, with its violation.
-    let mut last: Option<(Outcome, Interface, f64)> = None;
+    // The converged inner solve closest to the Signorini conditions so far: what the loop
+    // returns when it cannot meet the tolerance.
+    let mut best: Option<Best> = None;
+    let mut since_best = 0;
     let mut updates = 0;
     loop {
         updates += 1;
@@ -78,11 +79,8 @@ pub fn solve<'p>(
             &mut history,
         );
         if outcome.stop != Stop::Converged {
-            // An inner solve that fails after earlier ones succeeded: return the last of those.
-            return match last {
-                Some((outcome, interface, violation)) => {
-                    unenforced(outcome, history, interface, updates - 1, violation, gap_tol)
-                }
+            return match best {
+                Some(b) => b.unenforced(history, updates, gap_tol),
                 None => finish(outcome, history, interface, updates, gap_tol),
             };
         }
@@ -99,19 +97,26 @@ pub fn solve<'p>(
         if violation <= gap_tol {
             return finish(outcome, history, interface, updates, gap_tol);
         }
-        (best, since_best) = if violation < best {
-            (violation, 0)
+        let t_load = outcome.t_load.clone();
+        if best.as_ref().is_none_or(|b| violation < b.violation) {
+            since_best = 0;
+            best = Some(Best {
+                outcome,
+                interface: interface.clone(),
+                violation,
+            });
         } else {
-            (best, since_best + 1)
-        };
+            since_best += 1;
+        }
         if since_best >= STALL || updates >= settings.max_updates {
-            return unenforced(outcome, history, interface, updates, violation, gap_tol);
+            if let Some(b) = best {
+                return b.unenforced(history, updates, gap_tol);
+            }
         }
         // Uzawa's λ ← G(λ), accelerated over the earlier updates; the warm start's loads are
         // combined with the same coefficients.
-        let mut loads = warm.unwrap_or_else(|| outcome.t_load.clone());
-        memory.advance(&mut lambda, &mut loads, &next, &outcome.t_load, 1.0);
-        let used = interface.clone();
+        let mut loads = warm.unwrap_or_else(|| t_load.clone());
+        memory.advance(&mut lambda, &mut loads, &next, &t_load, 1.0);
         for (j, p) in interface.points.iter_mut().enumerate() {
             lambda[j] = if augmented[j] {
                 lambda[j].max(0.0)
@@ -121,7 +126,6 @@ pub fn solve<'p>(
             p.multiplier = lambda[j];
         }
         warm = Some(loads);
-        last = Some((outcome, used, violation));
     }
 }
 
@@ -143,21 +147,29 @@ fn finish<'p>(
     }
 }
 
-/// A converged inner solve returned as [`Stop::Unenforced`].
-fn unenforced<'p>(
-    mut outcome: Outcome,
-    history: Vec<Record>,
+/// A converged inner solve and the contact points it used.
+struct Best {
+    outcome: Outcome,
     interface: Interface,
-    updates: usize,
+    /// Its violation of the Signorini conditions.
     violation: f64,
-    gap_tol: f64,
-) -> Augmented<'p> {
-    outcome.stop = Stop::Unenforced {
-        updates,
-        violation,
-        limit: gap_tol,
-    };
-    finish(outcome, history, interface, updates, gap_tol)
+}
+
+impl Best {
+    /// The solve returned as [`Stop::Unenforced`] after `updates` updates in all.
+    fn unenforced<'p>(
+        mut self,
+        history: Vec<Record>,
+        updates: usize,
+        gap_tol: f64,
+    ) -> Augmented<'p> {
+        self.outcome.stop = Stop::Unenforced {
+            updates,
+            violation: self.violation,
+            limit: gap_tol,
+        };
+        finish(self.outcome, history, self.interface, updates, gap_tol)
+    }
 }
 
 /// One inner solve, its records numbered on from `history` (and appended to it).

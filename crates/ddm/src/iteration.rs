@@ -214,12 +214,13 @@ pub enum Stop {
     },
     /// Cancelled by the caller.
     Interrupted,
-    /// The inner solves converged, but the multiplier updates of an augmented Lagrangian pair
-    /// ran out before the Signorini conditions held to the gap tolerance.
+    /// The multiplier updates of an augmented Lagrangian pair ended (cap, no more progress, or a
+    /// failed inner solve) before the Signorini conditions held to the gap tolerance; the
+    /// result is the converged inner solve closest to them.
     Unenforced {
         /// Multiplier updates taken.
         updates: usize,
-        /// The largest violation of the Signorini conditions (length).
+        /// The result's largest violation of the Signorini conditions (length).
         violation: f64,
         /// The gap tolerance it exceeds.
         limit: f64,
