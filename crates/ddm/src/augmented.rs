@@ -98,7 +98,7 @@ pub fn solve<'p>(
             return finish(outcome, history, interface, updates, gap_tol);
         }
         let t_load = outcome.t_load.clone();
-        if best.as_ref().is_none_or(|b| violation < b.violation) {
+        if best.as_ref().map_or(true, |b| violation < b.violation) {
             since_best = 0;
             best = Some(Best {
                 outcome,
