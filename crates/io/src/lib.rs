@@ -15,9 +15,12 @@
 
 pub mod atomic;
 pub mod error;
+pub mod fields;
 pub mod number;
 pub mod output;
 pub mod problem;
+pub mod reactions;
+pub mod result_set;
 pub mod setup;
 pub mod vtu;
 
