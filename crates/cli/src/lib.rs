@@ -23,19 +23,22 @@
 //! | 2    | ran but did not converge or diverged; the last iterate's results are still written |
 //! |      | and `summary.json` says `"converged": false` with the message                      |
 //!
+//! A write error on stdout other than a closed pipe turns 0 into 1. What is on disk after each
+//! exit code: docs/outputs.md.
+//!
 //! Errors print one line `error: <context>: <cause>` on stderr.
 
-/// `println!` that ignores a closed stdout (`contactdd sweep … | head` must not fail): the
-/// results go to files anyway, the console is only a report.
+/// `println!` that ignores a closed stdout (`contactdd sweep … | head` must not fail) but
+/// remembers any other write error ([`console`]), which turns exit 0 into exit 1.
 macro_rules! say {
-    ($($arg:tt)*) => {{
-        use std::io::Write as _;
-        let _ = writeln!(std::io::stdout().lock(), $($arg)*);
-    }};
+    ($($arg:tt)*) => {
+        $crate::console::line(format_args!($($arg)*))
+    };
 }
 
 mod args;
 mod check;
+mod console;
 mod report;
 mod solve;
 mod sweep;
@@ -90,12 +93,20 @@ where
         Command::Check(a) => check::check(a),
         Command::Monolithic(a) => solve::monolithic(a),
     };
-    match result {
+    let exit = match result {
         Ok(exit) => exit,
         Err(e) => {
             eprintln!("error: {e:#}");
             Exit::Error
         }
+    };
+    match console::take_failure() {
+        // The report was lost: never claim success.
+        Some(e) if exit == Exit::Success => {
+            eprintln!("error: cannot write to standard output: {e}");
+            Exit::Error
+        }
+        _ => exit,
     }
 }
 

@@ -7,6 +7,7 @@ use contactdd_core::Vector;
 use contactdd_ddm::solution::PairResult;
 use contactdd_ddm::{Model, Record};
 use contactdd_io::output::applied_load;
+use contactdd_io::reactions::BodyReactions;
 
 /// A number with 4 significant digits: fixed notation for moderate magnitudes, else exponent.
 pub fn sig(x: f64) -> String {
@@ -34,7 +35,7 @@ pub fn progress(note: &str) {
 }
 
 /// The per-iteration table: k, γ, then per body the relative change, the number of closed contact
-/// points and the total contact force.
+/// points and the normal force Σ w |σ_n| (the sum of magnitudes, not the resultant).
 pub struct IterationTable {
     bodies: Vec<String>,
 }
@@ -58,7 +59,7 @@ impl IterationTable {
         let mut top = format!("{:>5}  {:>6}", "", "");
         top += &group("relative change", CHANGE_WIDTH);
         top += &group("closed points", ACTIVE_WIDTH);
-        top += &group("contact force", FORCE_WIDTH);
+        top += &group("normal force Σw|σn|", FORCE_WIDTH);
         let mut names = format!("{:>5}  {:>6}", "k", "gamma");
         for (width, gap) in [(CHANGE_WIDTH, 2), (ACTIVE_WIDTH, 2), (FORCE_WIDTH, 2)] {
             names += &" ".repeat(gap);
@@ -131,7 +132,7 @@ pub fn pair_report(pairs: &[PairResult], theta: &[f64]) -> Vec<String> {
             String::new()
         };
         lines.push(format!(
-            "  contact force on {} {}, on {} {}{balance}",
+            "  resultant contact force on {} {}, on {} {}{balance}",
             pair.bodies[0],
             vec2(f0),
             pair.bodies[1],
@@ -139,6 +140,30 @@ pub fn pair_report(pairs: &[PairResult], theta: &[f64]) -> Vec<String> {
         ));
     }
     lines
+}
+
+/// One line per body: `reactions on lower: bottom (0, 8400), total (0, 8400)`, the force each
+/// supported boundary exerts on the body.
+pub fn reaction_report(reactions: &[BodyReactions]) -> Vec<String> {
+    reactions
+        .iter()
+        .map(|r| {
+            if r.supports.is_empty() {
+                return format!("reactions on {}: no supports", r.body);
+            }
+            let items: Vec<String> = r
+                .supports
+                .iter()
+                .map(|s| format!("{} {}", s.boundary, vec2(s.force)))
+                .collect();
+            format!(
+                "reactions on {}: {}, total {}",
+                r.body,
+                items.join(", "),
+                vec2(r.total)
+            )
+        })
+        .collect()
 }
 
 /// `applied loads: lower (0, 8400), upper (0, -8400)`.

@@ -13,9 +13,12 @@ use contactdd_ddm::{
     Record,
 };
 use contactdd_io::output::{safe_file_name, write_monolithic_results, write_results};
+use contactdd_io::reactions::reactions;
 
 use crate::args::{Common, MonolithicArgs, SolveArgs};
-use crate::report::{applied_loads, pair_report, progress, timing, IterationTable};
+use crate::report::{
+    applied_loads, pair_report, progress, reaction_report, timing, IterationTable,
+};
 use crate::{load, with_threads, Exit};
 
 /// Applies `--tol`, `--max-iter` and `--threads` to the file's settings; returns the thread count.
@@ -153,6 +156,9 @@ pub fn solve(args: SolveArgs) -> Result<Exit> {
                 say!("{line}");
             }
             say!("{}", applied_loads(model));
+            for line in reaction_report(&reactions(model, &sol.bodies, &sol.contact)) {
+                say!("{line}");
+            }
             let mut phases = vec![("load", t_load)];
             for key in [
                 "contact_setup",

@@ -168,7 +168,7 @@ fn solving_the_notch_example_succeeds_and_writes_every_result_file() {
     let history = std::fs::read_to_string(res.join("history.csv")).unwrap();
     assert!(history.starts_with(
         "k,gamma,rel_change_lower,rel_change_upper,active_lower,active_upper,\
-         contact_force_lower,contact_force_upper\n"
+         normal_force_lower,normal_force_upper\n"
     ));
     assert_eq!(history.lines().count(), iterations + 1);
 

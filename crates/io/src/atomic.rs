@@ -55,6 +55,40 @@ fn describe(kind: std::fs::FileType) -> &'static str {
     "a special file"
 }
 
+/// True if `name` is the name of a temporary file of [`write_atomic`] (`.<name>.<pid>-<n>.tmp`)
+/// whose target name ends in one of `extensions` (given without the dot). A run killed mid-write
+/// leaves such a file behind; the next result set written in that folder removes it.
+pub fn is_temp_name(name: &str, extensions: &[&str]) -> bool {
+    let Some(inner) = name.strip_prefix('.').and_then(|n| n.strip_suffix(".tmp")) else {
+        return false;
+    };
+    let Some((target, id)) = inner.rsplit_once('.') else {
+        return false;
+    };
+    let digits = |s: &str| !s.is_empty() && s.bytes().all(|b| b.is_ascii_digit());
+    let id_ok = id
+        .split_once('-')
+        .is_some_and(|(p, n)| digits(p) && digits(n));
+    let ext_ok = target
+        .rsplit_once('.')
+        .is_some_and(|(stem, ext)| !stem.is_empty() && extensions.contains(&ext));
+    id_ok && ext_ok
+}
+
+/// `.<name>.<pid>-<n>.tmp`: unique per process and call, so that concurrent writers never share a
+/// temporary file.
+fn temp_name(file_name: &std::ffi::OsStr) -> std::ffi::OsString {
+    static COUNTER: AtomicUsize = AtomicUsize::new(0);
+    let mut temp = std::ffi::OsString::from(".");
+    temp.push(file_name);
+    temp.push(format!(
+        ".{}-{}.tmp",
+        std::process::id(),
+        COUNTER.fetch_add(1, Ordering::Relaxed)
+    ));
+    temp
+}
+
 /// Writes `bytes` to `path` through a temporary file `.<name>.<pid>-<n>.tmp` in the same folder
 /// (synced, then renamed to `path`), so that `path` is either the old file or the complete new
 /// one. The temporary file is removed if anything fails. A `path` without a file name, or one
@@ -67,16 +101,7 @@ pub fn write_atomic(path: &Path, bytes: &[u8]) -> std::io::Result<()> {
             format!("'{}' is not a file path", path.display()),
         )
     })?;
-    // Unique per process and call, so that concurrent writers never share a temporary file.
-    static COUNTER: AtomicUsize = AtomicUsize::new(0);
-    let mut temp_name = std::ffi::OsString::from(".");
-    temp_name.push(file_name);
-    temp_name.push(format!(
-        ".{}-{}.tmp",
-        std::process::id(),
-        COUNTER.fetch_add(1, Ordering::Relaxed)
-    ));
-    let temp = path.with_file_name(temp_name);
+    let temp = path.with_file_name(temp_name(file_name));
     let result = (|| {
         // create_new: never write through something already lying at the temporary name.
         let mut file = std::fs::OpenOptions::new()
@@ -165,6 +190,22 @@ mod tests {
         };
         assert_eq!(names, expected);
         std::fs::remove_dir_all(&dir).unwrap();
+    }
+
+    #[test]
+    fn temporary_names_are_recognised() {
+        let made = temp_name("x.vtu".as_ref()).into_string().unwrap();
+        assert!(is_temp_name(&made, &["vtu"]));
+        assert!(!is_temp_name(&made, &["csv"]));
+        for other in [
+            "x.vtu",
+            ".x.vtu.tmp",
+            ".x.vtu.12-a.tmp",
+            "..vtu.1-2.tmp",
+            ".notes.1-2.tmp",
+        ] {
+            assert!(!is_temp_name(other, &["vtu"]), "{other}");
+        }
     }
 
     #[test]

@@ -6,8 +6,10 @@
 //! Data flow: a TOML problem file → [`problem`] (plain serde types, the file's schema) →
 //! [`setup`] (one resolve step: validated `Model` and `Settings`) → the solver of `contactdd-ddm`
 //! → [`output`] (`summary.json`, `contact.csv`, `history.csv`, the sweep CSV) and [`vtu`] (one
-//! `.vtu` per body). [`atomic`] writes every file without ever leaving a half-written one;
-//! [`number`] is the one float format of the text files.
+//! `.vtu` per body, with the derived [`fields`] and the support [`reactions`]). [`atomic`] writes
+//! every file without ever leaving a half-written one, [`result_set`] a result folder so that
+//! `summary.json` exists only for a complete one; [`number`] is the one float format of the text
+//! files. docs/outputs.md describes the results.
 //!
 //! Gmsh meshes are read by `contactdd_core::gmsh`, not here: that reader only builds a mesh and
 //! needs no dependency, so pure-numerics users can read meshes without this crate (see that
@@ -15,9 +17,12 @@
 
 pub mod atomic;
 pub mod error;
+pub mod fields;
 pub mod number;
 pub mod output;
 pub mod problem;
+pub mod reactions;
+pub mod result_set;
 pub mod setup;
 pub mod vtu;
 

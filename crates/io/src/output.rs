@@ -24,20 +24,27 @@
 //! | `message`   | `null` when converged, else why not                                        |
 //! | `equilibrium` | per body, the equilibrium residual (contact forces of the fields against those of the pressures, relative to the total contact force) |
 //! | `accelerator`, `coarse` | the accelerator and coarse mode used                           |
-//! | `history`   | per iteration `{k, gamma, rel_change, active, contact_force}` (per body)   |
+//! | `history`   | per iteration `{k, gamma, rel_change, active, normal_force}` (per body)    |
 //! | `bodies`    | per body `{name, nodes, elements, dofs, order, applied_load}`               |
 //! | `contact`   | per pair `{name, bodies, x, y, gap, pressure, status, force}`              |
+//! | `reactions` | per body `{body, supports: [{boundary, force}], total}` ([`reactions_json`]) |
 //! | `timing_s`  | wall time per phase, seconds                                               |
 //! | `version`   | contactdd version                                                          |
+//! | `files`     | the manifest: the other files of the result set (written last, see below)  |
 //!
 //! `dofs` counts the unknowns (2 per node minus the prescribed ones); `applied_load` is the total
 //! applied force `[fx, fy]`. In `contact`, the arrays have one entry per contact point of both
 //! sides; `status` is `closed` (d − s < 0, the point carries pressure), `open`, or `no-partner`
 //! (the normal ray misses the other body: infinite gap, written as `null`); `force` holds the total
-//! contact force `[fx, fy]` on each of the two bodies.
+//! contact force `[fx, fy]` on each of the two bodies: the resultant Σ w σ_n n. `normal_force`
+//! in `history` is a different quantity, the sum of magnitudes Σ w |σ_n| over a body's contact
+//! points. docs/outputs.md defines every quantity and says what is on disk after each exit code.
+//!
+//! [`write_results`] writes the folder as a set ([`crate::result_set`]): the data files first,
+//! `summary.json` last, so a folder without `summary.json` holds no complete result.
 
 use std::fmt::Write as _;
-use std::io::Error;
+use std::io::{Error, ErrorKind};
 use std::path::{Path, PathBuf};
 
 use serde_json::{json, Value};
@@ -48,8 +55,11 @@ use contactdd_ddm::sweep::SweepRun;
 use contactdd_ddm::{Gamma, Model, MonolithicSolution};
 
 pub use crate::atomic::write_atomic;
+use crate::fields::{contact_point_data, element_von_mises, principal, tensor, ContactPointData};
 use crate::number::format_f64 as num;
-use crate::vtu::{write_vtu, PointField};
+use crate::reactions::reactions;
+use crate::result_set::{write_set, ResultSet};
+use crate::vtu::{write_vtu, Field, VtuData};
 
 /// A JSON number, or `null` for NaN and ±infinity (which JSON cannot represent).
 pub fn json_number(x: f64) -> Value {
@@ -88,7 +98,7 @@ pub fn summary_json(model: &Model, sol: &Solution) -> Value {
                 "gamma": json_number(r.gamma),
                 "rel_change": json_numbers(&r.rel_change),
                 "active": r.active,
-                "contact_force": json_numbers(&r.contact_force),
+                "normal_force": json_numbers(&r.contact_force),
             })
         })
         .collect();
@@ -110,6 +120,7 @@ pub fn summary_json(model: &Model, sol: &Solution) -> Value {
         "history": history,
         "bodies": bodies_json(model),
         "contact": contact_json(&sol.contact),
+        "reactions": reactions_json(model, &sol.bodies, &sol.contact),
         "timing_s": timing,
         "version": env!("CARGO_PKG_VERSION"),
     })
@@ -167,6 +178,22 @@ fn bodies_json(model: &Model) -> Value {
         .collect()
 }
 
+/// The `reactions` of `summary.json`: per body `{body, supports: [{boundary, force}], total}`
+/// ([`reactions`]).
+pub fn reactions_json(model: &Model, bodies: &[BodyResult], contact: &[PairResult]) -> Value {
+    reactions(model, bodies, contact)
+        .iter()
+        .map(|r| {
+            let supports: Vec<Value> = r
+                .supports
+                .iter()
+                .map(|s| json!({ "boundary": s.boundary, "force": json_numbers(&s.force) }))
+                .collect();
+            json!({ "body": r.body, "supports": supports, "total": json_numbers(&r.total) })
+        })
+        .collect()
+}
+
 fn contact_json(pairs: &[PairResult]) -> Value {
     pairs
         .iter()
@@ -215,10 +242,11 @@ pub fn pairs_csv(pairs: &[PairResult]) -> String {
 }
 
 /// `history.csv`: one row per iteration, header
-/// `k,gamma,rel_change_<body>…,active_<body>…,contact_force_<body>…`.
+/// `k,gamma,rel_change_<body>…,active_<body>…,normal_force_<body>…` (`normal_force` is
+/// Σ w |σ_n| over the body's contact points, see docs/outputs.md).
 pub fn history_csv(sol: &Solution) -> String {
     let mut out = String::from("k,gamma");
-    for prefix in ["rel_change", "active", "contact_force"] {
+    for prefix in ["rel_change", "active", "normal_force"] {
         for b in &sol.bodies {
             out.push(',');
             out.push_str(&csv_field(&format!("{prefix}_{}", b.name)));
@@ -259,23 +287,15 @@ pub fn sweep_csv(runs: &[SweepRun]) -> String {
     out
 }
 
-/// Writes a solve's result folder (created if needed): `summary.json`, `contact.csv`,
-/// `history.csv` and `<body>.vtu` per body. Returns the paths written.
+/// Writes a solve's result folder (created if needed) as a set ([`write_set`]): `contact.csv`,
+/// `history.csv` and `<body>.vtu` per body, then `summary.json` with the manifest of those files.
+/// The previous set in `dir` is removed first. Returns the paths written, `summary.json` last.
 pub fn write_results(dir: &Path, model: &Model, sol: &Solution) -> std::io::Result<Vec<PathBuf>> {
-    std::fs::create_dir_all(dir)?;
-    let summary = summary_json(model, sol);
-    let mut written = Vec::new();
-    for (name, text) in [
-        ("summary.json", pretty(&summary)?),
-        ("contact.csv", contact_csv(sol)),
-        ("history.csv", history_csv(sol)),
-    ] {
-        let path = dir.join(name);
-        write_atomic(&path, text.as_bytes())?;
-        written.push(path);
-    }
-    written.extend(write_body_vtus(dir, &sol.bodies)?);
-    Ok(written)
+    write_set(dir, summary_json(model, sol), |set| {
+        set.write("contact.csv", contact_csv(sol).as_bytes())?;
+        set.write("history.csv", history_csv(sol).as_bytes())?;
+        write_solution_vtus(set, model, &sol.bodies, &sol.contact)
+    })
 }
 
 /// Writes a monolithic solve's result folder: `summary.json` ([`monolithic_summary_json`]),
@@ -302,36 +322,117 @@ pub fn write_monolithic_results(
     Ok(written)
 }
 
-/// Writes `<body>.vtu` per body into `dir` with point data `displacement` (vector), `sigma_xx`,
-/// `sigma_yy`, `sigma_xy`, `sigma_zz`, `von_mises` and `contact_pressure` (scalars, which
-/// ParaView colours by directly). File names are [`safe_file_name`]s of the body names, made
-/// unique.
+/// Writes `<body>.vtu` per body into `dir` with the nodal fields of the results alone:
+/// `displacement` (vector), `stress` (3×3 tensor), `principal_stress_1` ≥ `_2` ≥ `_3`,
+/// `sigma_xx`, `sigma_yy`, `sigma_xy`, `sigma_zz`, `von_mises` and `contact_pressure` (scalars,
+/// which ParaView colours by directly). File names are [`safe_file_name`]s of the body names,
+/// made unique. [`write_solution_vtus`] adds the contact point data and the element von Mises.
 pub fn write_body_vtus(dir: &Path, bodies: &[BodyResult]) -> std::io::Result<Vec<PathBuf>> {
-    let mut written: Vec<PathBuf> = Vec::with_capacity(bodies.len());
+    let mut written = Vec::with_capacity(bodies.len());
+    write_vtus(dir, bodies, |_, _| Ok(Extra::default()), &mut written)?;
+    Ok(written)
+}
+
+/// [`write_body_vtus`] into a result set, plus, from the model and the pairs' results, the point
+/// data `gap` and `contact_status` (1 closed, 0 open, −1 no partner; both NaN off the contact
+/// points) and the cell data `element_von_mises` (at each element's centroid). `bodies` are in the
+/// order of `model.bodies`. Each file joins the set as soon as it is written, so that a failure
+/// part way removes it with the set ([`ResultSet::abandon`]).
+pub fn write_solution_vtus(
+    set: &mut ResultSet,
+    model: &Model,
+    bodies: &[BodyResult],
+    contact: &[PairResult],
+) -> std::io::Result<()> {
+    let mut written = Vec::with_capacity(bodies.len());
+    let dir = set.dir().to_path_buf();
+    let result = write_vtus(
+        &dir,
+        bodies,
+        |b, body| {
+            let elastic = model.bodies.get(b).ok_or_else(|| {
+                Error::new(
+                    ErrorKind::InvalidInput,
+                    "more body results than model bodies",
+                )
+            })?;
+            Ok(Extra {
+                contact: Some(contact_point_data(
+                    &body.name,
+                    body.mesh.num_nodes(),
+                    contact,
+                )),
+                element_von_mises: Some(element_von_mises(elastic, &body.displacement)),
+            })
+        },
+        &mut written,
+    );
+    set.record(written);
+    result
+}
+
+/// The fields of a body's `.vtu` that need more than its [`BodyResult`].
+#[derive(Default)]
+struct Extra {
+    contact: Option<ContactPointData>,
+    element_von_mises: Option<Vec<f64>>,
+}
+
+/// Writes the `.vtu` of each body, pushing each path to `written` once the file is there.
+fn write_vtus(
+    dir: &Path,
+    bodies: &[BodyResult],
+    extra: impl Fn(usize, &BodyResult) -> std::io::Result<Extra>,
+    written: &mut Vec<PathBuf>,
+) -> std::io::Result<()> {
     for (b, body) in bodies.iter().enumerate() {
         let mut path = dir.join(format!("{}.vtu", safe_file_name(&body.name)));
         if written.contains(&path) {
             path = dir.join(format!("{}-{b}.vtu", safe_file_name(&body.name)));
         }
+        let extra = extra(b, body)?;
         let component = |k: usize| body.stress.iter().map(|s| s[k]).collect::<Vec<f64>>();
         let (sxx, syy, sxy, szz) = (component(0), component(1), component(2), component(3));
-        let scalar = |name, values| PointField {
+        let tensors: Vec<f64> = body.stress.iter().flat_map(tensor).collect();
+        let principals: Vec<[f64; 3]> = body.stress.iter().map(principal).collect();
+        let principal_k = |k: usize| principals.iter().map(|p| p[k]).collect::<Vec<f64>>();
+        let (p1, p2, p3) = (principal_k(0), principal_k(1), principal_k(2));
+        let field = |name, components, values| Field {
             name,
-            components: 1,
+            components,
             values,
         };
-        let fields = [
-            scalar("sigma_xx", &sxx),
-            scalar("sigma_yy", &syy),
-            scalar("sigma_xy", &sxy),
-            scalar("sigma_zz", &szz),
-            scalar("von_mises", &body.von_mises),
-            scalar("contact_pressure", &body.contact_pressure),
+        let mut points = vec![
+            field("stress", 9, &tensors),
+            field("principal_stress_1", 1, &p1),
+            field("principal_stress_2", 1, &p2),
+            field("principal_stress_3", 1, &p3),
+            field("sigma_xx", 1, &sxx),
+            field("sigma_yy", 1, &syy),
+            field("sigma_xy", 1, &sxy),
+            field("sigma_zz", 1, &szz),
+            field("von_mises", 1, &body.von_mises),
+            field("contact_pressure", 1, &body.contact_pressure),
         ];
-        write_vtu(&path, &body.mesh, Some(&body.displacement), &fields)?;
+        if let Some(c) = &extra.contact {
+            points.push(field("gap", 1, &c.gap));
+            points.push(field("contact_status", 1, &c.status));
+        }
+        let cells: Vec<Field<'_>> = extra
+            .element_von_mises
+            .as_deref()
+            .map(|v| field("element_von_mises", 1, v))
+            .into_iter()
+            .collect();
+        let data = VtuData {
+            displacement: Some(&body.displacement),
+            points: &points,
+            cells: &cells,
+        };
+        write_vtu(&path, &body.mesh, data)?;
         written.push(path);
     }
-    Ok(written)
+    Ok(())
 }
 
 /// A name usable as a file name on every platform: letters, digits, `-`, `_` and `.` are kept,

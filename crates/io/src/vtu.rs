@@ -6,7 +6,11 @@
 //! - `Cells`: the flat `connectivity`, the `offsets` (end of each cell in `connectivity`) and the
 //!   VTK cell `types`: 5 (`VTK_TRIANGLE`) for P1 and 22 (`VTK_QUADRATIC_TRIANGLE`) for P2, whose
 //!   node order (vertices, then the mid-side nodes of edges (0,1), (1,2), (2,0)) is the mesh's;
-//! - `PointData`: one array per nodal field, node-major (all components of node 0 first).
+//! - `PointData`: one array per nodal field, node-major (all components of node 0 first);
+//! - `CellData`: one array per element field, in cell order.
+//!
+//! A 9-component array is a 3×3 tensor, row-major (`xx xy xz yx yy yz zx zy zz`), which ParaView
+//! shows as a tensor (its components, eigenvalues and von Mises in the calculator).
 //!
 //! Arrays are written as ASCII text. The one exception is a data array holding a non-finite value
 //! (NaN or ±infinity): older VTK readers (ParaView before VTK 9.3 or so) parse ASCII numbers with
@@ -25,65 +29,56 @@ use contactdd_core::DIM;
 use crate::atomic::write_atomic;
 use crate::number::push_f64;
 
-/// A nodal field to write: `components` values per node, node-major
-/// (`values[node * components + c]`).
+/// A field to write, per node (point data) or per cell (cell data): `components` values per
+/// item, item-major (`values[item * components + c]`).
 #[derive(Clone, Copy, Debug)]
-pub struct PointField<'a> {
+pub struct Field<'a> {
     /// Array name shown by ParaView.
     pub name: &'a str,
-    /// Number of components per node (2-component fields are written padded to 3, with z = 0).
+    /// Number of components per item (2-component fields are written padded to 3, with z = 0).
     pub components: usize,
-    /// `num_nodes * components` values.
+    /// `items * components` values.
     pub values: &'a [f64],
 }
 
-/// Writes `mesh` as a `.vtu` file at `path`, with an optional nodal `displacement`
-/// (2 values per node, written as the 3-component vector field `"displacement"`) and nodal `fields`.
+/// The arrays of a `.vtu` file besides the mesh.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct VtuData<'a> {
+    /// Nodal displacement (2 values per node), written as the 3-component vector
+    /// `"displacement"`, the active vectors.
+    pub displacement: Option<&'a [f64]>,
+    /// Nodal fields.
+    pub points: &'a [Field<'a>],
+    /// Element fields.
+    pub cells: &'a [Field<'a>],
+}
+
+/// Writes `mesh` as a `.vtu` file at `path` with the arrays of `data`.
 ///
 /// The file is written by [`write_atomic`], so that a reader never sees a half-written file.
 /// Mismatched field lengths are [`ErrorKind::InvalidInput`] errors; see [`vtu_string`].
-pub fn write_vtu(
-    path: &Path,
-    mesh: &Mesh,
-    displacement: Option<&[f64]>,
-    fields: &[PointField<'_>],
-) -> std::io::Result<()> {
-    let text = vtu_string(mesh, displacement, fields)?;
+pub fn write_vtu(path: &Path, mesh: &Mesh, data: VtuData<'_>) -> std::io::Result<()> {
+    let text = vtu_string(mesh, data)?;
     write_atomic(path, text.as_bytes())
 }
 
 /// The text of the `.vtu` file that [`write_vtu`] writes.
 ///
-/// Errors ([`ErrorKind::InvalidInput`]) if `displacement` does not hold 2 values per node, or a
-/// field has zero components or not `components` values per node.
-pub fn vtu_string(
-    mesh: &Mesh,
-    displacement: Option<&[f64]>,
-    fields: &[PointField<'_>],
-) -> std::io::Result<String> {
+/// Errors ([`ErrorKind::InvalidInput`]) if the displacement does not hold 2 values per node, or a
+/// field has zero components or not `components` values per node (per cell).
+pub fn vtu_string(mesh: &Mesh, data: VtuData<'_>) -> std::io::Result<String> {
     let n = mesh.num_nodes();
-    let mut arrays: Vec<PointField<'_>> = Vec::with_capacity(fields.len() + 1);
-    if let Some(values) = displacement {
-        arrays.push(PointField {
+    let mut arrays: Vec<Field<'_>> = Vec::with_capacity(data.points.len() + 1);
+    if let Some(values) = data.displacement {
+        arrays.push(Field {
             name: "displacement",
             components: DIM,
             values,
         });
     }
-    arrays.extend_from_slice(fields);
-    for field in &arrays {
-        if field.components == 0 || Some(field.values.len()) != n.checked_mul(field.components) {
-            return Err(Error::new(
-                ErrorKind::InvalidInput,
-                format!(
-                    "field '{}': {} values for {n} nodes and {} components per node",
-                    field.name,
-                    field.values.len(),
-                    field.components
-                ),
-            ));
-        }
-    }
+    arrays.extend_from_slice(data.points);
+    check_lengths(&arrays, n, "nodes")?;
+    check_lengths(data.cells, mesh.num_cells(), "cells")?;
 
     let mut out = String::new();
     out.push_str("<?xml version=\"1.0\"?>\n");
@@ -99,26 +94,18 @@ pub fn vtu_string(
     );
 
     // Marking the displacement as the active vectors lets ParaView's "Warp By Vector" use it.
-    if displacement.is_some() {
+    if data.displacement.is_some() {
         out.push_str("      <PointData Vectors=\"displacement\">\n");
     } else {
         out.push_str("      <PointData>\n");
     }
-    for field in &arrays {
-        // 2D vectors are padded with z = 0 so that ParaView treats them as vectors.
-        let padded = if field.components == 2 {
-            3
-        } else {
-            field.components
-        };
-        let values = field.values.chunks(field.components).flat_map(|node| {
-            node.iter()
-                .copied()
-                .chain(std::iter::repeat(0.0).take(padded - field.components))
-        });
-        float_array(&mut out, Some(field.name), padded, values);
-    }
+    field_arrays(&mut out, &arrays);
     out.push_str("      </PointData>\n");
+    if !data.cells.is_empty() {
+        out.push_str("      <CellData>\n");
+        field_arrays(&mut out, data.cells);
+        out.push_str("      </CellData>\n");
+    }
 
     out.push_str("      <Points>\n");
     let points = mesh.nodes().iter().flat_map(|p| [p[0], p[1], 0.0]);
@@ -157,6 +144,43 @@ pub fn vtu_string(
     out.push_str("  </UnstructuredGrid>\n");
     out.push_str("</VTKFile>\n");
     Ok(out)
+}
+
+/// Errors unless every field has `components` > 0 values for each of the `count` items.
+fn check_lengths(fields: &[Field<'_>], count: usize, items: &str) -> std::io::Result<()> {
+    for field in fields {
+        if field.components == 0 || Some(field.values.len()) != count.checked_mul(field.components)
+        {
+            return Err(Error::new(
+                ErrorKind::InvalidInput,
+                format!(
+                    "field '{}': {} values for {count} {items} and {} components each",
+                    field.name,
+                    field.values.len(),
+                    field.components
+                ),
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// Writes one data array per field; 2D vectors are padded with z = 0 so that ParaView treats
+/// them as vectors.
+fn field_arrays(out: &mut String, fields: &[Field<'_>]) {
+    for field in fields {
+        let padded = if field.components == 2 {
+            3
+        } else {
+            field.components
+        };
+        let values = field.values.chunks(field.components).flat_map(|item| {
+            item.iter()
+                .copied()
+                .chain(std::iter::repeat(0.0).take(padded - field.components))
+        });
+        float_array(out, Some(field.name), padded, values);
+    }
 }
 
 /// Writes a `Float64` data array: ASCII if all values are finite, base64 binary otherwise.

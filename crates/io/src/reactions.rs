@@ -1,0 +1,113 @@
+//! Support reactions of a solved model: the force the supports exert on each body, per supported
+//! boundary and in total.
+//!
+//! Computed here, from the model and the displacement fields, so that every solver's result (DD or
+//! monolithic) gets the same numbers. On a supported DOF the residual `K u − f` is the support
+//! reaction plus the contact force at that node, if it is a contact node too; the nodal contact
+//! forces of the reported pressures (w σ_n n) are subtracted, so that a body's balance reads
+//! `applied load + reactions + contact force = 0` up to the solver's equilibrium residual.
+
+use contactdd_core::post::residual;
+use contactdd_core::{dof, Vector, DIM};
+use contactdd_ddm::solution::{BodyResult, PairResult};
+use contactdd_ddm::Model;
+
+/// The reaction on one supported boundary (or Gmsh node set) of a body.
+#[derive(Clone, Debug, PartialEq)]
+pub struct SupportReaction {
+    /// The boundary or node set name.
+    pub boundary: String,
+    /// Total force `[Rx, Ry]` the support exerts on the body's nodes on this boundary.
+    pub force: Vector,
+}
+
+/// The reactions of one body.
+#[derive(Clone, Debug, PartialEq)]
+pub struct BodyReactions {
+    /// Body name.
+    pub body: String,
+    /// One entry per supported boundary, in name order. A node on two supported boundaries (a
+    /// corner) counts in both, so these add up to `total` only when supports share no node.
+    pub supports: Vec<SupportReaction>,
+    /// Sum over every supported DOF of the body, each counted once.
+    pub total: Vector,
+}
+
+/// The reactions of every body of `model`, from the per-body fields `bodies` (same order as
+/// `model.bodies`) and the contact results `contact` (same order as `model.pairs`).
+///
+/// A boundary or node set counts as supported when every one of its nodes has a prescribed
+/// displacement component; its reaction sums the prescribed components of its nodes.
+pub fn reactions(
+    model: &Model,
+    bodies: &[BodyResult],
+    contact: &[PairResult],
+) -> Vec<BodyReactions> {
+    let contact_forces = nodal_contact_forces(model, contact);
+    model
+        .bodies
+        .iter()
+        .zip(bodies)
+        .zip(contact_forces)
+        .map(|((body, fields), fc)| {
+            let r = residual(&body.stiffness(), &fields.displacement, &body.load);
+            let reaction = |d: usize| r[d] - fc[d];
+            let fixed = |d: usize| body.constraints.get(d).is_some();
+            let mesh = &body.mesh;
+            let names = mesh.boundaries().keys().chain(mesh.node_sets().keys());
+            let supports = names
+                .filter_map(|name| {
+                    let nodes = mesh.boundary_nodes(name).ok()?;
+                    let held = |&v: &usize| (0..DIM).any(|c| fixed(dof(v, c)));
+                    (!nodes.is_empty() && nodes.iter().all(held)).then(|| SupportReaction {
+                        boundary: name.clone(),
+                        force: sum_fixed(nodes.iter().copied(), &fixed, &reaction),
+                    })
+                })
+                .collect();
+            BodyReactions {
+                body: body.name.clone(),
+                supports,
+                total: sum_fixed(0..mesh.num_nodes(), &fixed, &reaction),
+            }
+        })
+        .collect()
+}
+
+/// Σ over `nodes` and their prescribed components of `reaction(dof)`.
+fn sum_fixed(
+    nodes: impl Iterator<Item = usize>,
+    fixed: &impl Fn(usize) -> bool,
+    reaction: &impl Fn(usize) -> f64,
+) -> Vector {
+    let mut sum = [0.0; DIM];
+    for v in nodes {
+        for (c, s) in sum.iter_mut().enumerate() {
+            if fixed(dof(v, c)) {
+                *s += reaction(dof(v, c));
+            }
+        }
+    }
+    sum
+}
+
+/// Per body, the nodal contact forces w σ_n n of the reported pressures (2 per node).
+fn nodal_contact_forces(model: &Model, contact: &[PairResult]) -> Vec<Vec<f64>> {
+    let mut forces: Vec<Vec<f64>> = model
+        .bodies
+        .iter()
+        .map(|b| vec![0.0; b.load.len()])
+        .collect();
+    for (pair, p) in model.pairs.iter().zip(contact) {
+        for i in 0..p.side.len() {
+            let f = &mut forces[pair.bodies[p.side[i]]];
+            let wp = p.weight[i] * p.pressure[i];
+            // A point without a partner has no pressure (NaN-free by construction, but be safe).
+            if wp.is_finite() {
+                f[dof(p.node[i], 0)] += wp * p.nx[i];
+                f[dof(p.node[i], 1)] += wp * p.ny[i];
+            }
+        }
+    }
+    forces
+}

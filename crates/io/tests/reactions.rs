@@ -1,0 +1,127 @@
+//! Support reactions in `summary.json`, checked against the conservation law: on every body,
+//! applied load + support reactions + contact force = 0. The reactions come from the fields
+//! (K u − f on the supported DOFs), the contact force from the reported pressures (Σ w σ_n n), the
+//! load from the load vector: three independent computations.
+
+use std::path::Path;
+
+use contactdd_ddm::{prepare, solve, Hooks};
+use contactdd_io::output::{applied_load, summary_json};
+use serde_json::Value;
+
+/// Solves `text` to a tight tolerance and returns the model and `summary.json`.
+fn solved(text: &str) -> (contactdd_ddm::Model, Value) {
+    let mut loaded = contactdd_io::load_str(text, "case.toml", Path::new(".")).expect("valid");
+    loaded.settings.tol = 1e-10;
+    loaded.settings.max_iter = 2000;
+    let model = loaded.model;
+    let prepared = prepare(&model).expect("prepared");
+    let sol = solve(&model, &prepared, &loaded.settings, Hooks::default()).expect("solved");
+    assert!(sol.converged, "{:?}", sol.message);
+    let summary = summary_json(&model, &sol);
+    (model, summary)
+}
+
+fn vector(v: &Value) -> [f64; 2] {
+    [0, 1].map(|k| v[k].as_f64().expect("a number"))
+}
+
+/// Per body: applied load + total reaction + contact force of every pair on it, relative to the
+/// largest applied load of the model; returns the reactions per body for further checks.
+fn check_balance(model: &contactdd_ddm::Model, summary: &Value, tol: f64) -> Vec<[f64; 2]> {
+    let scale = model
+        .bodies
+        .iter()
+        .map(|b| applied_load(&b.load))
+        .fold(0.0f64, |m, f| m.max(f[0].hypot(f[1])));
+    let mut totals = Vec::new();
+    for (b, body) in model.bodies.iter().enumerate() {
+        let entry = &summary["reactions"][b];
+        assert_eq!(entry["body"], body.name.as_str());
+        let reaction = vector(&entry["total"]);
+        let mut sum = [0.0; 2];
+        for k in 0..2 {
+            sum[k] = applied_load(&body.load)[k] + reaction[k];
+        }
+        for pair in summary["contact"].as_array().expect("pairs") {
+            for side in 0..2 {
+                if pair["bodies"][side] == body.name.as_str() {
+                    let f = vector(&pair["force"][side]);
+                    sum[0] += f[0];
+                    sum[1] += f[1];
+                }
+            }
+        }
+        let residual = sum[0].hypot(sum[1]) / scale;
+        assert!(
+            residual <= tol,
+            "body {}: imbalance {residual:.2e}",
+            body.name
+        );
+        totals.push(reaction);
+    }
+    totals
+}
+
+#[test]
+fn notch_held_at_the_bottom_balances_load_reactions_and_contact() {
+    // The notch benchmark with the lower body held on its bottom instead of pressed there: the
+    // support carries the load 2100 · 4 = 8400 that the upper body puts on it.
+    let notch = std::fs::read_to_string(
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/notch.toml"),
+    )
+    .expect("examples/notch.toml");
+    let held = notch.replacen(
+        "supports = [{ boundary = \"right\", component = \"x\", value = 0.0 }]\n\
+         loads = [{ kind = \"pressure\", boundary = \"bottom\", value = 2100.0 }]",
+        "supports = [{ boundary = \"right\", component = \"x\" }, \
+         { boundary = \"bottom\", component = \"y\" }]",
+        1,
+    );
+    assert_ne!(held, notch, "the lower body's supports were replaced");
+    let (model, summary) = solved(&held);
+    let totals = check_balance(&model, &summary, 1e-8);
+    assert!((totals[0][1] - 8400.0).abs() <= 1e-6 * 8400.0, "{totals:?}");
+    // Both supported boundaries of the lower body are listed.
+    let supports: Vec<&str> = summary["reactions"][0]["supports"]
+        .as_array()
+        .expect("supports")
+        .iter()
+        .map(|s| s["boundary"].as_str().expect("a name"))
+        .collect();
+    assert_eq!(supports, ["bottom", "right"]);
+}
+
+#[test]
+fn offset_blocks_with_an_oblique_load_balance() {
+    // Different materials, non-matching meshes, the upper block off-centre and loaded obliquely:
+    // its x support takes the tangential load, the lower block's clamped bottom the rest.
+    let text = r#"
+        plane = "strain"
+        [materials.steel]
+        young = 2.1e5
+        poisson = 0.3
+        [materials.aluminium]
+        young = 7.0e4
+        poisson = 0.33
+        [[bodies]]
+        name = "base"
+        material = "steel"
+        mesh = { kind = "rectangle", x = [0.0, 2.0], y = [0.0, 0.5], nx = 16, ny = 4 }
+        supports = [{ boundary = "bottom", component = "both" }]
+        [[bodies]]
+        name = "block"
+        material = "aluminium"
+        mesh = { kind = "rectangle", x = [0.7, 1.6], y = [0.5, 1.0], nx = 7, ny = 4 }
+        supports = [{ boundary = "left", component = "x" }]
+        loads = [{ kind = "traction", boundary = "top", value = [30.0, -100.0] }]
+        [[contact]]
+        bodies = ["base", "block"]
+        boundaries = ["top", "bottom"]
+        penalty = { c = 0.05, h = 0.5 }
+    "#;
+    let (model, summary) = solved(text);
+    let totals = check_balance(&model, &summary, 1e-8);
+    // The tangential load 30 · 0.9 = 27 goes to the block's x support alone.
+    assert!((totals[1][0] + 27.0).abs() <= 1e-8 * 100.0, "{totals:?}");
+}
