@@ -138,6 +138,11 @@ pub fn pair_report(pairs: &[PairResult], theta: &[f64]) -> Vec<String> {
             pair.bodies[1],
             vec2(f1)
         ));
+        lines.push(format!(
+            "  largest penetration {}, gap under pressure {} (both 0 for exact contact)",
+            sig(pair.max_penetration()),
+            sig(pair.complementarity())
+        ));
     }
     lines
 }

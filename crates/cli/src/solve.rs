@@ -17,7 +17,7 @@ use contactdd_io::reactions::reactions;
 
 use crate::args::{Common, MonolithicArgs, SolveArgs};
 use crate::report::{
-    applied_loads, pair_report, progress, reaction_report, timing, IterationTable,
+    applied_loads, pair_report, progress, reaction_report, sig, timing, IterationTable,
 };
 use crate::{load, with_threads, Exit};
 
@@ -136,8 +136,16 @@ pub fn solve(args: SolveArgs) -> Result<Exit> {
             .with_context(|| format!("cannot write the results to '{}'", out.display()))?;
 
         let outcome = if sol.converged {
+            let updates = match sol.gap_tol {
+                Some(tol) => format!(
+                    "; augmented Lagrangian: {} multiplier updates, gap-tol {}",
+                    sol.updates,
+                    sig(tol)
+                ),
+                None => String::new(),
+            };
             format!(
-                "converged in {} iterations ({})",
+                "converged in {} iterations ({}{updates})",
                 sol.iterations,
                 settings.scheme()
             )

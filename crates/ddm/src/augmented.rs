@@ -45,12 +45,14 @@ pub struct Augmented<'p> {
 }
 
 /// Solves the model's contact problem with augmented Lagrangian enforcement on the pairs that
-/// ask for it (the others keep λ = 0, the penalty formulation).
+/// ask for it (the others keep λ = 0, the penalty formulation); the first inner solve starts from
+/// the interface loads `warm` when given.
 pub fn solve<'p>(
     model: &Model,
     prepared: &'p Prepared,
     settings: &Settings,
     hooks: Hooks<'_>,
+    warm: Option<&[f64]>,
 ) -> Augmented<'p> {
     let mut interface = prepared.interface.clone();
     let augmented: Vec<bool> = interface
@@ -61,7 +63,7 @@ pub fn solve<'p>(
     let m = interface.len();
     let mut history: Vec<Record> = Vec::new();
     let mut memory = Anderson::new(ANDERSON_DEPTH);
-    let (mut lambda, mut warm) = (vec![0.0; m], None::<Vec<f64>>);
+    let (mut lambda, mut warm) = (vec![0.0; m], warm.map(<[f64]>::to_vec));
     let mut gap_tol = settings.gap_tol.unwrap_or(f64::NAN);
     // The converged inner solve closest to the Signorini conditions so far: what the loop
     // returns when it cannot meet the tolerance.

@@ -94,6 +94,12 @@ impl Coarse {
         }
     }
 
+    /// Scales the bodies' loads by `factor` (a load step).
+    pub fn set_load_factor(&mut self, factor: f64) {
+        self.chains.set_load_factor(factor);
+        self.all.set_load_factor(factor);
+    }
+
     /// Number of coarse unknowns in `mode`.
     pub fn len(&self, mode: CoarseMode) -> usize {
         match mode {
@@ -135,8 +141,10 @@ struct FloatingModes {
     body: Vec<usize>,
     /// ρ_jq for every contact point j and free mode q of its body.
     rho: Vec<Vec<f64>>,
-    /// R_qᵀ f for every coarse unknown.
+    /// R_qᵀ f for every coarse unknown, at the load factor.
     load: Vec<f64>,
+    /// R_qᵀ f at load factor 1.
+    load_full: Vec<f64>,
 }
 
 impl FloatingModes {
@@ -181,8 +189,13 @@ impl FloatingModes {
             range,
             body: interface.points.iter().map(|p| p.body).collect(),
             rho,
+            load_full: load.clone(),
             load,
         }
+    }
+
+    fn set_load_factor(&mut self, factor: f64) {
+        self.load = self.load_full.iter().map(|v| factor * v).collect();
     }
 
     fn len(&self) -> usize {

@@ -37,9 +37,13 @@ pub struct CondensedBody {
     d0: Vec<f64>,
     /// C₀ = Nᵀ K₀⁻¹ N.
     c0: Mat<f64>,
-    /// f₀ = Nᵀ K₀⁻¹ f (with the prescribed displacements).
+    /// f₀ = Nᵀ K₀⁻¹ f (with the prescribed displacements), at the load factor.
     f0: Vec<f64>,
+    /// f₀ at load factor 1.
+    f0_full: Vec<f64>,
     load: Vec<f64>,
+    /// The factor on the loads and prescribed displacements (1: the problem as given).
+    factor: f64,
 }
 
 /// The cached factorisation of the reduced Robin matrix for one φ.
@@ -112,7 +116,7 @@ impl CondensedBody {
         );
         let c0 = y.transpose() * &y;
         let x = op.solve(&body.load)?;
-        let f0 = nodes
+        let f0: Vec<f64> = nodes
             .iter()
             .zip(&normals)
             .map(|(&v, n)| dot(*n, node_vector(&x, v)))
@@ -123,8 +127,10 @@ impl CondensedBody {
             normals,
             d0,
             c0,
+            f0_full: f0.clone(),
             f0,
             load: body.load.clone(),
+            factor: 1.0,
         })
     }
 
@@ -152,6 +158,13 @@ impl CondensedBody {
     /// f₀ = Nᵀ K₀⁻¹ f: the normal displacements under the body's load alone.
     pub fn free_response(&self) -> &[f64] {
         &self.f0
+    }
+
+    /// Scales the loads and prescribed displacements by `factor` (a load step): f₀ is linear
+    /// in both.
+    pub fn set_load_factor(&mut self, factor: f64) {
+        self.factor = factor;
+        self.f0 = self.f0_full.iter().map(|v| factor * v).collect();
     }
 
     /// The factorised operator.
@@ -238,14 +251,24 @@ impl CondensedBody {
         Ok(())
     }
 
-    /// The full displacement K₀⁻¹(f + N T) for interface load `t_load`.
+    /// The full displacement K₀⁻¹(λf + N T) for interface load `t_load`, with the prescribed
+    /// displacements times λ (the load factor).
     pub fn recover(&self, t_load: &[f64]) -> Result<Vec<f64>, BodyError> {
-        let mut f = self.load.clone();
+        let mut f: Vec<f64> = self.load.iter().map(|v| self.factor * v).collect();
         for ((&v, n), &t) in self.nodes.iter().zip(&self.normals).zip(t_load) {
             for c in 0..DIM {
                 f[dof(v, c)] += n[c] * t;
             }
         }
-        self.op.solve(&f)
+        let mut u = self.op.solve(&f)?;
+        if self.factor != 1.0 {
+            // The solve imposes the prescribed values themselves; the field they cause alone
+            // (zero load) scales the rest of the way.
+            let g = self.op.solve(&vec![0.0; f.len()])?;
+            u.iter_mut()
+                .zip(&g)
+                .for_each(|(u, g)| *u += (self.factor - 1.0) * g);
+        }
+        Ok(u)
     }
 }

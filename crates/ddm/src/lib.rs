@@ -27,6 +27,7 @@ pub mod relaxation;
 pub mod robin_sweep;
 pub mod solution;
 pub mod solver;
+pub mod steps;
 pub mod sweep;
 
 pub use error::SetupError;
@@ -37,5 +38,5 @@ pub use monolithic::{solve_monolithic, MonolithicSolution};
 pub use profile::GapProfile;
 pub use relaxation::Gamma;
 pub use solution::Solution;
-pub use solver::{prepare, solve, Prepared};
+pub use solver::{prepare, solve, solve_from, Prepared};
 pub use sweep::{sweep, sweep_with_cancel, SweepRun};

@@ -11,7 +11,7 @@ use crate::coarse::Coarse;
 use crate::condensed::CondensedBody;
 use crate::contact::Interface;
 use crate::error::SetupError;
-use crate::iteration::{iterate, Hooks, Settings, Stop};
+use crate::iteration::{iterate_on, Hooks, Settings, Stop};
 use crate::model::Model;
 use crate::solution::{body_results, pair_results, stop_message, Solution};
 
@@ -28,6 +28,17 @@ pub struct Prepared {
     pub coarse: Coarse,
     /// Setup wall times, seconds.
     pub timing: Vec<(String, f64)>,
+}
+
+impl Prepared {
+    /// Scales every body's loads and prescribed displacements by `factor` (1: the problem as
+    /// given): the load steps of [`crate::steps`] reuse one factorisation.
+    pub fn set_load_factor(&mut self, factor: f64) {
+        for body in &mut self.bodies {
+            body.set_load_factor(factor);
+        }
+        self.coarse.set_load_factor(factor);
+    }
 }
 
 /// Builds the contact geometry and factorises and condenses every body (in parallel).
@@ -75,6 +86,18 @@ pub fn solve(
     settings: &Settings,
     hooks: Hooks<'_>,
 ) -> Result<Solution, SetupError> {
+    solve_from(model, prepared, settings, hooks, None)
+}
+
+/// [`solve`], with the interface Newton method starting from the interface loads `warm` of an
+/// earlier solve of the same prepared model ([`Solution::interface_loads`]) when given.
+pub fn solve_from(
+    model: &Model,
+    prepared: &Prepared,
+    settings: &Settings,
+    hooks: Hooks<'_>,
+    warm: Option<&[f64]>,
+) -> Result<Solution, SetupError> {
     if !(settings.tol > 0.0 && settings.tol.is_finite()) {
         return Err(SetupError::Solver(format!(
             "tolerance must be positive, got {}",
@@ -105,10 +128,10 @@ pub fn solve(
         }
     }
     let (outcome, interface, updates, gap_tol) = if model.is_augmented() {
-        let a = crate::augmented::solve(model, prepared, settings, hooks);
+        let a = crate::augmented::solve(model, prepared, settings, hooks, warm);
         (a.outcome, a.interface, a.updates, Some(a.gap_tol))
     } else {
-        let outcome = iterate(prepared, settings, hooks);
+        let outcome = iterate_on(prepared, &prepared.interface, warm, settings, hooks);
         (outcome, Cow::Borrowed(&prepared.interface), 0, None)
     };
     let t = Instant::now();
@@ -161,6 +184,7 @@ pub fn solve(
         equilibrium,
         updates,
         gap_tol,
+        interface_loads: outcome.t_load,
         timing,
     })
 }

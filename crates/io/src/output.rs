@@ -120,6 +120,9 @@ pub fn summary_json(model: &Model, sol: &Solution) -> Value {
         "history": history,
         "bodies": bodies_json(model),
         "contact": contact_json(&sol.contact),
+        "enforcement": model.pairs.iter().map(|p| p.enforcement.to_string()).collect::<Vec<_>>(),
+        "updates": sol.updates,
+        "gap_tol": sol.gap_tol.map(json_number),
         "reactions": reactions_json(model, &sol.bodies, &sol.contact),
         "timing_s": timing,
         "version": env!("CARGO_PKG_VERSION"),
@@ -210,6 +213,8 @@ fn contact_json(pairs: &[PairResult]) -> Value {
                 "pressure": json_numbers(&p.pressure),
                 "status": status,
                 "force": [json_numbers(&p.force_on(0)), json_numbers(&p.force_on(1))],
+                "max_penetration": json_number(p.max_penetration()),
+                "complementarity": json_number(p.complementarity()),
             })
         })
         .collect()

@@ -1,0 +1,63 @@
+//! Load steps: the problem solved at a sequence of load factors (every load and prescribed
+//! displacement times the factor), each step starting from the interface loads of the one
+//! before. The bodies are factorised once: a load factor only scales their condensed loads.
+//!
+//! Contact is nonlinear, so the steps give the load–displacement curve of the problem, and reach
+//! a full load gradually where the contact zone changes much.
+
+use crate::error::SetupError;
+use crate::iteration::{Hooks, Settings};
+use crate::model::Model;
+use crate::solution::Solution;
+use crate::solver::{solve_from, Prepared};
+
+/// The load factors of `count` equal steps up to the full load: 1/count, 2/count, …, 1.
+pub fn equal_steps(count: usize) -> Vec<f64> {
+    (1..=count).map(|k| k as f64 / count as f64).collect()
+}
+
+/// Checks a list of load factors: at least one, each finite and positive.
+pub fn check_factors(factors: &[f64]) -> Result<(), String> {
+    if factors.is_empty() {
+        return Err("needs at least one load factor".into());
+    }
+    match factors.iter().find(|f| !(f.is_finite() && **f > 0.0)) {
+        Some(f) => Err(format!("load factors must be positive and finite, got {f}")),
+        None => Ok(()),
+    }
+}
+
+/// Solves the model at every load factor in turn, calling `on_step(step, factor, solution)`
+/// after each. Stops after the first step that does not converge (its solution is the last
+/// one returned). The prepared model is left at load factor 1.
+pub fn solve_steps(
+    model: &Model,
+    prepared: &mut Prepared,
+    settings: &Settings,
+    factors: &[f64],
+    hooks: Hooks<'_>,
+    on_step: &mut dyn FnMut(usize, f64, &Solution),
+) -> Result<Vec<(f64, Solution)>, SetupError> {
+    check_factors(factors).map_err(SetupError::Solver)?;
+    let mut steps: Vec<(f64, Solution)> = Vec::with_capacity(factors.len());
+    for (k, &factor) in factors.iter().enumerate() {
+        prepared.set_load_factor(factor);
+        let warm = steps.last().map(|(_, s)| s.interface_loads.as_slice());
+        let solution = solve_from(model, prepared, settings, hooks, warm);
+        let solution = match solution {
+            Ok(s) => s,
+            Err(e) => {
+                prepared.set_load_factor(1.0);
+                return Err(e);
+            }
+        };
+        on_step(k + 1, factor, &solution);
+        let converged = solution.converged;
+        steps.push((factor, solution));
+        if !converged {
+            break;
+        }
+    }
+    prepared.set_load_factor(1.0);
+    Ok(steps)
+}
