@@ -3,9 +3,9 @@
 //! of models whose loads and prescribed displacements are scaled by hand.
 
 use contactdd::cases;
-use contactdd::fem::Component;
 use contactdd::ddm::steps::{equal_steps, solve_steps};
 use contactdd::ddm::{prepare, solve, Hooks, Model, Settings, Solution};
+use contactdd::fem::Component;
 
 fn steps(model: &Model, factors: &[f64]) -> Vec<(f64, Solution)> {
     let mut prepared = prepare(model).unwrap();

@@ -293,13 +293,22 @@ pub fn sweep_csv(runs: &[SweepRun]) -> String {
 }
 
 /// Writes a solve's result folder (created if needed) as a set ([`write_set`]): `contact.csv`,
-/// `history.csv` and `<body>.vtu` per body, then `summary.json` with the manifest of those files.
+/// `history.csv`, `<body>.vtu` per body and `results.pvd` (the ParaView collection of the bodies),
+/// then `summary.json` with the manifest of those files.
 /// The previous set in `dir` is removed first. Returns the paths written, `summary.json` last.
 pub fn write_results(dir: &Path, model: &Model, sol: &Solution) -> std::io::Result<Vec<PathBuf>> {
     write_set(dir, summary_json(model, sol), |set| {
         set.write("contact.csv", contact_csv(sol).as_bytes())?;
         set.write("history.csv", history_csv(sol).as_bytes())?;
-        write_solution_vtus(set, model, &sol.bodies, &sol.contact)
+        let before = set.len();
+        write_solution_vtus(set, model, &sol.bodies, &sol.contact)?;
+        let parts = set.names_since(before);
+        let entries: Vec<(f64, usize, String)> = parts
+            .into_iter()
+            .enumerate()
+            .map(|(part, name)| (1.0, part, name))
+            .collect();
+        set.write("results.pvd", crate::steps::pvd(&entries).as_bytes())
     })
 }
 
@@ -334,7 +343,7 @@ pub fn write_monolithic_results(
 /// made unique. [`write_solution_vtus`] adds the contact point data and the element von Mises.
 pub fn write_body_vtus(dir: &Path, bodies: &[BodyResult]) -> std::io::Result<Vec<PathBuf>> {
     let mut written = Vec::with_capacity(bodies.len());
-    write_vtus(dir, bodies, |_, _| Ok(Extra::default()), &mut written)?;
+    write_vtus(dir, "", bodies, |_, _| Ok(Extra::default()), &mut written)?;
     Ok(written)
 }
 
@@ -349,10 +358,23 @@ pub fn write_solution_vtus(
     bodies: &[BodyResult],
     contact: &[PairResult],
 ) -> std::io::Result<()> {
+    write_solution_vtus_as(set, model, bodies, contact, "")
+}
+
+/// [`write_solution_vtus`] with `suffix` after each body's file name (`<body><suffix>.vtu`, e.g.
+/// the `-step3` of a load step).
+pub fn write_solution_vtus_as(
+    set: &mut ResultSet,
+    model: &Model,
+    bodies: &[BodyResult],
+    contact: &[PairResult],
+    suffix: &str,
+) -> std::io::Result<()> {
     let mut written = Vec::with_capacity(bodies.len());
     let dir = set.dir().to_path_buf();
     let result = write_vtus(
         &dir,
+        suffix,
         bodies,
         |b, body| {
             let elastic = model.bodies.get(b).ok_or_else(|| {
@@ -386,14 +408,16 @@ struct Extra {
 /// Writes the `.vtu` of each body, pushing each path to `written` once the file is there.
 fn write_vtus(
     dir: &Path,
+    suffix: &str,
     bodies: &[BodyResult],
     extra: impl Fn(usize, &BodyResult) -> std::io::Result<Extra>,
     written: &mut Vec<PathBuf>,
 ) -> std::io::Result<()> {
     for (b, body) in bodies.iter().enumerate() {
-        let mut path = dir.join(format!("{}.vtu", safe_file_name(&body.name)));
+        let name = safe_file_name(&body.name);
+        let mut path = dir.join(format!("{name}{suffix}.vtu"));
         if written.contains(&path) {
-            path = dir.join(format!("{}-{b}.vtu", safe_file_name(&body.name)));
+            path = dir.join(format!("{name}-{b}{suffix}.vtu"));
         }
         let extra = extra(b, body)?;
         let component = |k: usize| body.stress.iter().map(|s| s[k]).collect::<Vec<f64>>();

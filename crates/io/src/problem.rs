@@ -319,6 +319,13 @@ pub struct SolverSpec {
     /// Augmented Lagrangian pairs: the cap on multiplier updates ≥ 1 (default 100).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub max_updates: Option<usize>,
+    /// Load steps: a number N of equal steps (load factors 1/N, 2/N, …, 1), or the list of load
+    /// factors (each > 0). Absent: one solve at the full load.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub load_steps: Option<LoadStepsSpec>,
+    /// A boundary whose mean displacement the load steps report: `{ body, boundary }`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub monitor: Option<MonitorSpec>,
     /// Initial normal displacement u⁰ₙ on all contact points (default 1e-4).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub u0: Option<f64>,
@@ -328,6 +335,26 @@ pub struct SolverSpec {
     /// Worker threads ≥ 1 (default: the machine's).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub threads: Option<usize>,
+}
+
+/// `load-steps`: a number of equal steps, or the list of load factors.
+#[derive(Clone, Debug, PartialEq, Deserialize, Serialize)]
+#[serde(untagged)]
+pub enum LoadStepsSpec {
+    /// N equal steps.
+    Count(usize),
+    /// The load factors.
+    Factors(Vec<f64>),
+}
+
+/// `monitor`: the boundary of a body whose mean displacement the load steps report.
+#[derive(Clone, Debug, PartialEq, Eq, Deserialize, Serialize)]
+#[serde(deny_unknown_fields, rename_all = "kebab-case")]
+pub struct MonitorSpec {
+    /// Body name.
+    pub body: String,
+    /// Boundary name of that body.
+    pub boundary: String,
 }
 
 /// `accelerator`: how the sweeps' outputs are combined.

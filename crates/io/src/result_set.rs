@@ -71,6 +71,25 @@ impl ResultSet {
         Ok(())
     }
 
+    /// Number of data files written so far.
+    pub fn len(&self) -> usize {
+        self.written.len()
+    }
+
+    /// True if no data file is written yet.
+    pub fn is_empty(&self) -> bool {
+        self.written.is_empty()
+    }
+
+    /// The file names of the data files written after the first `start`.
+    pub fn names_since(&self, start: usize) -> Vec<String> {
+        self.written
+            .iter()
+            .skip(start)
+            .filter_map(|p| Some(p.file_name()?.to_str()?.to_string()))
+            .collect()
+    }
+
     /// Adds files already written into the set's folder (e.g. by [`crate::output::write_body_vtus`]).
     pub fn record(&mut self, paths: impl IntoIterator<Item = PathBuf>) {
         self.written.extend(paths);

@@ -35,6 +35,7 @@ use contactdd_core::{
 };
 
 use contactdd_ddm::iteration::ANDERSON_DEPTH;
+use contactdd_ddm::steps::{check_factors, equal_steps};
 use contactdd_ddm::{
     Accelerator, CoarseMode, ContactPair, Gamma, GapProfile, Model, Penalty, Settings, SetupError,
 };
@@ -42,8 +43,9 @@ use contactdd_ddm::{
 use crate::error::LoadError;
 use crate::number::format_f64 as num;
 use crate::problem::{
-    AcceleratorSpec, BodySpec, CoarseSpec, ContactSpec, GammaSpec, GapSpec, LoadSpec, MaterialSpec,
-    MeshSpec, PenaltySpec, Problem, SolverSpec, SupportSpec,
+    AcceleratorSpec, BodySpec, CoarseSpec, ContactSpec, GammaSpec, GapSpec, LoadSpec,
+    LoadStepsSpec, MaterialSpec, MeshSpec, MonitorSpec, PenaltySpec, Problem, SolverSpec,
+    SupportSpec,
 };
 
 /// Largest number of rectangle cells (nx · ny) per body: far beyond what the solver handles, but it
@@ -54,6 +56,9 @@ pub const MAX_RECTANGLE_CELLS: usize = 4_000_000;
 /// for: more than any machine this runs on, low enough that a typo cannot make the thread pool
 /// exhaust the system.
 pub const MAX_THREADS: usize = 1024;
+
+/// The most load steps a file may ask for: each writes a set of VTU files.
+pub const MAX_LOAD_STEPS: usize = 10_000;
 
 /// A resolved problem: the file's data and the solver input built from it.
 #[derive(Clone, Debug)]
@@ -66,6 +71,19 @@ pub struct Loaded {
     pub settings: Settings,
     /// Requested number of worker threads (`None`: the machine's).
     pub threads: Option<usize>,
+    /// The load factors of the load steps (`None`: one solve at the full load).
+    pub steps: Option<Vec<f64>>,
+    /// The boundary whose mean displacement the load steps report.
+    pub monitor: Option<Monitor>,
+}
+
+/// A boundary of a body, by index and name (checked to exist).
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Monitor {
+    /// Body index.
+    pub body: usize,
+    /// Boundary name.
+    pub boundary: String,
 }
 
 /// Reads, parses and resolves a TOML problem file. Relative mesh paths resolve against the file's
@@ -136,11 +154,67 @@ fn resolve_named(
         .clone()
         .unwrap_or_else(|| default_name.to_string());
     let model = builder.into_model(&name)?;
+    let steps = problem
+        .solver
+        .load_steps
+        .as_ref()
+        .map(load_steps)
+        .transpose()?;
+    let monitor = problem
+        .solver
+        .monitor
+        .as_ref()
+        .map(|m| monitor(&model, m))
+        .transpose()?;
     Ok(Loaded {
         model,
         settings,
         threads: problem.solver.threads,
+        steps,
+        monitor,
         problem,
+    })
+}
+
+/// The load factors of `load-steps`.
+fn load_steps(spec: &LoadStepsSpec) -> Result<Vec<f64>, SetupError> {
+    let factors = match spec {
+        LoadStepsSpec::Count(0) => {
+            return Err(solver_error("load-steps", "must be at least 1, got 0"))
+        }
+        LoadStepsSpec::Count(n) if *n > MAX_LOAD_STEPS => {
+            return Err(solver_error(
+                "load-steps",
+                format!("at most {MAX_LOAD_STEPS} steps, got {n}"),
+            ))
+        }
+        LoadStepsSpec::Count(n) => equal_steps(*n),
+        LoadStepsSpec::Factors(f) if f.len() > MAX_LOAD_STEPS => {
+            return Err(solver_error(
+                "load-steps",
+                format!("at most {MAX_LOAD_STEPS} steps, got {}", f.len()),
+            ))
+        }
+        LoadStepsSpec::Factors(f) => f.clone(),
+    };
+    check_factors(&factors).map_err(|m| solver_error("load-steps", m))?;
+    Ok(factors)
+}
+
+/// The body index of a `monitor`, whose boundary must exist.
+fn monitor(model: &Model, spec: &MonitorSpec) -> Result<Monitor, SetupError> {
+    let body = model
+        .bodies
+        .iter()
+        .position(|b| b.name == spec.body)
+        .ok_or_else(|| solver_error("monitor", format!("no body named '{}'", spec.body)))?;
+    model.bodies[body]
+        .mesh
+        .boundary(&spec.boundary)
+        .map_err(|e| solver_error("monitor", format!("body '{}': {e}", spec.body)))?;
+    Ok(Monitor {
+        body,
+        boundary: spec.boundary.clone(),
     })
 }
 

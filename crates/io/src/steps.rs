@@ -1,0 +1,193 @@
+//! The result folder of a load-step run (`[solver] load-steps`): one row per step in
+//! `steps.csv` and in `summary.json`'s `steps`, one `<body>-step<k>.vtu` per body and step, and
+//! `results.pvd`, the ParaView collection of every body at every step (the load factor is its
+//! time). `summary.json`, `contact.csv` and `history.csv` describe the last step.
+
+use std::path::{Path, PathBuf};
+
+use serde_json::{json, Value};
+
+use contactdd_core::dof;
+use contactdd_ddm::solution::{BodyResult, PairResult};
+use contactdd_ddm::{Model, Solution};
+
+use crate::number::format_f64 as num;
+use crate::output::{
+    contact_csv, history_csv, json_number, safe_file_name, summary_json, write_solution_vtus_as,
+};
+use crate::result_set::write_set;
+use crate::setup::Monitor;
+
+/// What one step reports per pair: the resultant contact force on the pair's first body, the
+/// length of its closed contact zone (the quadrature weights of its closed points) and the
+/// largest contact pressure |σn| of either side.
+struct PairStep {
+    force: [f64; 2],
+    contact_length: f64,
+    max_pressure: f64,
+}
+
+impl PairStep {
+    fn new(pair: &PairResult) -> PairStep {
+        let side0 = (0..pair.side.len()).filter(|&i| pair.side[i] == 0);
+        PairStep {
+            force: pair.force_on(0),
+            contact_length: side0
+                .filter(|&i| pair.closed[i])
+                .map(|i| pair.weight[i])
+                .sum(),
+            max_pressure: pair.pressure.iter().fold(0.0, |m: f64, p| m.max(p.abs())),
+        }
+    }
+}
+
+/// The mean displacement of the monitored boundary (NaN if it has no nodes).
+pub fn monitored_displacement(bodies: &[BodyResult], monitor: &Monitor) -> [f64; 2] {
+    let Some(body) = bodies.get(monitor.body) else {
+        return [f64::NAN; 2];
+    };
+    let nodes = body
+        .mesh
+        .boundary_nodes(&monitor.boundary)
+        .unwrap_or_default();
+    let n = nodes.len() as f64;
+    let mean = |c: usize| {
+        nodes
+            .iter()
+            .map(|&v| body.displacement[dof(v, c)])
+            .sum::<f64>()
+            / n
+    };
+    [mean(0), mean(1)]
+}
+
+/// `steps.csv`: `step,factor,converged,iterations`, then per pair `<pair>_force_x`,
+/// `<pair>_force_y` (on its first body), `<pair>_contact_length`, `<pair>_max_pressure`, and with a
+/// monitor `monitor_ux,monitor_uy`.
+pub fn steps_csv(model: &Model, steps: &[(f64, Solution)], monitor: Option<&Monitor>) -> String {
+    let mut head = vec![
+        "step".to_string(),
+        "factor".into(),
+        "converged".into(),
+        "iterations".into(),
+    ];
+    for pair in &model.pairs {
+        let name = safe_file_name(&pair.name);
+        for what in ["force_x", "force_y", "contact_length", "max_pressure"] {
+            head.push(format!("{name}_{what}"));
+        }
+    }
+    if monitor.is_some() {
+        head.extend(["monitor_ux".to_string(), "monitor_uy".into()]);
+    }
+    let mut out = head.join(",") + "\n";
+    for (k, (factor, sol)) in steps.iter().enumerate() {
+        let mut row = vec![
+            (k + 1).to_string(),
+            num(*factor),
+            sol.converged.to_string(),
+            sol.iterations.to_string(),
+        ];
+        for pair in &sol.contact {
+            let s = PairStep::new(pair);
+            row.extend([s.force[0], s.force[1], s.contact_length, s.max_pressure].map(num));
+        }
+        if let Some(m) = monitor {
+            row.extend(monitored_displacement(&sol.bodies, m).map(num));
+        }
+        out += &(row.join(",") + "\n");
+    }
+    out
+}
+
+/// The `steps` array of `summary.json`: per step its number, factor, convergence, iterations,
+/// per pair the same values as `steps.csv`, and the monitored displacement.
+pub fn steps_json(steps: &[(f64, Solution)], monitor: Option<&Monitor>) -> Value {
+    steps
+        .iter()
+        .enumerate()
+        .map(|(k, (factor, sol))| {
+            let pairs: Vec<Value> = sol
+                .contact
+                .iter()
+                .map(|pair| {
+                    let s = PairStep::new(pair);
+                    json!({
+                        "name": pair.name,
+                        "force": s.force.map(json_number),
+                        "contact_length": json_number(s.contact_length),
+                        "max_pressure": json_number(s.max_pressure),
+                    })
+                })
+                .collect();
+            json!({
+                "step": k + 1,
+                "factor": json_number(*factor),
+                "converged": sol.converged,
+                "iterations": sol.iterations,
+                "pairs": pairs,
+                "monitor": monitor.map(|m| monitored_displacement(&sol.bodies, m).map(json_number)),
+            })
+        })
+        .collect()
+}
+
+/// A ParaView collection (`.pvd`) of `(time, part, file)` entries.
+pub fn pvd(entries: &[(f64, usize, String)]) -> String {
+    let mut out = String::from(
+        "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"0.1\">\n  <Collection>\n",
+    );
+    for (time, part, file) in entries {
+        out += &format!(
+            "    <DataSet timestep=\"{}\" part=\"{part}\" file=\"{}\"/>\n",
+            num(*time),
+            xml_escape(file)
+        );
+    }
+    out + "  </Collection>\n</VTKFile>\n"
+}
+
+fn xml_escape(s: &str) -> String {
+    s.replace('&', "&amp;")
+        .replace('"', "&quot;")
+        .replace('<', "&lt;")
+        .replace('>', "&gt;")
+}
+
+/// Writes the result folder of a load-step run as a set (see the module docs). Returns the paths
+/// written, `summary.json` last.
+pub fn write_step_results(
+    dir: &Path,
+    model: &Model,
+    steps: &[(f64, Solution)],
+    monitor: Option<&Monitor>,
+) -> std::io::Result<Vec<PathBuf>> {
+    let Some((_, last)) = steps.last() else {
+        return Err(std::io::Error::new(
+            std::io::ErrorKind::InvalidInput,
+            "no load step to write",
+        ));
+    };
+    let mut summary = summary_json(model, last);
+    summary["steps"] = steps_json(steps, monitor);
+    write_set(dir, summary, |set| {
+        set.write("contact.csv", contact_csv(last).as_bytes())?;
+        set.write("history.csv", history_csv(last).as_bytes())?;
+        set.write("steps.csv", steps_csv(model, steps, monitor).as_bytes())?;
+        let mut entries = Vec::new();
+        for (k, (factor, sol)) in steps.iter().enumerate() {
+            let before = set.len();
+            write_solution_vtus_as(
+                set,
+                model,
+                &sol.bodies,
+                &sol.contact,
+                &format!("-step{}", k + 1),
+            )?;
+            for (part, name) in set.names_since(before).into_iter().enumerate() {
+                entries.push((*factor, part, name));
+            }
+        }
+        set.write("results.pvd", pvd(&entries).as_bytes())
+    })
+}
