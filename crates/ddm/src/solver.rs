@@ -33,6 +33,7 @@ pub struct Prepared {
 pub fn prepare(model: &Model) -> Result<Prepared, SetupError> {
     let t = Instant::now();
     let interface = Interface::new(model)?;
+    crate::contact_check::refuse(&crate::contact_check::check(model, &interface))?;
     let t_contact = t.elapsed().as_secs_f64();
     let t = Instant::now();
     // One level of parallelism: over bodies when there are several, inside faer otherwise.
