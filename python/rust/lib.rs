@@ -18,7 +18,7 @@ use pyo3::types::{PyDict, PyList};
 use contactdd_core::Order;
 use contactdd_ddm::benchmark::Notch;
 use contactdd_ddm::{Gamma, Hooks, Method, Settings, SetupError};
-use contactdd_io::setup::ModelBuilder;
+use contactdd_io::setup::{ModelBuilder, MAX_RECTANGLE_CELLS};
 
 mod convert;
 mod error;
@@ -26,7 +26,8 @@ mod problem;
 mod results;
 
 use error::{
-    convergence_error, io_error_type, panic_error, setup_error, ContactddError, ConvergenceError,
+    convergence_error, convergence_error_type, io_error_type, panic_error, setup_error,
+    ContactddError,
 };
 use problem::{gamma, gamma_to_py, GammaArg, Overrides, Problem};
 use results::{Body, Contact, MonolithicResult, SolveResult};
@@ -320,6 +321,18 @@ fn notch_benchmark(nx: usize, ny: usize, order: &str) -> PyResult<Problem> {
             message: e,
         })
     })?;
+    // The problem file's limit, checked before the meshes are allocated.
+    if nx
+        .checked_mul(ny)
+        .map_or(true, |cells| cells > MAX_RECTANGLE_CELLS)
+    {
+        return Err(setup_error(SetupError::Invalid {
+            key: "nx, ny".into(),
+            message: format!(
+                "{nx} × {ny} cells per block is more than the limit of {MAX_RECTANGLE_CELLS}"
+            ),
+        }));
+    }
     let notch = Notch {
         nx,
         ny,
@@ -359,7 +372,7 @@ fn _contactdd(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(monolithic, m)?)?;
     m.add_function(wrap_pyfunction!(notch_benchmark, m)?)?;
     m.add("ContactddError", py.get_type::<ContactddError>())?;
-    m.add("ConvergenceError", py.get_type::<ConvergenceError>())?;
+    m.add("ConvergenceError", convergence_error_type(py)?)?;
     m.add("ContactddIOError", io_error_type(py)?)?;
     m.add(
         "METHODS",
