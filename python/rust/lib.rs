@@ -12,11 +12,13 @@ use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::Arc;
 use std::time::Duration;
 
+use pyo3::exceptions::{PyRuntimeError, PyUserWarning};
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList};
 
 use contactdd_core::Order;
 use contactdd_ddm::benchmark::Notch;
+use contactdd_ddm::contact_check;
 use contactdd_ddm::{Gamma, Hooks, Method, Settings, SetupError};
 use contactdd_io::setup::{ModelBuilder, MAX_RECTANGLE_CELLS};
 
@@ -171,17 +173,22 @@ fn solve(
     let (out, interrupt) = run_interruptible(py, move |cancel| {
         with_threads(threads, || {
             let prepared = contactdd_ddm::prepare(&m)?;
+            let findings = contact_check::check(&m, &prepared.interface);
             let hooks = Hooks {
                 on_iteration: None,
                 cancel: Some(cancel),
             };
-            contactdd_ddm::solve(&m, &prepared, &settings, hooks)
+            Ok((
+                findings,
+                contactdd_ddm::solve(&m, &prepared, &settings, hooks)?,
+            ))
         })
     })?;
     if let Some(e) = interrupt {
         return Err(e);
     }
-    let sol = out.map_err(setup_error)?;
+    let (findings, sol) = out.map_err(setup_error)?;
+    warn_contact(py, &findings)?;
     let result = SolveResult::new(py, model, sol)?;
     let (converged, message) = (result.is_converged(), result.failure_message());
     let result = Py::new(py, result)?;
@@ -189,6 +196,18 @@ fn solve(
         return Err(convergence_error(py, &message, result.into_any()));
     }
     Ok(result)
+}
+
+/// The warnings about the contact geometry as Python `UserWarning`s (the errors among the
+/// findings were raised by `prepare`).
+fn warn_contact(py: Python<'_>, findings: &[contact_check::Finding]) -> PyResult<()> {
+    let category = py.get_type::<PyUserWarning>();
+    for f in findings.iter().filter(|f| !f.is_error()) {
+        let message = std::ffi::CString::new(f.to_string().replace('\0', " "))
+            .map_err(|e| PyRuntimeError::new_err(e.to_string()))?;
+        PyErr::warn(py, &category, &message, 1)?;
+    }
+    Ok(())
 }
 
 /// Runs a γ study: every method with every γ, on one preparation of the problem (assembly and

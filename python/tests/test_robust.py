@@ -65,17 +65,29 @@ def test_a_problem_too_big_for_memory_raises_with_both_numbers():
         contactdd.solve(p)
 
 
-def test_boundaries_facing_away_are_refused():
+def blocks(upper_y, boundaries):
+    """Two 4 × 1 blocks, the upper one spanning ``upper_y``, paired by ``boundaries``."""
     p = contactdd.Problem()
     p.add_material("steel", 2.1e5, 0.3)
     p.add_rectangle_body("lower", (0, 4), (0, 1), 8, 2, "steel",
                          supports=[{"boundary": "bottom", "component": "both"}])
-    p.add_rectangle_body("upper", (0, 4), (1, 2), 8, 2, "steel",
+    p.add_rectangle_body("upper", (0, 4), upper_y, 8, 2, "steel",
                          supports=[{"boundary": "left", "component": "x"}],
                          loads=[{"kind": "pressure", "boundary": "top", "value": 100.0}])
-    p.add_contact(("lower", "upper"), ("bottom", "top"), c=0.5, h=1.0)
+    p.add_contact(("lower", "upper"), boundaries, c=0.5, h=1.0)
+    return p
+
+
+def test_boundaries_facing_away_are_refused():
     with pytest.raises(ContactddError, match="face away from each other"):
-        contactdd.solve(p)
+        contactdd.solve(blocks((1, 2), ("bottom", "top")))
+
+
+def test_a_moderate_overlap_warns():
+    # 5 % of the thickness: solved, with a UserWarning.
+    with pytest.warns(UserWarning, match="overlapping by 5.0000e-2"):
+        result = contactdd.solve(blocks((0.95, 1.95), ("top", "bottom")))
+    assert result.converged
 
 
 def test_convergence_error_is_a_contactdd_error(notch):
