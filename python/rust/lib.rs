@@ -18,6 +18,7 @@ use pyo3::types::{PyDict, PyList};
 
 use contactdd_core::Order;
 use contactdd_ddm::benchmark::Notch;
+use contactdd_ddm::contact::Interface;
 use contactdd_ddm::contact_check;
 use contactdd_ddm::{Gamma, Hooks, Method, Settings, SetupError};
 use contactdd_io::setup::{ModelBuilder, MAX_RECTANGLE_CELLS};
@@ -313,6 +314,11 @@ fn default_gammas() -> Vec<Gamma> {
 #[pyfunction]
 fn monolithic(py: Python<'_>, problem: &Bound<'_, Problem>) -> PyResult<Py<MonolithicResult>> {
     let model = Arc::new(problem.borrow().model()?);
+    // The contact geometry checks of `solve`, before the Newton iteration.
+    let interface = Interface::new(&model).map_err(setup_error)?;
+    let findings = contact_check::check(&model, &interface);
+    contact_check::refuse(&findings).map_err(setup_error)?;
+    warn_contact(py, &findings)?;
     let (out, interrupt) = run_interruptible(py, |_| contactdd_ddm::solve_monolithic(&model))?;
     if let Some(e) = interrupt {
         return Err(e);

@@ -81,6 +81,8 @@ def blocks(upper_y, boundaries):
 def test_boundaries_facing_away_are_refused():
     with pytest.raises(ContactddError, match="face away from each other"):
         contactdd.solve(blocks((1, 2), ("bottom", "top")))
+    with pytest.raises(ContactddError, match="face away from each other"):
+        contactdd.monolithic(blocks((1, 2), ("bottom", "top")))
 
 
 def test_a_moderate_overlap_warns():
