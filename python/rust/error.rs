@@ -7,8 +7,9 @@
 //! - every other [`SetupError`](contactdd_ddm::SetupError) and [`LoadError`] (a bad problem file,
 //!   bad arrays, unknown names, a body that cannot be factorised) becomes
 //!   `contactdd.ContactddError`, a `ValueError`;
-//! - a solve that does not converge raises `contactdd.ConvergenceError`, a `RuntimeError`, whose
-//!   `result` attribute holds the partial result (see [`convergence_error`]);
+//! - a solve that does not converge raises `contactdd.ConvergenceError`, both a `ContactddError`
+//!   and a `RuntimeError`, whose `result` attribute holds the partial result (see
+//!   [`convergence_error`]);
 //! - a panic inside the solver (a bug) becomes a `RuntimeError` instead of reaching Python as a
 //!   `PanicException`.
 //!
@@ -32,41 +33,56 @@ create_exception!(
      ``body 'lower': supports[0]: no boundary named 'rigth' (known: bottom, left, right, top)``."
 );
 
-create_exception!(
-    contactdd,
-    ConvergenceError,
-    PyRuntimeError,
-    "The domain decomposition iteration did not converge.\n\n\
-     ``result`` holds the partial :class:`contactdd.Result` (its last iterate, history and \
-     message). Pass ``check=False`` to :func:`contactdd.solve` to get the result without an \
-     exception."
-);
+const CONVERGENCE_ERROR_DOC: &str = "The domain decomposition iteration did not converge.\n\n\
+     Both a :class:`ContactddError` and a ``RuntimeError``. ``result`` holds the partial \
+     :class:`contactdd.Result` (its last iterate, history and message). Pass ``check=False`` to \
+     :func:`contactdd.solve` to get the result without an exception.";
 
 const IO_ERROR_DOC: &str = "A problem file or a mesh file it names cannot be read.\n\n\
      Both a :class:`ContactddError` and an ``OSError`` (``errno`` is set when the system gave \
      one); the message is the one the command line prints.";
 
-/// `ContactddIOError(ContactddError, OSError)`, created once. `create_exception!` takes one base
-/// only, so the class is made by calling `type` with both.
+/// `ContactddIOError(ContactddError, OSError)` and `ConvergenceError(ContactddError,
+/// RuntimeError)`, created once each.
 static IO_ERROR: PyOnceLock<Py<PyType>> = PyOnceLock::new();
+static CONVERGENCE_ERROR: PyOnceLock<Py<PyType>> = PyOnceLock::new();
+
+/// A subclass of `ContactddError` and `other` named `name`, created once in `cell`.
+/// `create_exception!` takes one base only, so the class is made by calling `type` with both.
+fn two_bases<'py>(
+    py: Python<'py>,
+    cell: &'static PyOnceLock<Py<PyType>>,
+    name: &str,
+    other: Bound<'py, PyType>,
+    doc: &str,
+) -> PyResult<&'py Bound<'py, PyType>> {
+    cell.get_or_try_init(py, || {
+        let bases = PyTuple::new(py, [py.get_type::<ContactddError>(), other])?;
+        let dict = PyDict::new(py);
+        dict.set_item("__module__", "contactdd")?;
+        dict.set_item("__doc__", doc)?;
+        let class = py.get_type::<PyType>().call1((name, bases, dict))?;
+        Ok(class.cast_into::<PyType>()?.unbind())
+    })
+    .map(|t| t.bind(py))
+}
 
 /// The `ContactddIOError` class.
 pub fn io_error_type(py: Python<'_>) -> PyResult<&Bound<'_, PyType>> {
-    IO_ERROR
-        .get_or_try_init(py, || {
-            let bases = PyTuple::new(
-                py,
-                [py.get_type::<ContactddError>(), py.get_type::<PyOSError>()],
-            )?;
-            let dict = PyDict::new(py);
-            dict.set_item("__module__", "contactdd")?;
-            dict.set_item("__doc__", IO_ERROR_DOC)?;
-            let class = py
-                .get_type::<PyType>()
-                .call1(("ContactddIOError", bases, dict))?;
-            Ok(class.cast_into::<PyType>()?.unbind())
-        })
-        .map(|t| t.bind(py))
+    let os = py.get_type::<PyOSError>();
+    two_bases(py, &IO_ERROR, "ContactddIOError", os, IO_ERROR_DOC)
+}
+
+/// The `ConvergenceError` class.
+pub fn convergence_error_type(py: Python<'_>) -> PyResult<&Bound<'_, PyType>> {
+    let runtime = py.get_type::<PyRuntimeError>();
+    two_bases(
+        py,
+        &CONVERGENCE_ERROR,
+        "ConvergenceError",
+        runtime,
+        CONVERGENCE_ERROR_DOC,
+    )
 }
 
 /// The I/O error behind `e`, if `e` is a file that cannot be read.
@@ -116,13 +132,14 @@ pub fn input_error(message: impl std::fmt::Display) -> PyErr {
 
 /// A `ConvergenceError` with the partial result attached as `.result`.
 pub fn convergence_error(py: Python<'_>, message: &str, result: Py<PyAny>) -> PyErr {
-    let err = ConvergenceError::new_err(message.to_string());
-    // Setting an attribute on a fresh exception instance cannot fail short of memory exhaustion;
-    // if it does, raise that error instead.
-    match err.value(py).setattr("result", result) {
-        Ok(()) => err,
-        Err(e) => e,
-    }
+    let make = || -> PyResult<PyErr> {
+        let err = PyErr::from_value(convergence_error_type(py)?.call1((message,))?);
+        err.value(py).setattr("result", result)?;
+        Ok(err)
+    };
+    // Creating the class or setting an attribute cannot fail short of memory exhaustion; if it
+    // does, raise that error instead.
+    make().unwrap_or_else(|e| e)
 }
 
 /// A panic payload (a bug in contactdd) as a `RuntimeError`.

@@ -12,13 +12,16 @@ use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::Arc;
 use std::time::Duration;
 
+use pyo3::exceptions::{PyRuntimeError, PyUserWarning};
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList};
 
 use contactdd_core::Order;
 use contactdd_ddm::benchmark::Notch;
+use contactdd_ddm::contact::Interface;
+use contactdd_ddm::contact_check;
 use contactdd_ddm::{Gamma, Hooks, Method, Settings, SetupError};
-use contactdd_io::setup::ModelBuilder;
+use contactdd_io::setup::{ModelBuilder, MAX_RECTANGLE_CELLS};
 
 mod convert;
 mod error;
@@ -26,7 +29,8 @@ mod problem;
 mod results;
 
 use error::{
-    convergence_error, io_error_type, panic_error, setup_error, ContactddError, ConvergenceError,
+    convergence_error, convergence_error_type, io_error_type, panic_error, setup_error,
+    ContactddError,
 };
 use problem::{gamma, gamma_to_py, GammaArg, Overrides, Problem};
 use results::{Body, Contact, MonolithicResult, SolveResult};
@@ -170,17 +174,22 @@ fn solve(
     let (out, interrupt) = run_interruptible(py, move |cancel| {
         with_threads(threads, || {
             let prepared = contactdd_ddm::prepare(&m)?;
+            let findings = contact_check::check(&m, &prepared.interface);
             let hooks = Hooks {
                 on_iteration: None,
                 cancel: Some(cancel),
             };
-            contactdd_ddm::solve(&m, &prepared, &settings, hooks)
+            Ok((
+                findings,
+                contactdd_ddm::solve(&m, &prepared, &settings, hooks)?,
+            ))
         })
     })?;
     if let Some(e) = interrupt {
         return Err(e);
     }
-    let sol = out.map_err(setup_error)?;
+    let (findings, sol) = out.map_err(setup_error)?;
+    warn_contact(py, &findings)?;
     let result = SolveResult::new(py, model, sol)?;
     let (converged, message) = (result.is_converged(), result.failure_message());
     let result = Py::new(py, result)?;
@@ -188,6 +197,18 @@ fn solve(
         return Err(convergence_error(py, &message, result.into_any()));
     }
     Ok(result)
+}
+
+/// The warnings about the contact geometry as Python `UserWarning`s (the errors among the
+/// findings were raised by `prepare`).
+fn warn_contact(py: Python<'_>, findings: &[contact_check::Finding]) -> PyResult<()> {
+    let category = py.get_type::<PyUserWarning>();
+    for f in findings.iter().filter(|f| !f.is_error()) {
+        let message = std::ffi::CString::new(f.to_string().replace('\0', " "))
+            .map_err(|e| PyRuntimeError::new_err(e.to_string()))?;
+        PyErr::warn(py, &category, &message, 1)?;
+    }
+    Ok(())
 }
 
 /// Runs a γ study: every method with every γ, on one preparation of the problem (assembly and
@@ -293,6 +314,11 @@ fn default_gammas() -> Vec<Gamma> {
 #[pyfunction]
 fn monolithic(py: Python<'_>, problem: &Bound<'_, Problem>) -> PyResult<Py<MonolithicResult>> {
     let model = Arc::new(problem.borrow().model()?);
+    // The contact geometry checks of `solve`, before the Newton iteration.
+    let interface = Interface::new(&model).map_err(setup_error)?;
+    let findings = contact_check::check(&model, &interface);
+    contact_check::refuse(&findings).map_err(setup_error)?;
+    warn_contact(py, &findings)?;
     let (out, interrupt) = run_interruptible(py, |_| contactdd_ddm::solve_monolithic(&model))?;
     if let Some(e) = interrupt {
         return Err(e);
@@ -320,6 +346,18 @@ fn notch_benchmark(nx: usize, ny: usize, order: &str) -> PyResult<Problem> {
             message: e,
         })
     })?;
+    // The problem file's limit, checked before the meshes are allocated.
+    if nx
+        .checked_mul(ny)
+        .map_or(true, |cells| cells > MAX_RECTANGLE_CELLS)
+    {
+        return Err(setup_error(SetupError::Invalid {
+            key: "nx, ny".into(),
+            message: format!(
+                "{nx} × {ny} cells per block is more than the limit of {MAX_RECTANGLE_CELLS}"
+            ),
+        }));
+    }
     let notch = Notch {
         nx,
         ny,
@@ -359,7 +397,7 @@ fn _contactdd(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(monolithic, m)?)?;
     m.add_function(wrap_pyfunction!(notch_benchmark, m)?)?;
     m.add("ContactddError", py.get_type::<ContactddError>())?;
-    m.add("ConvergenceError", py.get_type::<ConvergenceError>())?;
+    m.add("ConvergenceError", convergence_error_type(py)?)?;
     m.add("ContactddIOError", io_error_type(py)?)?;
     m.add(
         "METHODS",

@@ -218,13 +218,24 @@ fn specs<T: DeserializeOwned>(
     Ok(out)
 }
 
-/// Converts an integer array to node indices.
-fn indices(a: &PyArrayLike2<'_, i64, AllowTypeChange>, what: &str) -> PyResult<Vec<usize>> {
+/// Converts an array of node indices. Integer arrays and floats with an integer value (`2.0`, as
+/// `numpy.loadtxt` gives) are accepted; a fraction, NaN or infinity is refused rather than
+/// truncated.
+fn indices(a: &PyArrayLike2<'_, f64, AllowTypeChange>, what: &str) -> PyResult<Vec<usize>> {
+    // Exactly representable integers only: beyond 2⁵³ a float no longer names one index.
+    const EXACT: f64 = 9_007_199_254_740_992.0;
     a.as_array()
         .iter()
         .map(|&v| {
-            usize::try_from(v)
-                .map_err(|_| input_error(format!("{what}: node index {v} is negative")))
+            if !(v.fract() == 0.0 && v.abs() <= EXACT) {
+                Err(input_error(format!(
+                    "{what}: node index {v} is not an integer"
+                )))
+            } else if v < 0.0 {
+                Err(input_error(format!("{what}: node index {v} is negative")))
+            } else {
+                Ok(v as usize)
+            }
         })
         .collect()
 }
@@ -322,7 +333,7 @@ impl Problem {
         &mut self,
         name: &str,
         nodes: PyArrayLike2<'_, f64, AllowTypeChange>,
-        triangles: PyArrayLike2<'_, i64, AllowTypeChange>,
+        triangles: PyArrayLike2<'_, f64, AllowTypeChange>,
         boundaries: &Bound<'_, PyDict>,
         material: &str,
         supports: Option<&Bound<'_, PyAny>>,
@@ -359,7 +370,7 @@ impl Problem {
         for (key, value) in boundaries.iter() {
             let bname: String = key.extract()?;
             let what = format!("body '{name}': mesh: boundaries['{bname}']");
-            let arr: PyArrayLike2<'_, i64, AllowTypeChange> = value.extract()?;
+            let arr: PyArrayLike2<'_, f64, AllowTypeChange> = value.extract()?;
             let cols = arr.shape()[1];
             if cols != 2 && cols != 3 {
                 return Err(mesh_error(format!(

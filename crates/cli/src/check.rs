@@ -5,6 +5,7 @@ use anyhow::Result;
 
 use contactdd_core::{num_dofs, Component, ElasticBody, Order};
 use contactdd_ddm::contact::Interface;
+use contactdd_ddm::contact_check;
 use contactdd_ddm::{Gamma, Model, Penalty};
 use contactdd_io::problem::{BodySpec, LoadSpec, MeshSpec};
 use contactdd_io::Loaded;
@@ -18,8 +19,14 @@ use crate::{load, Exit};
 pub fn check(args: CheckArgs) -> Result<Exit> {
     let loaded = load(&args.file)?;
     let interface = Interface::new(&loaded.model).map_err(|e| anyhow::anyhow!("{e}"))?;
+    let findings = contact_check::check(&loaded.model, &interface);
+    let file = args.file.display();
+    contact_check::refuse(&findings).map_err(|e| anyhow::anyhow!("{file}: {e}"))?;
     say!("{}", describe(&loaded, &interface).trim_end());
-    say!("ok: '{}' is a valid problem", args.file.display());
+    for f in &findings {
+        eprintln!("warning: {file}: {f}");
+    }
+    say!("ok: '{file}' is a valid problem");
     Ok(Exit::Success)
 }
 

@@ -8,6 +8,7 @@ use std::time::Instant;
 use anyhow::{Context, Result};
 
 use contactdd_ddm::contact::Interface;
+use contactdd_ddm::contact_check;
 use contactdd_ddm::{
     prepare, solve as dd_solve, solve_monolithic, Accelerator, CoarseMode, Gamma, Hooks, Model,
     Record,
@@ -103,7 +104,9 @@ pub fn solve(args: SolveArgs) -> Result<Exit> {
                 count(model.bodies.len(), "body", "bodies")
             ));
         }
-        let prepared = prepare(model).map_err(|e| anyhow::anyhow!("{e}"))?;
+        let prepared =
+            prepare(model).map_err(|e| anyhow::anyhow!("{}: {e}", args.file.display()))?;
+        warn_contact(&args.file, model, &prepared.interface);
         let table = IterationTable::new(model);
         if !quiet {
             say!(
@@ -210,7 +213,9 @@ pub fn monolithic(args: MonolithicArgs) -> Result<Exit> {
         .unwrap_or_else(|| default_dir(model, "monolithic-out"));
     with_threads(threads, || {
         // Contact geometry errors are input errors (exit 1); a Newton failure is exit 2.
-        Interface::new(model).map_err(|e| anyhow::anyhow!("{e}"))?;
+        let interface = Interface::new(model).map_err(|e| anyhow::anyhow!("{e}"))?;
+        contact_check::refuse(&warn_contact(&args.file, model, &interface))
+            .map_err(|e| anyhow::anyhow!("{}: {e}", args.file.display()))?;
         progress("solving all bodies at once by semismooth Newton…");
         let sol = match solve_monolithic(model) {
             Ok(sol) => sol,
@@ -249,6 +254,15 @@ pub fn monolithic(args: MonolithicArgs) -> Result<Exit> {
         say!("results: {}", files(&out, &written));
         Ok(Exit::Success)
     })
+}
+
+/// Prints the warnings about the contact geometry on stderr; returns all findings.
+fn warn_contact(file: &Path, model: &Model, interface: &Interface) -> Vec<contact_check::Finding> {
+    let findings = contact_check::check(model, interface);
+    for f in findings.iter().filter(|f| !f.is_error()) {
+        eprintln!("warning: {}: {f}", file.display());
+    }
+    findings
 }
 
 /// `./<problem name>-<suffix>`.

@@ -129,7 +129,9 @@ impl FactoredBody {
         };
         let symbolic = factorize_symbolic_cholesky(lower.as_ref(), Side::Lower, ordering, params)
             .map_err(|e| fail(format!("{e:?}")))?;
-        let l_values = vec![0.0; symbolic.len_val()];
+        // The factor's values are allocated by the first factorisation, once the caller had the
+        // chance to compare `memory_estimate` with the available memory.
+        let l_values = Vec::new();
         let values = vec![0.0; gather.len()];
         Ok(FactoredBody {
             name: name.to_string(),
@@ -165,7 +167,17 @@ impl FactoredBody {
 
     /// Number of stored values of the Cholesky factor (a measure of fill-in).
     pub fn factor_len(&self) -> usize {
-        self.l_values.len()
+        self.symbolic.len_val()
+    }
+
+    /// Bytes the numeric factorisation allocates: the factor's values and faer's workspace.
+    pub fn memory_estimate(&self) -> u64 {
+        let scratch = self
+            .symbolic
+            .factorize_numeric_llt_scratch::<f64>(self.par, Default::default())
+            .size_bytes();
+        let values = self.symbolic.len_val().saturating_mul(size_of::<f64>());
+        (values as u64).saturating_add(scratch as u64)
     }
 
     /// Numeric factorisation of `K + Σ additions` where `additions` are `(row, col, value)`
@@ -198,6 +210,7 @@ impl FactoredBody {
                 what: format!("stiffness entry {i}"),
             });
         }
+        self.allocate_factor()?;
         let req = self
             .symbolic
             .factorize_numeric_llt_scratch::<f64>(self.par, Default::default());
@@ -226,6 +239,24 @@ impl FactoredBody {
                 }
             })?;
         self.factored = true;
+        Ok(())
+    }
+
+    /// Allocates the factor's values on the first factorisation; a failed allocation is an error
+    /// rather than an abort.
+    fn allocate_factor(&mut self) -> Result<(), BodyError> {
+        let len = self.symbolic.len_val();
+        if self.l_values.len() != len {
+            let mut values = Vec::new();
+            values
+                .try_reserve_exact(len)
+                .map_err(|_| BodyError::Factorization {
+                    body: self.name.clone(),
+                    message: format!("out of memory for the {len} values of the factor"),
+                })?;
+            values.resize(len, 0.0);
+            self.l_values = values;
+        }
         Ok(())
     }
 

@@ -22,6 +22,7 @@ pub mod geometry;
 pub mod gmsh;
 pub mod loads;
 pub mod material;
+pub mod memory;
 pub mod mesh;
 pub mod post;
 pub mod rectangle;

@@ -21,7 +21,12 @@ use faer::{Mat, Side};
 use contactdd_core::geometry::dot;
 use contactdd_core::{dof, node_vector, BodyError, ElasticBody, FactoredBody, Vector, DIM};
 
-use crate::contact::ContactPoint;
+use contactdd_core::memory;
+use rayon::prelude::*;
+
+use crate::contact::{ContactPoint, Interface};
+use crate::error::SetupError;
+use crate::model::Model;
 
 /// A singular Robin problem: the body has lost its hold.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -55,13 +60,53 @@ pub struct RobinCache {
     llt: Option<faer::linalg::solvers::Llt<f64>>,
 }
 
-impl CondensedBody {
-    /// Assembles, factorises (with the reference springs) and condenses one body.
-    pub fn new(
-        body: &ElasticBody,
-        points: &[ContactPoint],
-        par: faer::Par,
-    ) -> Result<CondensedBody, BodyError> {
+/// Analyses every body of `model` (in parallel) once the dense blocks on its contact points are
+/// known to fit in memory, then checks the whole estimate: the bodies are factorised together.
+pub fn analyse_all<'a>(
+    model: &'a Model,
+    interface: &Interface,
+) -> Result<Vec<Analysed<'a>>, SetupError> {
+    // The dense blocks are known before the symbolic analysis, whose cost grows with them.
+    let dense = (0..model.bodies.len())
+        .map(|b| dense_bytes(interface.of_body(b).len(), interface.of_body(b).len()))
+        .fold(0u64, u64::saturating_add);
+    memory::check("condensing the bodies on their contact points", dense)?;
+    let analysed = model
+        .bodies
+        .par_iter()
+        .enumerate()
+        .map(|(b, body)| Analysed::new(body, interface.of_body(b)))
+        .collect::<Result<Vec<_>, _>>()?;
+    let bytes = analysed
+        .iter()
+        .map(Analysed::memory_estimate)
+        .fold(0u64, u64::saturating_add);
+    memory::check("factorising and condensing the bodies", bytes)?;
+    Ok(analysed)
+}
+
+/// Bytes of the dense blocks of a body with `m` contact points and `dofs` interface DOFs (at
+/// least m): Y (dofs × m), C₀ (m × m) and the Robin matrix (at most m × m).
+fn dense_bytes(m: usize, dofs: usize) -> u64 {
+    let m = m as u64;
+    m.saturating_mul(dofs as u64 + 2 * m)
+        .saturating_mul(size_of::<f64>() as u64)
+}
+
+/// A body assembled and analysed (the symbolic factorisation), not yet factorised: its
+/// [`memory_estimate`](Analysed::memory_estimate) can be checked before anything big is allocated.
+pub struct Analysed<'a> {
+    body: &'a ElasticBody,
+    op: FactoredBody,
+    interface: Vec<usize>,
+    nodes: Vec<usize>,
+    normals: Vec<Vector>,
+    d0: Vec<f64>,
+}
+
+impl<'a> Analysed<'a> {
+    /// Assembles one body and analyses its factorisation with the contact DOFs last.
+    pub fn new(body: &'a ElasticBody, points: &[ContactPoint]) -> Result<Analysed<'a>, BodyError> {
         let nodes: Vec<usize> = points.iter().map(|p| p.node).collect();
         let normals: Vec<Vector> = points.iter().map(|p| p.normal).collect();
         let d0: Vec<f64> = points.iter().map(|p| p.weight / p.theta).collect();
@@ -83,8 +128,34 @@ impl CondensedBody {
             .collect();
         interface.sort_unstable();
         interface.dedup();
-        let mut op =
-            FactoredBody::new(&body.name, body.stiffness(), &body.constraints, &interface)?;
+        let op = FactoredBody::new(&body.name, body.stiffness(), &body.constraints, &interface)?;
+        Ok(Analysed {
+            body,
+            op,
+            interface,
+            nodes,
+            normals,
+            d0,
+        })
+    }
+
+    /// Bytes that [`condense`](Analysed::condense) allocates: the sparse factor and the dense
+    /// blocks on the contact points.
+    pub fn memory_estimate(&self) -> u64 {
+        let dense = dense_bytes(self.nodes.len(), self.interface.len());
+        self.op.memory_estimate().saturating_add(dense)
+    }
+
+    /// Factorises (with the reference springs) and condenses the body.
+    pub fn condense(self, par: faer::Par) -> Result<CondensedBody, BodyError> {
+        let Analysed {
+            body,
+            mut op,
+            interface,
+            nodes,
+            normals,
+            d0,
+        } = self;
         op.set_parallelism(par);
         let mut additions = Vec::with_capacity(DIM * DIM * nodes.len());
         for ((&v, n), &k) in nodes.iter().zip(&normals).zip(&d0) {
@@ -133,7 +204,9 @@ impl CondensedBody {
             factor: 1.0,
         })
     }
+}
 
+impl CondensedBody {
     /// Number of contact points.
     pub fn len(&self) -> usize {
         self.nodes.len()

@@ -6,6 +6,7 @@
 
 use thiserror::Error;
 
+use contactdd_core::memory::OutOfMemory;
 use contactdd_core::{BodyError, MaterialError, MeshError, SupportError};
 
 /// A problem description that cannot be turned into a model, or a body that cannot be factorised.
@@ -65,6 +66,9 @@ pub enum SetupError {
     /// A body cannot be assembled or factorised.
     #[error(transparent)]
     Factor(#[from] BodyError),
+    /// The factorisations would need more memory than the system has available.
+    #[error(transparent)]
+    Memory(#[from] OutOfMemory),
     /// A problem with one material of the problem file.
     #[error("material '{material}': {message}")]
     Material {

@@ -16,6 +16,7 @@ pub mod benchmark;
 pub mod coarse;
 pub mod condensed;
 pub mod contact;
+pub mod contact_check;
 pub mod error;
 pub mod iteration;
 pub mod method;

@@ -8,7 +8,7 @@ use std::time::Instant;
 use rayon::prelude::*;
 
 use crate::coarse::Coarse;
-use crate::condensed::CondensedBody;
+use crate::condensed::{analyse_all, CondensedBody};
 use crate::contact::Interface;
 use crate::error::SetupError;
 use crate::iteration::{iterate_on, Hooks, Settings, Stop};
@@ -45,6 +45,7 @@ impl Prepared {
 pub fn prepare(model: &Model) -> Result<Prepared, SetupError> {
     let t = Instant::now();
     let interface = Interface::new(model)?;
+    crate::contact_check::refuse(&crate::contact_check::check(model, &interface))?;
     let t_contact = t.elapsed().as_secs_f64();
     let t = Instant::now();
     // One level of parallelism: over bodies when there are several, inside faer otherwise.
@@ -53,11 +54,9 @@ pub fn prepare(model: &Model) -> Result<Prepared, SetupError> {
     } else {
         faer::Par::rayon(0)
     };
-    let bodies = model
-        .bodies
-        .par_iter()
-        .enumerate()
-        .map(|(b, body)| CondensedBody::new(body, interface.of_body(b), par))
+    let bodies = analyse_all(model, &interface)?
+        .into_par_iter()
+        .map(|a| a.condense(par))
         .collect::<Result<Vec<_>, _>>()?;
     let t_factor = t.elapsed().as_secs_f64();
     let scale = model

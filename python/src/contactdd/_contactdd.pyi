@@ -41,7 +41,7 @@ class ContactddError(ValueError):
 class ContactddIOError(ContactddError, OSError):
     """A problem file or a mesh file it names cannot be read (``errno`` as the system gave it)."""
 
-class ConvergenceError(RuntimeError):
+class ConvergenceError(ContactddError, RuntimeError):
     """The domain decomposition iteration did not converge; ``result`` holds the partial result."""
 
     result: Result
@@ -114,7 +114,10 @@ class Problem:
         loads: Optional[Sequence[_LoadDict]] = None,
         node_sets: Optional[Mapping[str, _ArrayLikeInt]] = None,
     ) -> None:
-        """Adds a body on a triangle mesh given as arrays ((n, 2) nodes, (m, 3|6) triangles)."""
+        """Adds a body on a triangle mesh given as arrays ((n, 2) nodes, (m, 3|6) triangles).
+
+        Node indices may be integers or floats with integer values; a fraction raises
+        ContactddError."""
     def add_rectangle_body(
         self,
         name: str,
@@ -311,4 +314,4 @@ def monolithic(problem: Problem) -> MonolithicResult:
     """Solves the same penalty problem monolithically (semismooth Newton)."""
 
 def notch_benchmark(nx: int = 32, ny: int = 16, order: Literal["p1", "p2"] = "p1") -> Problem:
-    """The paper's two-body notch benchmark as a Problem."""
+    """The paper's two-body notch benchmark as a Problem (at most 4 000 000 cells per block)."""
