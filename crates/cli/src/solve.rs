@@ -7,9 +7,9 @@ use std::time::Instant;
 
 use anyhow::{Context, Result};
 
-use contactdd_ddm::contact::Interface;
+use contactdd_ddm::monolithic::{solve_monolithic_with, MonolithicSettings, MonolithicStep};
 use contactdd_ddm::{
-    prepare, solve as dd_solve, solve_monolithic, Accelerator, CoarseMode, Gamma, Hooks, Model,
+    prepare, solve as dd_solve, Accelerator, CoarseMode, Gamma, Hooks, Model, MonolithicSolution,
     Record,
 };
 use contactdd_io::output::{safe_file_name, write_monolithic_results, write_results};
@@ -183,51 +183,99 @@ pub fn monolithic(args: MonolithicArgs) -> Result<Exit> {
         .threads
         .map(|n| usize::try_from(n).unwrap_or(usize::MAX))
         .or(loaded.threads);
+    let mut settings = MonolithicSettings::default();
+    if let Some(k) = args.max_steps {
+        settings.max_steps = usize::try_from(k).unwrap_or(usize::MAX);
+    }
     let out = args
         .out
         .clone()
         .unwrap_or_else(|| default_dir(model, "monolithic-out"));
+    let quiet = args.quiet;
     with_threads(threads, || {
-        // Contact geometry errors are input errors (exit 1); a Newton failure is exit 2.
-        Interface::new(model).map_err(|e| anyhow::anyhow!("{e}"))?;
-        progress("solving all bodies at once by semismooth Newton…");
-        let sol = match solve_monolithic(model) {
-            Ok(sol) => sol,
-            Err(e) => {
-                eprintln!("error: monolithic solve failed: {e}");
-                return Ok(Exit::NotConverged);
-            }
+        if !quiet {
+            progress(&format!(
+                "assembling, factorising and reducing {}…",
+                count(model.bodies.len(), "body", "bodies")
+            ));
+        }
+        let print_step = |r: &MonolithicStep| {
+            say!(
+                "{:>5}  {:>8}  {:>10.2e}  {:>7.4}",
+                r.step,
+                r.active,
+                r.residual,
+                r.step_length
+            )
         };
+        if !quiet {
+            say!(
+                "solving {} monolithically by semismooth Newton: {}, {}, max-steps {}",
+                model.name,
+                count(model.bodies.len(), "body", "bodies"),
+                count(model.pairs.len(), "contact pair", "contact pairs"),
+                settings.max_steps
+            );
+            say!(" step    closed    residual   length");
+        }
+        let hook: Option<&(dyn Fn(&MonolithicStep) + Sync)> =
+            if quiet { None } else { Some(&print_step) };
+        // A model that cannot be solved is an input error (exit 1), with the message of `solve`.
+        let sol =
+            solve_monolithic_with(model, &settings, hook).map_err(|e| anyhow::anyhow!("{e}"))?;
         let written = write_monolithic_results(&out, model, &sol)
             .with_context(|| format!("cannot write the results to '{}'", out.display()))?;
-        let theta = model.thetas();
-        say!(
-            "monolithic reference for {}: {} semismooth Newton steps",
-            model.name,
-            sol.newton_steps
-        );
-        if sol.rigid_modes.is_empty() {
-            say!("rigid modes fixed: none");
+        let outcome = if sol.converged {
+            format!("converged in {} semismooth Newton steps", sol.newton_steps)
         } else {
-            say!("rigid modes fixed:");
-            for m in &sol.rigid_modes {
-                say!("  {m}");
-            }
+            format!(
+                "NOT converged: {}",
+                sol.message.as_deref().unwrap_or("unknown reason")
+            )
+        };
+        if quiet {
+            say!("{outcome}; results in {}", out.display());
+        } else {
+            say!("");
+            say!("monolithic reference for {}: {outcome}", model.name);
+            report_monolithic(model, &sol);
+            say!(
+                "{}",
+                timing([
+                    ("solve", sol.seconds),
+                    ("total", start.elapsed().as_secs_f64())
+                ])
+            );
+            say!("results: {}", files(&out, &written));
         }
-        for line in pair_report(&sol.contact, &theta) {
-            say!("{line}");
+        if sol.converged {
+            Ok(Exit::Success)
+        } else {
+            eprintln!(
+                "warning: not converged; the last Newton iterate was written to '{}'",
+                out.display()
+            );
+            Ok(Exit::NotConverged)
         }
-        say!("{}", applied_loads(model));
-        say!(
-            "{}",
-            timing([
-                ("solve", sol.seconds),
-                ("total", start.elapsed().as_secs_f64())
-            ])
-        );
-        say!("results: {}", files(&out, &written));
-        Ok(Exit::Success)
     })
+}
+
+/// The rigid modes, the equilibrium residuals and the contact report of a monolithic solve.
+fn report_monolithic(model: &Model, sol: &MonolithicSolution) {
+    if sol.rigid_modes.is_empty() {
+        say!("rigid modes fixed: none");
+    } else {
+        say!("rigid modes fixed (no contact resists them):");
+        for (m, f) in sol.rigid_modes.iter().zip(&sol.imbalance) {
+            say!("  {m}; net force along it {f:.1e} of the forces");
+        }
+    }
+    let worst = sol.equilibrium.iter().fold(0.0f64, |a, &b| a.max(b));
+    say!("equilibrium: largest residual {worst:.1e} of the forces");
+    for line in pair_report(&sol.contact, &model.thetas()) {
+        say!("{line}");
+    }
+    say!("{}", applied_loads(model));
 }
 
 /// `./<problem name>-<suffix>`.

@@ -115,15 +115,34 @@ pub fn summary_json(model: &Model, sol: &Solution) -> Value {
     })
 }
 
-/// `summary.json` of a monolithic reference solve: `solver = "monolithic"`, `newton_steps`,
-/// `rigid_modes` (the fixed rigid modes, as text), `bodies`, `contact` and `timing_s` as in
-/// [`summary_json`], and `version`.
+/// `summary.json` of a monolithic reference solve: `solver = "monolithic"`, `converged`,
+/// `message` (why not, or null), `newton_steps`, `history` (per step: `step`, `active`,
+/// `residual`, `step_length`), `rigid_modes` (the rigid motions no contact resists, as text),
+/// `equilibrium` (per body, the residual of the assembled equations relative to the forces),
+/// `imbalance` (per rigid mode, the net force along it, relative), `bodies`, `contact` and
+/// `timing_s` as in [`summary_json`], and `version`.
 pub fn monolithic_summary_json(model: &Model, sol: &MonolithicSolution) -> Value {
+    let history: Vec<Value> = sol
+        .history
+        .iter()
+        .map(|r| {
+            json!({
+                "step": r.step,
+                "active": r.active,
+                "residual": json_number(r.residual),
+                "step_length": json_number(r.step_length),
+            })
+        })
+        .collect();
     json!({
         "solver": "monolithic",
-        "converged": true,
+        "converged": sol.converged,
+        "message": sol.message,
         "newton_steps": sol.newton_steps,
+        "history": history,
         "rigid_modes": sol.rigid_modes,
+        "equilibrium": json_numbers(&sol.equilibrium),
+        "imbalance": json_numbers(&sol.imbalance),
         "bodies": bodies_json(model),
         "contact": contact_json(&sol.contact),
         "timing_s": { "total": json_number(sol.seconds) },
