@@ -125,18 +125,12 @@ pub fn solve(args: SolveArgs) -> Result<Exit> {
         let written = write_results(&out, model, &sol)
             .with_context(|| format!("cannot write the results to '{}'", out.display()))?;
 
-        let outcome = if sol.converged {
-            format!(
-                "converged in {} iterations ({})",
-                sol.iterations,
-                settings.scheme()
-            )
-        } else {
-            format!(
-                "NOT converged: {}",
-                sol.message.as_deref().unwrap_or("unknown reason")
-            )
-        };
+        let done = format!(
+            "converged in {} iterations ({})",
+            sol.iterations,
+            settings.scheme()
+        );
+        let outcome = outcome(sol.converged, done, sol.message.as_deref());
         if quiet {
             say!("{outcome}; results in {}", out.display());
         } else {
@@ -162,16 +156,30 @@ pub fn solve(args: SolveArgs) -> Result<Exit> {
             say!("{}", timing(phases));
             say!("results: {}", files(&out, &written));
         }
-        if sol.converged {
-            Ok(Exit::Success)
-        } else {
-            eprintln!(
-                "warning: not converged; the last iterate was written to '{}'",
-                out.display()
-            );
-            Ok(Exit::NotConverged)
-        }
+        Ok(exit(sol.converged, &out))
     })
+}
+
+/// The result line: `done`, or why not.
+fn outcome(converged: bool, done: String, message: Option<&str>) -> String {
+    if converged {
+        done
+    } else {
+        format!("NOT converged: {}", message.unwrap_or("unknown reason"))
+    }
+}
+
+/// The exit code, with a warning where the last iterate of a run that did not converge went.
+fn exit(converged: bool, out: &Path) -> Exit {
+    if converged {
+        Exit::Success
+    } else {
+        eprintln!(
+            "warning: not converged; the last iterate was written to '{}'",
+            out.display()
+        );
+        Exit::NotConverged
+    }
 }
 
 /// `contactdd monolithic`.
@@ -225,14 +233,8 @@ pub fn monolithic(args: MonolithicArgs) -> Result<Exit> {
             solve_monolithic_with(model, &settings, hook).map_err(|e| anyhow::anyhow!("{e}"))?;
         let written = write_monolithic_results(&out, model, &sol)
             .with_context(|| format!("cannot write the results to '{}'", out.display()))?;
-        let outcome = if sol.converged {
-            format!("converged in {} semismooth Newton steps", sol.newton_steps)
-        } else {
-            format!(
-                "NOT converged: {}",
-                sol.message.as_deref().unwrap_or("unknown reason")
-            )
-        };
+        let done = format!("converged in {} semismooth Newton steps", sol.newton_steps);
+        let outcome = outcome(sol.converged, done, sol.message.as_deref());
         if quiet {
             say!("{outcome}; results in {}", out.display());
         } else {
@@ -248,15 +250,7 @@ pub fn monolithic(args: MonolithicArgs) -> Result<Exit> {
             );
             say!("results: {}", files(&out, &written));
         }
-        if sol.converged {
-            Ok(Exit::Success)
-        } else {
-            eprintln!(
-                "warning: not converged; the last Newton iterate was written to '{}'",
-                out.display()
-            );
-            Ok(Exit::NotConverged)
-        }
+        Ok(exit(sol.converged, &out))
     })
 }
 

@@ -276,20 +276,15 @@ fn newton(
             .rev()
             .take(WINDOW)
             .fold(0.0, |a: f64, &b| a.max(b));
-        // Full active-set steps while they visit new closed sets; the line search once a set
-        // comes back (the plain iteration would cycle).
-        let fresh = seen.insert(chi.clone());
-        let (alpha, next, decreased) = if fresh {
-            let along = |v: &[f64], d: &[f64]| -> Vec<f64> {
-                v.iter().zip(d).map(|(a, b)| a + b).collect()
-            };
-            (
-                1.0,
-                system.evaluate(&along(&x, &dx), &along(&lam, &dlam)),
-                true,
-            )
-        } else {
-            line_search(system, &z, (&x, &lam), (&dx, &dlam), reference)
+        // Full active-set steps while they visit new closed sets (and stay finite); the line
+        // search once a set comes back (the plain iteration would cycle).
+        let full = seen
+            .insert(chi.clone())
+            .then(|| full_step(system, (&x, &lam), (&dx, &dlam)))
+            .filter(|e| merit(&z, e).is_finite());
+        let (alpha, next, decreased) = match full {
+            Some(next) => (1.0, next, true),
+            None => line_search(system, &z, (&x, &lam), (&dx, &dlam), reference),
         };
         failures = if decreased { 0 } else { failures + 1 };
         x.iter_mut().zip(&dx).for_each(|(v, d)| *v += alpha * d);
@@ -360,6 +355,16 @@ fn merit(z: &[Vec<f64>], eval: &Evaluation) -> f64 {
     let mut r = eval.f.clone();
     project_out(z, &mut r);
     (dot(&r, &r) + dot(&eval.phi, &eval.phi)).sqrt()
+}
+
+/// The state after the full step.
+fn full_step(
+    system: &System,
+    (x, lam): (&[f64], &[f64]),
+    (dx, dlam): (&[f64], &[f64]),
+) -> Evaluation {
+    let add = |v: &[f64], d: &[f64]| -> Vec<f64> { v.iter().zip(d).map(|(a, b)| a + b).collect() };
+    system.evaluate(&add(x, dx), &add(lam, dlam))
 }
 
 /// Backtracks along the direction from the state until the merit decreases enough against
