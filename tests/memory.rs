@@ -2,7 +2,7 @@
 //! allocated, with a typed error that states the estimate and the available memory.
 
 use contactdd::cases::{body, rectangle};
-use contactdd::ddm::{prepare, ContactPair, Model, Penalty, SetupError};
+use contactdd::ddm::{prepare, ContactPair, Enforcement, Model, Penalty, SetupError};
 use contactdd::fem::{memory, Component, Plane};
 
 /// Two strips of `n` × 1 cells in contact along their whole length: m = n + 1 contact points per
@@ -33,6 +33,7 @@ fn strips(n: usize) -> Model {
             boundaries: ["top".into(), "bottom".into()],
             penalty: Penalty::RodModel { c: 0.5, h: 1.0 },
             profile: None,
+            enforcement: Enforcement::Penalty,
         }],
     }
 }

@@ -138,6 +138,12 @@ pub struct MonolithicArgs {
     /// Worker threads (default: all cores).
     #[arg(long, value_name = "N", value_parser = clap::value_parser!(u64).range(1..=MAX_THREADS as u64))]
     pub threads: Option<u64>,
+    /// Newton steps at most [default: 50].
+    #[arg(long, value_name = "K", value_parser = clap::value_parser!(u64).range(1..))]
+    pub max_steps: Option<u64>,
+    /// Print only the final result line (no per-step lines).
+    #[arg(long, short)]
+    pub quiet: bool,
 }
 
 /// A list of methods.

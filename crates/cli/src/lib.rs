@@ -10,7 +10,7 @@
 //! contactdd sweep FILE [--method LIST] [--gamma LIST] [--out PATH] [--tol T] [--max-iter K]
 //!                      [--threads N]
 //! contactdd check FILE
-//! contactdd monolithic FILE [--out DIR] [--threads N]
+//! contactdd monolithic FILE [--out DIR] [--threads N] [--max-steps K] [--quiet]
 //! ```
 //!
 //! Exit codes ([`Exit`]):

@@ -9,8 +9,9 @@ use anyhow::{Context, Result};
 
 use contactdd_ddm::contact::Interface;
 use contactdd_ddm::contact_check;
+use contactdd_ddm::monolithic::{solve_monolithic_with, MonolithicSettings, MonolithicStep};
 use contactdd_ddm::{
-    prepare, solve as dd_solve, solve_monolithic, Accelerator, CoarseMode, Gamma, Hooks, Model,
+    prepare, solve as dd_solve, Accelerator, CoarseMode, Gamma, Hooks, Model, MonolithicSolution,
     Record,
 };
 use contactdd_io::output::{safe_file_name, write_monolithic_results, write_results};
@@ -138,26 +139,20 @@ pub fn solve(args: SolveArgs) -> Result<Exit> {
         let written = write_results(&out, model, &sol)
             .with_context(|| format!("cannot write the results to '{}'", out.display()))?;
 
-        let outcome = if sol.converged {
-            let updates = match sol.gap_tol {
-                Some(tol) => format!(
-                    "; augmented Lagrangian: {} multiplier updates, gap-tol {}",
-                    sol.updates,
-                    sig(tol)
-                ),
-                None => String::new(),
-            };
-            format!(
-                "converged in {} iterations ({}{updates})",
-                sol.iterations,
-                settings.scheme()
-            )
-        } else {
-            format!(
-                "NOT converged: {}",
-                sol.message.as_deref().unwrap_or("unknown reason")
-            )
+        let updates = match sol.gap_tol {
+            Some(tol) => format!(
+                "; augmented Lagrangian: {} multiplier updates, gap-tol {}",
+                sol.updates,
+                sig(tol)
+            ),
+            None => String::new(),
         };
+        let done = format!(
+            "converged in {} iterations ({}{updates})",
+            sol.iterations,
+            settings.scheme()
+        );
+        let outcome = outcome(sol.converged, done, sol.message.as_deref());
         if quiet {
             say!("{outcome}; results in {}", out.display());
         } else {
@@ -186,16 +181,30 @@ pub fn solve(args: SolveArgs) -> Result<Exit> {
             say!("{}", timing(phases));
             say!("results: {}", files(&out, &written));
         }
-        if sol.converged {
-            Ok(Exit::Success)
-        } else {
-            eprintln!(
-                "warning: not converged; the last iterate was written to '{}'",
-                out.display()
-            );
-            Ok(Exit::NotConverged)
-        }
+        Ok(exit(sol.converged, &out))
     })
+}
+
+/// The result line: `done`, or why not.
+fn outcome(converged: bool, done: String, message: Option<&str>) -> String {
+    if converged {
+        done
+    } else {
+        format!("NOT converged: {}", message.unwrap_or("unknown reason"))
+    }
+}
+
+/// The exit code, with a warning where the last iterate of a run that did not converge went.
+fn exit(converged: bool, out: &Path) -> Exit {
+    if converged {
+        Exit::Success
+    } else {
+        eprintln!(
+            "warning: not converged; the last iterate was written to '{}'",
+            out.display()
+        );
+        Exit::NotConverged
+    }
 }
 
 /// `contactdd monolithic`.
@@ -207,52 +216,70 @@ pub fn monolithic(args: MonolithicArgs) -> Result<Exit> {
         .threads
         .map(|n| usize::try_from(n).unwrap_or(usize::MAX))
         .or(loaded.threads);
+    let mut settings = MonolithicSettings::default();
+    if let Some(k) = args.max_steps {
+        settings.max_steps = usize::try_from(k).unwrap_or(usize::MAX);
+    }
     let out = args
         .out
         .clone()
         .unwrap_or_else(|| default_dir(model, "monolithic-out"));
+    let quiet = args.quiet;
     with_threads(threads, || {
-        // Contact geometry errors are input errors (exit 1); a Newton failure is exit 2.
+        // Contact geometry errors are input errors (exit 1).
         let interface = Interface::new(model).map_err(|e| anyhow::anyhow!("{e}"))?;
         contact_check::refuse(&warn_contact(&args.file, model, &interface))
             .map_err(|e| anyhow::anyhow!("{}: {e}", args.file.display()))?;
-        progress("solving all bodies at once by semismooth Newton…");
-        let sol = match solve_monolithic(model) {
-            Ok(sol) => sol,
-            Err(e) => {
-                eprintln!("error: monolithic solve failed: {e}");
-                return Ok(Exit::NotConverged);
-            }
+        if !quiet {
+            progress(&format!(
+                "assembling, factorising and reducing {}…",
+                count(model.bodies.len(), "body", "bodies")
+            ));
+        }
+        let print_step = |r: &MonolithicStep| {
+            say!(
+                "{:>5}  {:>8}  {:>10.2e}  {:>7.4}",
+                r.step,
+                r.active,
+                r.residual,
+                r.step_length
+            )
         };
+        if !quiet {
+            say!(
+                "solving {} monolithically by semismooth Newton: {}, {}, max-steps {}",
+                model.name,
+                count(model.bodies.len(), "body", "bodies"),
+                count(model.pairs.len(), "contact pair", "contact pairs"),
+                settings.max_steps
+            );
+            say!(" step    closed    residual   length");
+        }
+        let hook: Option<&(dyn Fn(&MonolithicStep) + Sync)> =
+            if quiet { None } else { Some(&print_step) };
+        // A model that cannot be solved is an input error (exit 1), with the message of `solve`.
+        let sol =
+            solve_monolithic_with(model, &settings, hook).map_err(|e| anyhow::anyhow!("{e}"))?;
         let written = write_monolithic_results(&out, model, &sol)
             .with_context(|| format!("cannot write the results to '{}'", out.display()))?;
-        let theta = model.thetas();
-        say!(
-            "monolithic reference for {}: {} semismooth Newton steps",
-            model.name,
-            sol.newton_steps
-        );
-        if sol.rigid_modes.is_empty() {
-            say!("rigid modes fixed: none");
+        let done = format!("converged in {} semismooth Newton steps", sol.newton_steps);
+        let outcome = outcome(sol.converged, done, sol.message.as_deref());
+        if quiet {
+            say!("{outcome}; results in {}", out.display());
         } else {
-            say!("rigid modes fixed:");
-            for m in &sol.rigid_modes {
-                say!("  {m}");
-            }
+            say!("");
+            say!("monolithic reference for {}: {outcome}", model.name);
+            report_monolithic(model, &sol);
+            say!(
+                "{}",
+                timing([
+                    ("solve", sol.seconds),
+                    ("total", start.elapsed().as_secs_f64())
+                ])
+            );
+            say!("results: {}", files(&out, &written));
         }
-        for line in pair_report(&sol.contact, &theta) {
-            say!("{line}");
-        }
-        say!("{}", applied_loads(model));
-        say!(
-            "{}",
-            timing([
-                ("solve", sol.seconds),
-                ("total", start.elapsed().as_secs_f64())
-            ])
-        );
-        say!("results: {}", files(&out, &written));
-        Ok(Exit::Success)
+        Ok(exit(sol.converged, &out))
     })
 }
 
@@ -263,6 +290,24 @@ fn warn_contact(file: &Path, model: &Model, interface: &Interface) -> Vec<contac
         eprintln!("warning: {}: {f}", file.display());
     }
     findings
+}
+
+/// The rigid modes, the equilibrium residuals and the contact report of a monolithic solve.
+fn report_monolithic(model: &Model, sol: &MonolithicSolution) {
+    if sol.rigid_modes.is_empty() {
+        say!("rigid modes fixed: none");
+    } else {
+        say!("rigid modes fixed (no contact resists them):");
+        for (m, f) in sol.rigid_modes.iter().zip(&sol.imbalance) {
+            say!("  {m}; net force along it {f:.1e} of the forces");
+        }
+    }
+    let worst = sol.equilibrium.iter().fold(0.0f64, |a, &b| a.max(b));
+    say!("equilibrium: largest residual {worst:.1e} of the forces");
+    for line in pair_report(&sol.contact, &model.thetas()) {
+        say!("{line}");
+    }
+    say!("{}", applied_loads(model));
 }
 
 /// `./<problem name>-<suffix>`.

@@ -551,6 +551,45 @@ fn monolithic_reports_its_newton_steps_and_rigid_modes() {
     assert!(text.contains("rigid modes fixed"), "{text}");
     let summary = read_json(&dir.join("mono/summary.json"));
     assert_eq!(summary["solver"], "monolithic");
+    assert_eq!(summary["converged"], true);
     assert!(dir.join("mono/upper.vtu").is_file());
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// Cut short, the monolithic solve exits 2, still writes its last iterate marked not converged,
+/// and printed one line per Newton step.
+#[test]
+fn monolithic_cut_short_writes_its_last_iterate_and_exits_2() {
+    let dir = temp_dir("monolithic-short");
+    let file = notch_example();
+    let file = file.to_str().unwrap();
+    let out = contactdd(
+        &dir,
+        &["monolithic", file, "--out", "m", "--max-steps", "1"],
+    );
+    assert_eq!(out.status.code(), Some(2), "{}", stderr(&out));
+    assert!(stderr(&out).contains("not converged"), "{}", stderr(&out));
+    let text = stdout(&out);
+    assert!(text.contains("NOT converged"), "{text}");
+    let steps: Vec<&str> = text
+        .lines()
+        .filter(|l| l.trim_start().starts_with("1 "))
+        .collect();
+    assert_eq!(steps.len(), 1, "{text}");
+    let summary = read_json(&dir.join("m/summary.json"));
+    assert_eq!(summary["converged"], false);
+    assert!(summary["message"]
+        .as_str()
+        .unwrap()
+        .contains("did not settle"));
+    assert_eq!(summary["history"].as_array().unwrap().len(), 1);
+    for name in ["contact.csv", "lower.vtu", "upper.vtu"] {
+        assert!(dir.join("m").join(name).is_file(), "{name}");
+    }
+    // Without the cap it converges; --quiet prints the result line only.
+    let out = contactdd(&dir, &["monolithic", file, "--out", "m", "--quiet"]);
+    assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
+    assert_eq!(stdout(&out).lines().count(), 1, "{}", stdout(&out));
+    assert_eq!(read_json(&dir.join("m/summary.json"))["converged"], true);
     let _ = std::fs::remove_dir_all(&dir);
 }

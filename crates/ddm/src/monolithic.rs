@@ -1,40 +1,102 @@
 //! A monolithic reference: the same discrete penalty problem as the domain decomposition, solved
-//! for all bodies at once by a semismooth Newton (primal–dual active set) method.
+//! for all bodies at once by a globalised semismooth Newton method on the assembled equations
+//!   K u − f − Σ_j (w_j/θ_j) min(0, d_j − s_j(u)) n_j = 0
+//! (docs/monolithic.md). It shares no solver code with the decomposition: only the model, the
+//! contact geometry and the finite element core.
 //!
-//! With the active set χ_j = [d_j − s_j(u) < 0] fixed, the penalty equations
-//!   K u − f − Σ_j (w_j/θ_j) χ_j (d_j − s_j(u)) n_j = 0
-//! are linear, with the cross-body terms ∂s_j/∂u = n_j at the point's node plus Σ_k c_jk n_k at its
-//! partner's nodes. Each Newton step solves that sparse (for non-matching meshes non-symmetric)
-//! system with faer's sparse LU and updates χ, starting from "everything closed", until χ no
-//! longer changes. The fixed point of the DD iteration solves exactly these equations.
+//! - [`reduced`]: the contact terms touch only the contact DOFs, so the interior DOFs of every
+//!   body are eliminated once, exactly, by a sparse Cholesky factorisation with the contact DOFs
+//!   ordered last; every Newton step then refactorises only the contact block.
+//! - [`system`]: the reduced equations F(x) = 0 on the contact DOFs x, their generalised Jacobian
+//!   for a closed set, and the step.
+//! - [`modes`]: rigid motions that no closed contact resists, kept out of the step.
+//! - [`balance`]: the equilibrium check on the assembled system.
 //!
-//! Rigid modes: bodies held only by contact can move together without changing any s_j (the
-//! benchmark's two bodies translate vertically together). The rigid motions left free by every
-//! body's supports are tested against the assembled matrix; those in its kernel are removed by
-//! constraining the solution to be orthogonal to them (a bordered system), and reported.
+//! The iteration starts from u = 0 and stops when a full step leaves the closed set unchanged
+//! (then the step solved the linear equations of the final closed set); the result counts as
+//! converged only if it is also in equilibrium.
+
+mod balance;
+mod modes;
+mod reduced;
+mod system;
 
 use std::time::Instant;
 
-use faer::prelude::Solve;
-use faer::sparse::{SparseColMat, Triplet};
-use faer::Mat;
-use nalgebra::{DMatrix, SymmetricEigen};
-
-use contactdd_core::rigid::{describe, free_modes, RigidBasis};
-use contactdd_core::{component_of, dof, node_of, num_dofs, DIM};
+use rayon::prelude::*;
 
 use crate::contact::Interface;
 use crate::error::SetupError;
 use crate::model::Model;
 use crate::solution::{body_results, pair_results, BodyResult, PairResult};
 
+use modes::{dot, project_out, Mode};
+use reduced::ReducedBody;
+use system::{Evaluation, System};
+
+/// Accepted states whose worst merit the line search compares with (Grippo, Lampariello &
+/// Lucidi's non-monotone rule).
+const WINDOW: usize = 10;
+/// Halvings of the step at most in the line search.
+const MAX_HALVINGS: usize = 12;
+/// Sufficient decrease of the merit per unit step length (Armijo).
+const ARMIJO: f64 = 1e-4;
+/// A relative residual at the level of round-off: no refinement step needed.
+const ROUND_OFF: f64 = 1e-14;
+
+/// Limits of the monolithic solve.
+#[derive(Clone, Debug, PartialEq)]
+pub struct MonolithicSettings {
+    /// Newton steps at most.
+    pub max_steps: usize,
+    /// Largest accepted equilibrium residual of a body, relative to the applied and contact
+    /// forces (round-off reaches about 1e-7 with a 1e8 stiffness contrast between bodies).
+    pub equilibrium_tol: f64,
+    /// Largest accepted net force, relative to the same, along a rigid motion that no contact
+    /// resists (non-matching meshes leave a small one: each side integrates its own pressures).
+    pub imbalance_tol: f64,
+}
+
+impl Default for MonolithicSettings {
+    fn default() -> Self {
+        MonolithicSettings {
+            max_steps: 50,
+            equilibrium_tol: 1e-6,
+            imbalance_tol: 1e-2,
+        }
+    }
+}
+
+/// One Newton step.
+#[derive(Clone, Debug, PartialEq)]
+pub struct MonolithicStep {
+    /// Step number, from 1.
+    pub step: usize,
+    /// Closed contact points after the step.
+    pub active: usize,
+    /// ‖F‖ after the step relative to the condensed load.
+    pub residual: f64,
+    /// Step length taken by the line search (1: the full Newton step).
+    pub step_length: f64,
+}
+
 /// The monolithic reference solution.
 #[derive(Clone, Debug)]
 pub struct MonolithicSolution {
+    /// True if the closed set settled and the result is in equilibrium.
+    pub converged: bool,
+    /// Why it did not converge.
+    pub message: Option<String>,
     /// Newton steps taken.
     pub newton_steps: usize,
-    /// Rigid modes of the assembled problem that were fixed by a zero-mean constraint.
+    /// The steps.
+    pub history: Vec<MonolithicStep>,
+    /// Rigid motions of the final closed set that no contact resists, kept out of the steps.
     pub rigid_modes: Vec<String>,
+    /// Per body, the equilibrium residual off those motions (relative).
+    pub equilibrium: Vec<f64>,
+    /// Per entry of `rigid_modes`, the net force along it (relative).
+    pub imbalance: Vec<f64>,
     /// Per-body fields.
     pub bodies: Vec<BodyResult>,
     /// Per-pair contact results.
@@ -45,290 +107,289 @@ pub struct MonolithicSolution {
     pub seconds: f64,
 }
 
-struct Numbering {
-    /// Global index of each (body, dof), or None if prescribed.
-    index: Vec<Vec<Option<usize>>>,
-    n: usize,
+/// Solves the penalty contact problem monolithically with the default limits.
+pub fn solve_monolithic(model: &Model) -> Result<MonolithicSolution, SetupError> {
+    solve_monolithic_with(model, &MonolithicSettings::default(), None)
 }
 
-/// Solves the penalty contact problem monolithically.
-pub fn solve_monolithic(model: &Model) -> Result<MonolithicSolution, SetupError> {
+/// Solves the penalty contact problem monolithically, calling `on_step` after every Newton step.
+/// Errors only for a model that cannot be solved (a body that is not held, invalid contact
+/// geometry or limits); a run that does not converge returns its last state with
+/// `converged = false`.
+pub fn solve_monolithic_with(
+    model: &Model,
+    settings: &MonolithicSettings,
+    on_step: Option<&(dyn Fn(&MonolithicStep) + Sync)>,
+) -> Result<MonolithicSolution, SetupError> {
+    check_settings(settings)?;
     let start = Instant::now();
     let interface = Interface::new(model)?;
-    let mut index = Vec::new();
-    let mut n = 0;
-    for body in &model.bodies {
-        let idx: Vec<Option<usize>> = (0..num_dofs(body.mesh.num_nodes()))
-            .map(|d| {
-                body.constraints.get(d).is_none().then(|| {
-                    n += 1;
-                    n - 1
-                })
-            })
-            .collect();
-        index.push(idx);
-    }
-    let num = Numbering { index, n };
-    let stiffness: Vec<SparseColMat<usize, f64>> =
-        model.bodies.iter().map(|b| b.stiffness()).collect();
-
-    // The linear part: K restricted to free DOFs and f − K_fd u_d.
-    let mut base = Vec::new();
-    let mut rhs0 = vec![0.0; num.n];
-    for (b, (body, k)) in model.bodies.iter().zip(&stiffness).enumerate() {
-        for (d, &f) in body.load.iter().enumerate() {
-            if let Some(i) = num.index[b][d] {
-                rhs0[i] += f;
-            }
-        }
-        let (cp, ri, val) = (k.symbolic().col_ptr(), k.symbolic().row_idx(), k.val());
-        for j in 0..k.ncols() {
-            for p in cp[j]..cp[j + 1] {
-                match (
-                    num.index[b][ri[p]],
-                    num.index[b][j],
-                    body.constraints.get(j),
-                ) {
-                    (Some(r), Some(c), _) => base.push(Triplet::new(r, c, val[p])),
-                    (Some(r), None, Some(ud)) => rhs0[r] -= val[p] * ud,
-                    _ => {}
-                }
-            }
-        }
-    }
-    let (modes, names) = rigid_candidates(model, &num);
-    let mut chi: Vec<bool> = interface.points.iter().map(|p| p.has_partner()).collect();
-    let mut fixed_modes: Option<(Vec<Vec<f64>>, Vec<String>)> = None;
-    for step in 1..=100 {
-        let (trip, rhs) = contact_terms(model, &interface, &num, &chi, &base, &rhs0);
-        let (z, z_names) = match &fixed_modes {
-            Some(f) => f.clone(),
-            None => {
-                let f = kernel_modes(&trip, &modes, &names, num.n);
-                fixed_modes = Some(f.clone());
-                f
-            }
-        };
-        let u = bordered_solve(trip, &rhs, &z, num.n)?;
-        let un = normal_displacements(model, &interface, &num, &u);
-        let mut s = vec![0.0; un.len()];
-        interface.sum_normal(&un, &mut s);
-        let new_chi: Vec<bool> = interface
-            .points
-            .iter()
-            .zip(&s)
-            .map(|(p, &s)| p.has_partner() && p.gap - s < 0.0)
-            .collect();
-        if new_chi == chi {
-            let displacements = full_displacements(model, &num, &u);
-            return Ok(MonolithicSolution {
-                newton_steps: step,
-                rigid_modes: z_names,
-                bodies: body_results(model, &interface, &un, displacements),
-                contact: pair_results(model, &interface, &un),
-                un,
-                seconds: start.elapsed().as_secs_f64(),
-            });
-        }
-        chi = new_chi;
-    }
-    Err(SetupError::Solver(
-        "monolithic semismooth Newton: the active set did not settle in 100 steps".into(),
-    ))
-}
-
-/// Jacobian triplets and right-hand side for a fixed active set.
-fn contact_terms(
-    model: &Model,
-    interface: &Interface,
-    num: &Numbering,
-    chi: &[bool],
-    base: &[Triplet<usize, usize, f64>],
-    rhs0: &[f64],
-) -> (Vec<Triplet<usize, usize, f64>>, Vec<f64>) {
-    let mut trip = base.to_vec();
-    let mut rhs = rhs0.to_vec();
-    for (j, p) in interface.points.iter().enumerate() {
-        if !chi[j] {
-            continue;
-        }
-        let k = p.weight / p.theta;
-        // ∂s_j/∂u as (body, node, normal, coefficient).
-        let mut terms = vec![(p.body, p.node, p.normal, 1.0)];
-        for &(q, c) in &p.partner {
-            let pq = &interface.points[q];
-            terms.push((pq.body, pq.node, pq.normal, c));
-        }
-        for a in 0..DIM {
-            let Some(row) = num.index[p.body][dof(p.node, a)] else {
-                continue;
-            };
-            rhs[row] += k * p.gap * p.normal[a];
-            for &(b, v, n, c) in &terms {
-                for e in 0..DIM {
-                    let coef = k * p.normal[a] * c * n[e];
-                    match num.index[b][dof(v, e)] {
-                        Some(col) => trip.push(Triplet::new(row, col, coef)),
-                        None => {
-                            let ud = model.bodies[b].constraints.get(dof(v, e)).unwrap_or(0.0);
-                            rhs[row] -= coef * ud;
-                        }
-                    }
-                }
-            }
-        }
-    }
-    (trip, rhs)
-}
-
-/// Per body, the rigid motions its supports leave free (the core's rigid basis), as global
-/// vectors.
-fn rigid_candidates(model: &Model, num: &Numbering) -> (Vec<Vec<f64>>, Vec<String>) {
-    let mut out = Vec::new();
-    let mut names = Vec::new();
-    for (b, body) in model.bodies.iter().enumerate() {
-        let basis = RigidBasis::new(&body.mesh);
-        for v in free_modes(&body.mesh, &body.constraints, &[]) {
-            let mut z = vec![0.0; num.n];
-            for (d, idx) in num.index[b].iter().enumerate() {
-                if let Some(i) = idx {
-                    z[*i] = basis.motion(body.mesh.nodes()[node_of(d)], &v)[component_of(d)];
-                }
-            }
-            out.push(z);
-            names.push(format!("{} of '{}'", describe(&v), body.name));
-        }
-    }
-    (out, names)
-}
-
-/// The combinations of candidate rigid motions that the assembled matrix maps to zero.
-fn kernel_modes(
-    trip: &[Triplet<usize, usize, f64>],
-    cands: &[Vec<f64>],
-    names: &[String],
-    n: usize,
-) -> (Vec<Vec<f64>>, Vec<String>) {
-    let q = cands.len();
-    if q == 0 {
-        return (Vec::new(), Vec::new());
-    }
-    let norms: Vec<f64> = cands
-        .iter()
-        .map(|z| {
-            z.iter()
-                .map(|x| x * x)
-                .sum::<f64>()
-                .sqrt()
-                .max(f64::MIN_POSITIVE)
-        })
-        .collect();
-    let mut jz = vec![vec![0.0; n]; q];
-    let mut jmax: f64 = 0.0;
-    for t in trip {
-        jmax = jmax.max(t.val.abs());
-        for (k, z) in cands.iter().enumerate() {
-            jz[k][t.row] += t.val * z[t.col] / norms[k];
-        }
-    }
-    let gram = DMatrix::from_fn(q, q, |a, b| {
-        jz[a].iter().zip(&jz[b]).map(|(x, y)| x * y).sum::<f64>()
-            / (jmax * jmax).max(f64::MIN_POSITIVE)
-    });
-    let eig = SymmetricEigen::new(gram);
-    let mut modes = Vec::new();
-    let mut labels = Vec::new();
-    for k in 0..q {
-        if eig.eigenvalues[k] > 1e-16 {
-            continue;
-        }
-        let c = eig.eigenvectors.column(k);
-        let mut z = vec![0.0; n];
-        for (a, cand) in cands.iter().enumerate() {
-            for (zi, ci) in z.iter_mut().zip(cand) {
-                *zi += c[a] * ci / norms[a];
-            }
-        }
-        let label = (0..q)
-            .filter(|&a| c[a].abs() > 0.1)
-            .map(|a| names[a].clone())
-            .collect::<Vec<_>>()
-            .join(" together with ");
-        modes.push(z);
-        labels.push(format!("{label} (fixed by a zero-mean constraint)"));
-    }
-    (modes, labels)
-}
-
-/// Solves [[J, Z], [Zᵀ, 0]] [u; λ] = [rhs; 0] with faer's sparse LU.
-fn bordered_solve(
-    mut trip: Vec<Triplet<usize, usize, f64>>,
-    rhs: &[f64],
-    z: &[Vec<f64>],
-    n: usize,
-) -> Result<Vec<f64>, SetupError> {
-    for (k, zk) in z.iter().enumerate() {
-        for (i, &v) in zk.iter().enumerate() {
-            if v != 0.0 {
-                trip.push(Triplet::new(i, n + k, v));
-                trip.push(Triplet::new(n + k, i, v));
-            }
-        }
-    }
-    let size = n + z.len();
-    let fail = |what: &str| {
-        SetupError::Solver(format!(
-            "monolithic solve: {what}; a body held only by contact may have lost all contact"
-        ))
+    // One level of parallelism: over bodies when there are several, inside faer otherwise.
+    let par = if model.bodies.len() > 1 {
+        faer::Par::Seq
+    } else {
+        faer::Par::rayon(0)
     };
-    let a = SparseColMat::<usize, f64>::try_new_from_triplets(size, size, &trip)
-        .map_err(|e| fail(&format!("{e:?}")))?;
-    let lu = a.sp_lu().map_err(|_| fail("the system is singular"))?;
-    let b = Mat::<f64>::from_fn(size, 1, |i, _| if i < n { rhs[i] } else { 0.0 });
-    let x = lu.solve(&b);
-    let u: Vec<f64> = (0..n).map(|i| x[(i, 0)]).collect();
-    if u.iter().any(|v| !v.is_finite()) {
-        return Err(fail("non-finite solution"));
-    }
-    Ok(u)
-}
-
-fn full_displacements(model: &Model, num: &Numbering, u: &[f64]) -> Vec<Vec<f64>> {
-    model
+    let bodies = model
         .bodies
-        .iter()
+        .par_iter()
+        .enumerate()
+        .map(|(b, body)| ReducedBody::new(body, interface.of_body(b), par))
+        .collect::<Result<Vec<_>, _>>()?;
+    let system = System::new(model, &interface, &bodies);
+    let modes = modes::free_rigid_modes(model, &system);
+    let run = newton(&system, &modes, settings, on_step);
+
+    let contact = system.contact_forces(model, &run.eval.s);
+    let displacements = bodies
+        .par_iter()
         .enumerate()
         .map(|(b, body)| {
-            (0..num_dofs(body.mesh.num_nodes()))
-                .map(|d| match num.index[b][d] {
-                    Some(i) => u[i],
-                    None => body.constraints.get(d).unwrap_or(0.0),
-                })
-                .collect()
+            let mut x = run.x[system.offset[b]..system.offset[b] + body.dofs.len()].to_vec();
+            let rigid = modes::split_rigid(&system.rigid[b], &mut x);
+            body.recover(&model.bodies[b], &contact[b], &x, &rigid)
         })
-        .collect()
+        .collect::<Result<Vec<_>, _>>()?;
+    let kernel = modes::kernel(&modes, &run.eval.closed);
+    let check = balance::balance(model, &system, &displacements, &contact, &modes, &kernel);
+    let rigid_modes: Vec<String> = kernel
+        .weights
+        .iter()
+        .map(|w| modes::describe_motion(model, &modes, w))
+        .collect();
+    let message = run
+        .stop
+        .or_else(|| verdict(model, settings, &check, &rigid_modes, run.steps));
+    let un: Vec<f64> = system.un.iter().map(|a| a.at(&run.x)).collect();
+    Ok(MonolithicSolution {
+        converged: message.is_none(),
+        message,
+        newton_steps: run.steps,
+        history: run.history,
+        rigid_modes,
+        equilibrium: check.bodies,
+        imbalance: check.motions,
+        bodies: body_results(model, &interface, &un, displacements),
+        contact: pair_results(model, &interface, &un),
+        un,
+        seconds: start.elapsed().as_secs_f64(),
+    })
 }
 
-fn normal_displacements(
+fn check_settings(settings: &MonolithicSettings) -> Result<(), SetupError> {
+    let positive = |v: f64| v > 0.0 && v.is_finite();
+    if settings.max_steps == 0 {
+        return Err(SetupError::Solver("max-steps must be at least 1".into()));
+    }
+    if !positive(settings.equilibrium_tol) || !positive(settings.imbalance_tol) {
+        return Err(SetupError::Solver(format!(
+            "the equilibrium tolerances must be positive, got {} and {}",
+            settings.equilibrium_tol, settings.imbalance_tol
+        )));
+    }
+    Ok(())
+}
+
+/// None if a settled result is in equilibrium; otherwise why not.
+fn verdict(
     model: &Model,
-    interface: &Interface,
-    num: &Numbering,
-    u: &[f64],
-) -> Vec<f64> {
-    interface
-        .points
+    settings: &MonolithicSettings,
+    check: &balance::Balance,
+    rigid_modes: &[String],
+    steps: usize,
+) -> Option<String> {
+    let worst =
+        (0..check.bodies.len()).max_by(|&a, &b| check.bodies[a].total_cmp(&check.bodies[b]));
+    if let Some(b) = worst {
+        let r = check.bodies[b];
+        if r.is_nan() || r > settings.equilibrium_tol {
+            return Some(format!(
+                "the closed set settled in {steps} steps but body '{}' is out of equilibrium: \
+                 residual {r:.1e} of the forces (limit {:.0e})",
+                model.bodies[b].name, settings.equilibrium_tol
+            ));
+        }
+    }
+    check
+        .motions
         .iter()
-        .map(|p| {
-            (0..DIM)
-                .map(|a| {
-                    let d = dof(p.node, a);
-                    let v = match num.index[p.body][d] {
-                        Some(i) => u[i],
-                        None => model.bodies[p.body].constraints.get(d).unwrap_or(0.0),
-                    };
-                    p.normal[a] * v
-                })
-                .sum()
+        .zip(rigid_modes)
+        .find(|(f, _)| f.is_nan() || **f > settings.imbalance_tol)
+        .map(|(f, name)| {
+            format!(
+                "net force {f:.1e} of the forces along {name}, which no contact resists \
+                 (limit {:.0e}): the loads do not balance",
+                settings.imbalance_tol
+            )
         })
-        .collect()
+}
+
+/// The end state of the Newton iteration.
+struct Run {
+    x: Vec<f64>,
+    eval: Evaluation,
+    steps: usize,
+    history: Vec<MonolithicStep>,
+    /// Why it stopped without settling (None: settled).
+    stop: Option<String>,
+}
+
+/// The globalised semismooth Newton iteration from x = 0, λ = 0.
+fn newton(
+    system: &System,
+    modes: &[Mode],
+    settings: &MonolithicSettings,
+    on_step: Option<&(dyn Fn(&MonolithicStep) + Sync)>,
+) -> Run {
+    let mut x = vec![0.0; system.n];
+    let mut lam = vec![0.0; system.interface.len()];
+    let mut eval = system.evaluate(&x, &lam);
+    let scale = system
+        .bodies
+        .iter()
+        .map(|b| dot(&b.g, &b.g))
+        .sum::<f64>()
+        .sqrt()
+        .max(f64::MIN_POSITIVE);
+    let mut merits: Vec<f64> = Vec::new();
+    let mut history = Vec::new();
+    // Consecutive steps whose line search found no decrease.
+    let mut failures = 0;
+    let mut seen = std::collections::HashSet::new();
+    let end = |x, eval, steps, history, stop| Run {
+        x,
+        eval,
+        steps,
+        history,
+        stop,
+    };
+    for k in 1..=settings.max_steps {
+        let chi = jacobian_set(system, modes, &eval);
+        let z = modes::kernel(modes, &chi).on_x;
+        let Some((dx, dlam)) = system.direction(&chi, &z, &eval, &lam) else {
+            let stop = format!("step {k}: the Newton system is singular");
+            return end(x, eval, k - 1, history, Some(stop));
+        };
+        merits.push(merit(&z, &eval));
+        let reference = merits
+            .iter()
+            .rev()
+            .take(WINDOW)
+            .fold(0.0, |a: f64, &b| a.max(b));
+        // Full active-set steps while they visit new closed sets (and stay finite); the line
+        // search once a set comes back (the plain iteration would cycle).
+        let full = seen
+            .insert(chi.clone())
+            .then(|| full_step(system, (&x, &lam), (&dx, &dlam)))
+            .filter(|e| merit(&z, e).is_finite());
+        let (alpha, next, decreased) = match full {
+            Some(next) => (1.0, next, true),
+            None => line_search(system, &z, (&x, &lam), (&dx, &dlam), reference),
+        };
+        failures = if decreased { 0 } else { failures + 1 };
+        x.iter_mut().zip(&dx).for_each(|(v, d)| *v += alpha * d);
+        lam.iter_mut().zip(&dlam).for_each(|(v, d)| *v += alpha * d);
+        let record = MonolithicStep {
+            step: k,
+            active: next.closed.iter().filter(|&&c| c).count(),
+            residual: merit(&z, &next) / scale,
+            step_length: alpha,
+        };
+        // A full step that keeps the closed set solved its linear equations; on an
+        // ill-conditioned system (a stiffness contrast, a very soft penalty) one more step with
+        // the same set refines the round-off, until the residual stops falling.
+        let before = merits.last().copied().unwrap_or(0.0) / scale;
+        let settled = alpha == 1.0
+            && next.closed == chi
+            && (record.residual <= ROUND_OFF || record.residual > 0.1 * before);
+        if let Some(f) = on_step {
+            f(&record);
+        }
+        history.push(record);
+        eval = next;
+        if settled {
+            return end(x, eval, k, history, None);
+        }
+        if failures >= WINDOW {
+            let stop = format!(
+                "the line search found no decrease in {WINDOW} consecutive steps (step {k})"
+            );
+            return end(x, eval, k, history, Some(stop));
+        }
+    }
+    let stop = format!(
+        "the closed set did not settle in {} Newton steps",
+        settings.max_steps
+    );
+    end(x, eval, settings.max_steps, history, Some(stop))
+}
+
+/// The points treated as closed in J: the closed points, and for a body with free rigid modes
+/// that has no closed point, its partnered points of smallest gap d − s (it moves until they
+/// touch, instead of being held still; closing every partnered point would glue it on across
+/// gaps of any size and cost the line search many short steps).
+fn jacobian_set(system: &System, modes: &[Mode], eval: &Evaluation) -> Vec<bool> {
+    let points = &system.interface.points;
+    let mut chi = eval.closed.clone();
+    for (b, range) in system.interface.body_range.iter().enumerate() {
+        let floating = modes.iter().any(|m| m.body == b);
+        if !floating || chi[range.clone()].iter().any(|&c| c) {
+            continue;
+        }
+        let gap = |j: usize| points[j].gap - eval.s[j];
+        let partnered = range.clone().filter(|&j| points[j].has_partner());
+        let Some(least) = partnered.clone().map(gap).min_by(f64::total_cmp) else {
+            continue;
+        };
+        let tie = 1e-9 * (least.abs() + system.size[b]);
+        for j in partnered.filter(|&j| gap(j) <= least + tie) {
+            chi[j] = true;
+        }
+    }
+    chi
+}
+
+/// ‖(F, Φ)‖ with F's part along the unresisted motions `z` removed (no step changes that part;
+/// the balance check judges it).
+fn merit(z: &[Vec<f64>], eval: &Evaluation) -> f64 {
+    let mut r = eval.f.clone();
+    project_out(z, &mut r);
+    (dot(&r, &r) + dot(&eval.phi, &eval.phi)).sqrt()
+}
+
+/// The state after the full step.
+fn full_step(
+    system: &System,
+    (x, lam): (&[f64], &[f64]),
+    (dx, dlam): (&[f64], &[f64]),
+) -> Evaluation {
+    let add = |v: &[f64], d: &[f64]| -> Vec<f64> { v.iter().zip(d).map(|(a, b)| a + b).collect() };
+    system.evaluate(&add(x, dx), &add(lam, dlam))
+}
+
+/// Backtracks along the direction from the state until the merit decreases enough against
+/// `reference`; returns the step length, the state there and whether it decreased enough (if
+/// not, the shortest step).
+fn line_search(
+    system: &System,
+    z: &[Vec<f64>],
+    (x, lam): (&[f64], &[f64]),
+    (dx, dlam): (&[f64], &[f64]),
+    reference: f64,
+) -> (f64, Evaluation, bool) {
+    let mut alpha = 1.0;
+    let mut halvings = 0;
+    loop {
+        let along = |v: &[f64], d: &[f64]| -> Vec<f64> {
+            v.iter().zip(d).map(|(a, b)| a + alpha * b).collect()
+        };
+        let eval = system.evaluate(&along(x, dx), &along(lam, dlam));
+        let f = merit(z, &eval);
+        let decreased = f <= (1.0 - ARMIJO * alpha) * reference;
+        if decreased || halvings >= MAX_HALVINGS || f.is_nan() {
+            return (alpha, eval, decreased);
+        }
+        alpha *= 0.5;
+        halvings += 1;
+    }
 }

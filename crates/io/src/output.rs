@@ -129,15 +129,34 @@ pub fn summary_json(model: &Model, sol: &Solution) -> Value {
     })
 }
 
-/// `summary.json` of a monolithic reference solve: `solver = "monolithic"`, `newton_steps`,
-/// `rigid_modes` (the fixed rigid modes, as text), `bodies`, `contact` and `timing_s` as in
-/// [`summary_json`], and `version`.
+/// `summary.json` of a monolithic reference solve: `solver = "monolithic"`, `converged`,
+/// `message` (why not, or null), `newton_steps`, `history` (per step: `step`, `active`,
+/// `residual`, `step_length`), `rigid_modes` (the rigid motions no contact resists, as text),
+/// `equilibrium` (per body, the residual of the assembled equations relative to the forces),
+/// `imbalance` (per rigid mode, the net force along it, relative), `bodies`, `contact` and
+/// `timing_s` as in [`summary_json`], and `version`.
 pub fn monolithic_summary_json(model: &Model, sol: &MonolithicSolution) -> Value {
+    let history: Vec<Value> = sol
+        .history
+        .iter()
+        .map(|r| {
+            json!({
+                "step": r.step,
+                "active": r.active,
+                "residual": json_number(r.residual),
+                "step_length": json_number(r.step_length),
+            })
+        })
+        .collect();
     json!({
         "solver": "monolithic",
-        "converged": true,
+        "converged": sol.converged,
+        "message": sol.message,
         "newton_steps": sol.newton_steps,
+        "history": history,
         "rigid_modes": sol.rigid_modes,
+        "equilibrium": json_numbers(&sol.equilibrium),
+        "imbalance": json_numbers(&sol.imbalance),
         "bodies": bodies_json(model),
         "contact": contact_json(&sol.contact),
         "timing_s": { "total": json_number(sol.seconds) },
@@ -312,28 +331,20 @@ pub fn write_results(dir: &Path, model: &Model, sol: &Solution) -> std::io::Resu
     })
 }
 
-/// Writes a monolithic solve's result folder: `summary.json` ([`monolithic_summary_json`]),
-/// `contact.csv` and `<body>.vtu` per body. Returns the paths written.
+/// Writes a monolithic solve's result folder as a set, like [`write_results`]: `contact.csv` and
+/// `<body>.vtu` per body, then `summary.json` ([`monolithic_summary_json`] with the reactions and
+/// the manifest) last. Returns the paths written, `summary.json` last.
 pub fn write_monolithic_results(
     dir: &Path,
     model: &Model,
     sol: &MonolithicSolution,
 ) -> std::io::Result<Vec<PathBuf>> {
-    std::fs::create_dir_all(dir)?;
-    let mut written = Vec::new();
-    for (name, text) in [
-        (
-            "summary.json",
-            pretty(&monolithic_summary_json(model, sol))?,
-        ),
-        ("contact.csv", pairs_csv(&sol.contact)),
-    ] {
-        let path = dir.join(name);
-        write_atomic(&path, text.as_bytes())?;
-        written.push(path);
-    }
-    written.extend(write_body_vtus(dir, &sol.bodies)?);
-    Ok(written)
+    let mut summary = monolithic_summary_json(model, sol);
+    summary["reactions"] = reactions_json(model, &sol.bodies, &sol.contact);
+    write_set(dir, summary, |set| {
+        set.write("contact.csv", pairs_csv(&sol.contact).as_bytes())?;
+        write_solution_vtus(set, model, &sol.bodies, &sol.contact)
+    })
 }
 
 /// Writes `<body>.vtu` per body into `dir` with the nodal fields of the results alone:
@@ -482,12 +493,6 @@ pub fn safe_file_name(name: &str) -> String {
     } else {
         s
     }
-}
-
-fn pretty(value: &Value) -> std::io::Result<String> {
-    let mut text = serde_json::to_string_pretty(value).map_err(Error::other)?;
-    text.push('\n');
-    Ok(text)
 }
 
 /// A CSV field, quoted when it holds a comma, quote or line break.

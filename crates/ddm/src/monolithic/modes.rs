@@ -1,0 +1,177 @@
+//! Rigid motions that no closed contact resists.
+//!
+//! Every body's supports leave it a few free rigid modes (the core's [`free_modes`], at most 3
+//! per body, each listed once: an orthonormal basis). A combination of them over all bodies is
+//! in the kernel of J_χ when it changes no closed pair sum s_j: then S, which maps a body's rigid
+//! motion to zero, and the closed contact terms both vanish on it. The kernel is found from the
+//! Gram matrix of those changes, which holds only geometry (normals and mode values), so neither a
+//! stiffness contrast nor the penalty's size moves the threshold.
+
+use nalgebra::{DMatrix, SymmetricEigen};
+
+use contactdd_core::rigid::{describe, free_modes, RigidBasis, NUM_MODES};
+use contactdd_core::{component_of, node_of, ElasticBody};
+
+use crate::model::Model;
+
+use super::system::System;
+
+/// One free rigid mode of one body.
+pub(super) struct Mode {
+    pub body: usize,
+    /// Coefficients in the body's rigid basis.
+    pub coefficients: [f64; NUM_MODES],
+    /// Its values on x.
+    pub on_x: Vec<f64>,
+    /// Its change of every contact point's pair sum.
+    pub on_s: Vec<f64>,
+}
+
+/// A kernel motion: a combination of modes, orthonormal on x.
+pub(super) struct Kernel {
+    /// Per kernel motion, its values on x.
+    pub on_x: Vec<Vec<f64>>,
+    /// Per kernel motion, the coefficients of every mode.
+    pub weights: Vec<Vec<f64>>,
+}
+
+/// The values of the rigid motion with coefficients `v` on the DOFs `dofs` of `body`.
+pub(super) fn motion_on(body: &ElasticBody, v: &[f64; NUM_MODES], dofs: &[usize]) -> Vec<f64> {
+    let basis = RigidBasis::new(&body.mesh);
+    dofs.iter()
+        .map(|&d| basis.motion(body.mesh.nodes()[node_of(d)], v)[component_of(d)])
+        .collect()
+}
+
+/// An orthonormal basis of the free rigid motions of `body` on the DOFs `dofs`, each with its
+/// coefficients in the body's rigid basis: a displacement minus its part in this span has the
+/// same strains, and far smaller entries when the body mostly moves rigidly (products with the
+/// stiffness then lose no digits to that motion).
+pub(super) fn rigid_span(body: &ElasticBody, dofs: &[usize]) -> Vec<([f64; NUM_MODES], Vec<f64>)> {
+    let mut out: Vec<([f64; NUM_MODES], Vec<f64>)> = Vec::new();
+    for mut v in free_modes(&body.mesh, &body.constraints, &[]) {
+        let mut z = motion_on(body, &v, dofs);
+        for (w, e) in &out {
+            let d = dot(e, &z);
+            z.iter_mut().zip(e).for_each(|(x, y)| *x -= d * y);
+            v.iter_mut().zip(w).for_each(|(x, y)| *x -= d * y);
+        }
+        let norm = dot(&z, &z).sqrt();
+        if norm > 0.0 {
+            z.iter_mut().for_each(|x| *x /= norm);
+            out.push((v.map(|x| x / norm), z));
+        }
+    }
+    out
+}
+
+/// Splits `u` (on the DOFs of `span`) into its rigid part's coefficients and the rest, in place.
+pub(super) fn split_rigid(
+    span: &[([f64; NUM_MODES], Vec<f64>)],
+    u: &mut [f64],
+) -> [f64; NUM_MODES] {
+    let mut c = [0.0; NUM_MODES];
+    for (w, e) in span {
+        let d = dot(e, u);
+        u.iter_mut().zip(e).for_each(|(x, y)| *x -= d * y);
+        c.iter_mut().zip(w).for_each(|(x, y)| *x += d * y);
+    }
+    c
+}
+
+/// The free rigid modes of every body.
+pub(super) fn free_rigid_modes(model: &Model, system: &System) -> Vec<Mode> {
+    let mut modes = Vec::new();
+    for (b, body) in model.bodies.iter().enumerate() {
+        for v in free_modes(&body.mesh, &body.constraints, &[]) {
+            let mut on_x = vec![0.0; system.n];
+            let values = motion_on(body, &v, &system.bodies[b].dofs);
+            on_x[system.offset[b]..system.offset[b] + values.len()].copy_from_slice(&values);
+            let on_s = system
+                .s
+                .iter()
+                .map(|a| a.terms.iter().map(|&(i, c)| c * on_x[i]).sum())
+                .collect();
+            modes.push(Mode {
+                body: b,
+                coefficients: v,
+                on_x,
+                on_s,
+            });
+        }
+    }
+    modes
+}
+
+/// The combinations of `modes` that change no pair sum of the points in `chi`.
+pub(super) fn kernel(modes: &[Mode], chi: &[bool]) -> Kernel {
+    let q = modes.len();
+    let mut out = Kernel {
+        on_x: Vec::new(),
+        weights: Vec::new(),
+    };
+    if q == 0 {
+        return out;
+    }
+    let gram = DMatrix::from_fn(q, q, |a, b| {
+        (0..chi.len())
+            .filter(|&j| chi[j])
+            .map(|j| modes[a].on_s[j] * modes[b].on_s[j])
+            .sum::<f64>()
+    });
+    let scale = (0..q).map(|a| gram[(a, a)]).fold(0.0, f64::max);
+    let eig = SymmetricEigen::new(gram);
+    for (k, &lambda) in eig.eigenvalues.iter().enumerate() {
+        if lambda > 1e-10 * scale {
+            continue;
+        }
+        let w: Vec<f64> = eig.eigenvectors.column(k).iter().copied().collect();
+        let mut z = vec![0.0; modes[0].on_x.len()];
+        for (m, &c) in modes.iter().zip(&w) {
+            z.iter_mut().zip(&m.on_x).for_each(|(zi, v)| *zi += c * v);
+        }
+        for e in &out.on_x {
+            let d = dot(e, &z);
+            z.iter_mut().zip(e).for_each(|(x, y)| *x -= d * y);
+        }
+        let norm = dot(&z, &z).sqrt();
+        if norm > 1e-12 {
+            z.iter_mut().for_each(|x| *x /= norm);
+            out.on_x.push(z);
+            out.weights.push(w);
+        }
+    }
+    out
+}
+
+/// A kernel motion in words: "translation in y of 'lower' together with translation in y of
+/// 'upper'".
+pub(super) fn describe_motion(model: &Model, modes: &[Mode], weights: &[f64]) -> String {
+    let mut parts = Vec::new();
+    for b in 0..model.bodies.len() {
+        let mut v = [0.0; NUM_MODES];
+        for (m, &w) in modes.iter().zip(weights).filter(|(m, _)| m.body == b) {
+            for i in 0..NUM_MODES {
+                v[i] += w * m.coefficients[i];
+            }
+        }
+        let norm = v.iter().map(|x| x * x).sum::<f64>().sqrt();
+        if norm > 0.1 {
+            let v = v.map(|x| x / norm);
+            parts.push(format!("{} of '{}'", describe(&v), model.bodies[b].name));
+        }
+    }
+    parts.join(" together with ")
+}
+
+/// Removes the components along the orthonormal vectors `basis` from `r`.
+pub(super) fn project_out(basis: &[Vec<f64>], r: &mut [f64]) {
+    for e in basis {
+        let d = dot(e, r);
+        r.iter_mut().zip(e).for_each(|(x, y)| *x -= d * y);
+    }
+}
+
+pub(super) fn dot(a: &[f64], b: &[f64]) -> f64 {
+    a.iter().zip(b).map(|(x, y)| x * y).sum()
+}

@@ -1,0 +1,328 @@
+//! The reduced penalty equations on the contact DOFs of all bodies, x, and their semismooth
+//! Newton linearisation.
+//!
+//! With the interior eliminated ([`super::reduced`]), the assembled equations read
+//!   F(x, λ) = S x − g + Σ_j λ_j n_j = 0,   λ_j = k_j (s_j(x) − d_j)⁺,   k_j = w_j/θ_j,
+//! where λ_j is the nodal contact force of point j, n_j acts on the contact DOFs of its node and
+//! s_j(x) = u_n,j + Σ_k c_jk u_n,k is the pair sum (affine in x: prescribed DOFs give a constant).
+//! The penalty law is written as the complementarity function
+//!   Φ_j = λ_j − max(0, λ_j + ρ_j (k_j (s_j − d_j) − λ_j)),   ρ_j = b_j / (b_j + k_j),
+//! with b_j the body's own stiffness at the point (the diagonal of S along n_j): the primal–dual
+//! active set rule decides on the force scaled by the body's stiffness, and the closed rows of Φ
+//! are of the size of the body's forces rather than the penalty's, so a stiff penalty does not
+//! let a point at the zone's edge dominate the merit. At a solution λ_j = k_j (s_j − d_j)⁺, the
+//! penalty law itself.
+//!
+//! For a closed set χ, eliminating δλ (closed: δλ_j = k_j ∂s_j δx + k_j (s_j − d_j) − λ_j; open:
+//! δλ_j = −λ_j) leaves J_χ δx = rhs with J_χ = S + Σ_{j∈χ} k_j n_j ∂s_jᵀ: dense blocks per body
+//! coupled only across closed pairs, non-symmetric for non-matching meshes.
+
+use faer::prelude::Solve;
+use faer::sparse::{SparseColMat, Triplet};
+use faer::Mat;
+
+use contactdd_core::rigid::NUM_MODES;
+use contactdd_core::{dof, DIM};
+
+use crate::contact::Interface;
+use crate::model::Model;
+
+use super::modes::{rigid_span, split_rigid};
+use super::reduced::ReducedBody;
+
+/// An affine function of x: Σ coef·x[index] + constant.
+#[derive(Clone, Debug, Default)]
+pub(super) struct Affine {
+    pub terms: Vec<(usize, f64)>,
+    pub constant: f64,
+}
+
+impl Affine {
+    pub fn at(&self, x: &[f64]) -> f64 {
+        self.constant + self.terms.iter().map(|&(i, c)| c * x[i]).sum::<f64>()
+    }
+}
+
+/// The reduced system of a model.
+pub(super) struct System<'a> {
+    pub interface: &'a Interface,
+    pub bodies: &'a [ReducedBody],
+    /// First x index of every body.
+    pub offset: Vec<usize>,
+    /// Size of x.
+    pub n: usize,
+    /// The normal displacement u_n,j of every contact point.
+    pub un: Vec<Affine>,
+    /// The pair sum s_j of every contact point.
+    pub s: Vec<Affine>,
+    /// ρ_j of every contact point.
+    rho: Vec<f64>,
+    /// Bounding box diameter of every body.
+    pub size: Vec<f64>,
+    /// Per body, an orthonormal basis of its free rigid motions on its part of x.
+    pub rigid: Vec<Vec<([f64; NUM_MODES], Vec<f64>)>>,
+}
+
+/// F, Φ and the closed set at one (x, λ).
+#[derive(Clone)]
+pub(super) struct Evaluation {
+    pub s: Vec<f64>,
+    pub closed: Vec<bool>,
+    pub f: Vec<f64>,
+    pub phi: Vec<f64>,
+}
+
+impl<'a> System<'a> {
+    pub fn new(model: &Model, interface: &'a Interface, bodies: &'a [ReducedBody]) -> Self {
+        let mut offset = Vec::with_capacity(bodies.len());
+        let mut n = 0;
+        for b in bodies {
+            offset.push(n);
+            n += b.dofs.len();
+        }
+        // Where every free contact DOF sits in x.
+        let position: Vec<std::collections::HashMap<usize, usize>> = bodies
+            .iter()
+            .zip(&offset)
+            .map(|(b, &o)| {
+                b.dofs
+                    .iter()
+                    .enumerate()
+                    .map(|(i, &d)| (d, o + i))
+                    .collect()
+            })
+            .collect();
+        let un: Vec<Affine> = interface
+            .points
+            .iter()
+            .map(|p| {
+                let mut a = Affine::default();
+                for c in (0..DIM).filter(|&c| p.normal[c] != 0.0) {
+                    let d = dof(p.node, c);
+                    match position[p.body].get(&d) {
+                        Some(&i) => a.terms.push((i, p.normal[c])),
+                        None => {
+                            let fixed = model.bodies[p.body].constraints.get(d).unwrap_or(0.0);
+                            a.constant += p.normal[c] * fixed;
+                        }
+                    }
+                }
+                a
+            })
+            .collect();
+        let s = interface
+            .points
+            .iter()
+            .enumerate()
+            .map(|(j, p)| {
+                let mut a = un[j].clone();
+                for &(k, c) in &p.partner {
+                    a.terms.extend(un[k].terms.iter().map(|&(i, v)| (i, c * v)));
+                    a.constant += c * un[k].constant;
+                }
+                a
+            })
+            .collect();
+        let rho = stiffness_shares(interface, bodies, &offset, &un);
+        System {
+            interface,
+            bodies,
+            offset,
+            n,
+            un,
+            s,
+            rho,
+            size: model
+                .bodies
+                .iter()
+                .map(|b| b.mesh.bounding_box_diameter())
+                .collect(),
+            rigid: model
+                .bodies
+                .iter()
+                .zip(bodies)
+                .map(|(body, reduced)| rigid_span(body, &reduced.dofs))
+                .collect(),
+        }
+    }
+
+    /// Penalty stiffness k_j = w_j/θ_j.
+    fn spring(&self, j: usize) -> f64 {
+        let p = &self.interface.points[j];
+        p.weight / p.theta
+    }
+
+    /// s, the closed set, F and Φ at (x, λ).
+    pub fn evaluate(&self, x: &[f64], lam: &[f64]) -> Evaluation {
+        let points = &self.interface.points;
+        let s: Vec<f64> = self.s.iter().map(|a| a.at(x)).collect();
+        let closed: Vec<bool> = (0..points.len())
+            .map(|j| {
+                let (p, k) = (&points[j], self.spring(j));
+                p.has_partner()
+                    && k > 0.0
+                    && lam[j] + self.rho[j] * (k * (s[j] - p.gap) - lam[j]) > 0.0
+            })
+            .collect();
+        let phi = (0..points.len())
+            .map(|j| {
+                if closed[j] {
+                    self.rho[j] * (self.spring(j) * (s[j] - points[j].gap) - lam[j])
+                } else {
+                    lam[j]
+                }
+            })
+            .collect();
+        let mut f = vec![0.0; self.n];
+        for (b, (body, &o)) in self.bodies.iter().zip(&self.offset).enumerate() {
+            let m = body.dofs.len();
+            // S annihilates rigid motions: apply it to the deformation only.
+            let mut xb = x[o..o + m].to_vec();
+            split_rigid(&self.rigid[b], &mut xb);
+            for i in 0..m {
+                f[o + i] = (0..m).map(|k| body.s[(i, k)] * xb[k]).sum::<f64>() - body.g[i];
+            }
+        }
+        for (j, a) in self.un.iter().enumerate() {
+            for &(i, c) in &a.terms {
+                f[i] += lam[j] * c;
+            }
+        }
+        Evaluation { s, closed, f, phi }
+    }
+
+    /// The Newton direction (δx, δλ) for the closed set `chi`, with δx orthogonal to the
+    /// orthonormal motions `z`; None if the system is singular.
+    pub fn direction(
+        &self,
+        chi: &[bool],
+        z: &[Vec<f64>],
+        eval: &Evaluation,
+        lam: &[f64],
+    ) -> Option<(Vec<f64>, Vec<f64>)> {
+        let points = &self.interface.points;
+        // The part of δλ that does not depend on δx.
+        let lam0: Vec<f64> = (0..points.len())
+            .map(|j| {
+                if chi[j] {
+                    self.spring(j) * (eval.s[j] - points[j].gap) - lam[j]
+                } else {
+                    -lam[j]
+                }
+            })
+            .collect();
+        let mut rhs: Vec<f64> = eval.f.iter().map(|v| -v).collect();
+        for (j, a) in self.un.iter().enumerate() {
+            for &(i, c) in &a.terms {
+                rhs[i] -= c * lam0[j];
+            }
+        }
+        let dx = self.solve(chi, z, &rhs)?;
+        let dlam = (0..points.len())
+            .map(|j| {
+                if chi[j] {
+                    lam0[j] + self.spring(j) * (self.s[j].at(&dx) - self.s[j].constant)
+                } else {
+                    lam0[j]
+                }
+            })
+            .collect();
+        Some((dx, dlam))
+    }
+
+    /// Solves [J_χ Z; Zᵀ 0] [δ; μ] = [rhs; 0] by sparse LU (dense blocks per body); None if
+    /// singular.
+    fn solve(&self, chi: &[bool], z: &[Vec<f64>], rhs: &[f64]) -> Option<Vec<f64>> {
+        let n = self.n;
+        let mut trip = Vec::new();
+        for (body, &o) in self.bodies.iter().zip(&self.offset) {
+            let m = body.dofs.len();
+            for k in 0..m {
+                for i in 0..m {
+                    let v = body.s[(i, k)];
+                    if v != 0.0 {
+                        trip.push(Triplet::new(o + i, o + k, v));
+                    }
+                }
+            }
+        }
+        for j in (0..chi.len()).filter(|&j| chi[j]) {
+            let k = self.spring(j);
+            for &(row, a) in &self.un[j].terms {
+                for &(col, b) in &self.s[j].terms {
+                    trip.push(Triplet::new(row, col, k * a * b));
+                }
+            }
+        }
+        for (q, zq) in z.iter().enumerate() {
+            for (i, &v) in zq.iter().enumerate().filter(|(_, v)| **v != 0.0) {
+                trip.push(Triplet::new(i, n + q, v));
+                trip.push(Triplet::new(n + q, i, v));
+            }
+        }
+        let size = n + z.len();
+        let a = SparseColMat::<usize, f64>::try_new_from_triplets(size, size, &trip).ok()?;
+        let lu = a.sp_lu().ok()?;
+        let b = Mat::<f64>::from_fn(size, 1, |i, _| if i < n { rhs[i] } else { 0.0 });
+        let sol = lu.solve(&b);
+        let delta: Vec<f64> = (0..n).map(|i| sol[(i, 0)]).collect();
+        delta.iter().all(|v| v.is_finite()).then_some(delta)
+    }
+
+    /// The nodal contact forces on every body (full DOF numbering) for pair sums `s`.
+    pub fn contact_forces(&self, model: &Model, s: &[f64]) -> Vec<Vec<f64>> {
+        let mut out: Vec<Vec<f64>> = model
+            .bodies
+            .iter()
+            .map(|b| vec![0.0; b.load.len()])
+            .collect();
+        for (j, p) in self.interface.points.iter().enumerate() {
+            let force = p.weight * p.pressure(s[j]);
+            for c in 0..DIM {
+                out[p.body][dof(p.node, c)] += force * p.normal[c];
+            }
+        }
+        out
+    }
+}
+
+/// ρ_j = b_j/(b_j + k_j) = 1 − k_j a_jᵀ (S + Σ_i k_i a_i a_iᵀ)⁻¹ a_j per point (a_j its own
+/// normal on x; the sum over its body's points): the body's share of the stiffness at the point
+/// when every point carries its penalty spring. 1 where the body's matrix cannot be factorised.
+fn stiffness_shares(
+    interface: &Interface,
+    bodies: &[ReducedBody],
+    offset: &[usize],
+    un: &[Affine],
+) -> Vec<f64> {
+    let mut rho = vec![1.0; interface.len()];
+    for (b, body) in bodies.iter().enumerate() {
+        let range = interface.body_range[b].clone();
+        let mut m = body.s.clone();
+        for j in range.clone() {
+            let k = interface.points[j].weight / interface.points[j].theta;
+            for &(r, a) in &un[j].terms {
+                for &(c, v) in &un[j].terms {
+                    m[(r - offset[b], c - offset[b])] += k * a * v;
+                }
+            }
+        }
+        let Ok(llt) = m.llt(faer::Side::Lower) else {
+            continue;
+        };
+        for j in range {
+            let p = &interface.points[j];
+            let k = p.weight / p.theta;
+            let mut a = Mat::<f64>::zeros(m.nrows(), 1);
+            for &(r, v) in &un[j].terms {
+                a[(r - offset[b], 0)] += v;
+            }
+            let y = llt.solve(&a);
+            let share: f64 = 1.0 - k * (0..m.nrows()).map(|i| a[(i, 0)] * y[(i, 0)]).sum::<f64>();
+            if share.is_finite() {
+                rho[j] = share.clamp(1e-8, 1.0);
+            }
+        }
+    }
+    rho
+}

@@ -1,0 +1,214 @@
+//! The monolithic reference against independent checks: the domain decomposition's answer (a
+//! second method), the applied loads that the contact forces must carry (conservation), the
+//! rejection that `solve` gives a body that is not held, and its Newton count on the Hertz
+//! example.
+
+use std::path::Path;
+
+use contactdd::cases;
+use contactdd::ddm::benchmark::Notch;
+use contactdd::ddm::monolithic::{solve_monolithic_with, MonolithicSettings};
+use contactdd::ddm::{prepare, solve, solve_monolithic, Hooks, Model, Settings, Solution};
+use contactdd::fem::{Component, Constraints, Material};
+
+/// The paper's notch with the lower body `ratio` times stiffer.
+fn notch_with_contrast(ratio: f64) -> Model {
+    let mut model = Notch::default().model().unwrap();
+    model.name = format!("notch, lower {ratio:e} times stiffer");
+    let e = model.bodies[0].material.young();
+    model.bodies[0].material = Material::new(e * ratio, 0.3).unwrap();
+    model
+}
+
+/// The paper's notch with penalty factor `c`.
+fn notch_with_penalty(c: f64) -> Model {
+    let mut model = Notch {
+        c,
+        ..Notch::default()
+    }
+    .model()
+    .unwrap();
+    model.name = format!("notch, c = {c:e}");
+    model
+}
+
+/// The notch with non-matching meshes and the lower body supported at its bottom. (Held only by
+/// their contact, the two bodies could move up together, and their non-matching sides' forces do
+/// not balance exactly: no equilibrium exists, and each method treats the residue its own way.)
+fn non_matching_held() -> Model {
+    let mut model = cases::non_matching_notch(0.05);
+    let lower = &mut model.bodies[0];
+    lower
+        .constraints
+        .fix(&lower.mesh, "bottom", Component::Y, 0.0)
+        .unwrap();
+    model
+}
+
+/// Largest |a − b| relative to the largest |b|.
+fn relative_difference(a: &[f64], b: &[f64]) -> f64 {
+    let scale = b.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+    let diff = a
+        .iter()
+        .zip(b)
+        .fold(0.0f64, |m, (x, y)| m.max((x - y).abs()));
+    diff / scale
+}
+
+/// The DD (default settings, tight tolerance) and the monolithic solution agree to `tol` on
+/// every pair's pressures and gaps and, where no rigid motion is left free, on the displacement
+/// fields.
+fn agree(model: &Model, tol: impl Fn(&Solution) -> f64) {
+    let reference = solve_monolithic(model).unwrap();
+    assert!(
+        reference.converged,
+        "{}: {:?}",
+        model.name, reference.message
+    );
+    let settings = Settings {
+        tol: 1e-12,
+        max_iter: 200,
+        ..Settings::default()
+    };
+    let prepared = prepare(model).unwrap();
+    let dd = solve(model, &prepared, &settings, Hooks::default()).unwrap();
+    assert!(dd.converged, "{}: DD {:?}", model.name, dd.message);
+    let tol = tol(&dd);
+    for (pair, refp) in dd.contact.iter().zip(&reference.contact) {
+        let err = relative_difference(&pair.pressure, &refp.pressure);
+        assert!(err <= tol, "{}: pressure off by {err:e}", model.name);
+        let err = relative_difference(&pair.gap, &refp.gap);
+        assert!(err <= tol, "{}: gap d − s off by {err:e}", model.name);
+    }
+    if reference.rigid_modes.is_empty() {
+        for (body, refb) in dd.bodies.iter().zip(&reference.bodies) {
+            let err = relative_difference(&body.displacement, &refb.displacement);
+            assert!(
+                err <= tol,
+                "{} '{}': u off by {err:e}",
+                model.name,
+                body.name
+            );
+        }
+    }
+}
+
+#[test]
+fn the_decomposition_and_the_monolithic_solution_agree() {
+    for model in [
+        Notch::default().model().unwrap(),
+        cases::column(8, 0.5),
+        non_matching_held(),
+        cases::stiff_under_soft(0.005),
+    ] {
+        agree(&model, |_| 1e-8);
+    }
+}
+
+/// With the lower body 1e8 times stiffer, the DD's own round-off shows in the load it carries
+/// (about 5e-8 of it, where the monolithic result carries it to 1e-14): the two agree to 1e-8
+/// plus that error.
+#[test]
+fn a_stiff_pair_agrees_within_the_decompositions_own_load_error() {
+    let model = notch_with_contrast(1e8);
+    let applied: f64 = model.bodies[0].load.iter().skip(1).step_by(2).sum();
+    agree(&model, |dd| {
+        let carried = dd.contact[0].force_on(0)[1];
+        1e-8 + 2.0 * (carried + applied).abs() / applied.abs()
+    });
+}
+
+/// The contact force on each side of the notch equals the load applied to that body: both bodies
+/// are held vertically only by the contact.
+fn carries_the_load(model: &Model) {
+    let sol = solve_monolithic(model).unwrap();
+    assert!(sol.converged, "{}: {:?}", model.name, sol.message);
+    let pair = &sol.contact[0];
+    for side in 0..2 {
+        let applied: f64 = model.bodies[side].load.iter().skip(1).step_by(2).sum();
+        let carried = pair.force_on(side)[1];
+        assert!(
+            (carried + applied).abs() <= 1e-8 * applied.abs(),
+            "{} side {side}: contact force {carried} against the applied {applied}",
+            model.name
+        );
+    }
+}
+
+#[test]
+fn contact_forces_carry_the_applied_load() {
+    carries_the_load(&notch_with_contrast(1e8));
+    carries_the_load(&notch_with_contrast(1e-8));
+    carries_the_load(&notch_with_penalty(1e6));
+    carries_the_load(&notch_with_penalty(1e-4));
+}
+
+/// The notch's two bodies can move up together, and nothing else: one rigid mode, listed once.
+#[test]
+fn the_one_free_motion_is_found_once() {
+    for model in [notch_with_contrast(1.0), notch_with_contrast(1e8)] {
+        let sol = solve_monolithic(&model).unwrap();
+        assert_eq!(
+            sol.rigid_modes,
+            ["translation in y of 'lower' together with translation in y of 'upper'"]
+        );
+    }
+}
+
+/// A soft block with no horizontal support on a clamped one: the contact holds it only
+/// vertically. Both solvers reject it with the same message.
+#[test]
+fn a_body_that_is_not_held_is_rejected_as_solve_rejects_it() {
+    let mut model = cases::stiff_under_soft(0.05);
+    let soft = &mut model.bodies[1];
+    soft.constraints = Constraints::new(soft.mesh.num_nodes());
+    let dd = prepare(&model).err().expect("solve rejects it").to_string();
+    let mono = solve_monolithic(&model)
+        .expect_err("monolithic rejects it")
+        .to_string();
+    assert_eq!(mono, dd);
+    assert!(mono.contains("soft"), "{mono}");
+    // And a supported one is accepted.
+    let soft = &mut model.bodies[1];
+    soft.constraints
+        .fix(&soft.mesh, "right", Component::X, 0.0)
+        .unwrap();
+    assert!(solve_monolithic(&model).unwrap().converged);
+}
+
+/// A step cap too small to settle: the result says so instead of claiming convergence.
+#[test]
+fn a_run_cut_short_is_not_converged() {
+    let model = cases::stiff_under_soft(0.005);
+    let settings = MonolithicSettings {
+        max_steps: 1,
+        ..MonolithicSettings::default()
+    };
+    let sol = solve_monolithic_with(&model, &settings, None).unwrap();
+    assert!(!sol.converged);
+    assert!(sol
+        .message
+        .as_deref()
+        .unwrap_or("")
+        .contains("did not settle"));
+    assert_eq!(sol.history.len(), 1);
+}
+
+/// The Hertz example (non-matching curved contact, stiff penalty) settles within 25 Newton
+/// steps, in equilibrium.
+#[test]
+fn hertz_settles_within_25_steps() {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/hertz.toml");
+    let loaded = contactdd::io::setup::load_file(&path).unwrap();
+    let sol = solve_monolithic(&loaded.model).unwrap();
+    assert!(sol.converged, "{:?}", sol.message);
+    assert!(sol.newton_steps <= 25, "{} steps", sol.newton_steps);
+    // The block is held vertically only by the contact: it carries the applied load.
+    let block = &loaded.model.bodies[1];
+    let applied: f64 = block.load.iter().skip(1).step_by(2).sum();
+    let carried = sol.contact[0].force_on(1)[1];
+    assert!(
+        (carried + applied).abs() <= 1e-8 * applied.abs(),
+        "{carried} against {applied}"
+    );
+}
