@@ -41,6 +41,7 @@ mod check;
 mod console;
 mod report;
 mod solve;
+mod steps;
 mod sweep;
 
 use std::ffi::OsString;

@@ -21,6 +21,7 @@ use crate::args::{Common, MonolithicArgs, SolveArgs};
 use crate::report::{
     applied_loads, pair_report, progress, reaction_report, sig, timing, IterationTable,
 };
+use crate::steps::run_steps;
 use crate::{load, with_threads, Exit};
 
 /// Applies `--tol`, `--max-iter` and `--threads` to the file's settings; returns the thread count.
@@ -105,9 +106,21 @@ pub fn solve(args: SolveArgs) -> Result<Exit> {
                 count(model.bodies.len(), "body", "bodies")
             ));
         }
-        let prepared =
+        let mut prepared =
             prepare(model).map_err(|e| anyhow::anyhow!("{}: {e}", args.file.display()))?;
         warn_contact(&args.file, model, &prepared.interface);
+        if let Some(factors) = &loaded.steps {
+            let monitor = loaded.monitor.as_ref();
+            return run_steps(
+                model,
+                &mut prepared,
+                &settings,
+                factors,
+                monitor,
+                &out,
+                quiet,
+            );
+        }
         let table = IterationTable::new(model);
         if !quiet {
             say!(

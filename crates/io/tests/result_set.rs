@@ -85,13 +85,20 @@ fn a_reused_folder_loses_the_previous_run_and_keeps_user_files() {
             "history.csv",
             "notes.txt",
             "report.vtu",
+            "results.pvd",
             "summary.json"
         ]
     );
     // The manifest lists exactly the other files written, and summary.json came last.
     assert_eq!(
         manifest(&dir),
-        ["body0.vtu", "body1.vtu", "contact.csv", "history.csv"]
+        [
+            "body0.vtu",
+            "body1.vtu",
+            "contact.csv",
+            "history.csv",
+            "results.pvd"
+        ]
     );
     assert!(written.last().is_some_and(|p| p.ends_with("summary.json")));
     std::fs::remove_dir_all(&dir).expect("clean up");

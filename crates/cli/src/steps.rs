@@ -1,0 +1,107 @@
+//! `contactdd solve` with `[solver] load-steps`: one solve per load factor on the one prepared
+//! model, a line per step, and the step result folder (`contactdd_io::steps`).
+
+use std::path::Path;
+
+use anyhow::{Context, Result};
+
+use contactdd_ddm::steps::solve_steps;
+use contactdd_ddm::{Hooks, Model, Prepared, Settings, Solution};
+use contactdd_io::setup::Monitor;
+use contactdd_io::steps::{monitored_displacement, write_step_results};
+
+use crate::report::{sig, vec2};
+use crate::Exit;
+
+/// Solves at every load factor, prints a line per step, writes the results; the exit code is
+/// that of the last step.
+pub fn run_steps(
+    model: &Model,
+    prepared: &mut Prepared,
+    settings: &Settings,
+    factors: &[f64],
+    monitor: Option<&Monitor>,
+    out: &Path,
+    quiet: bool,
+) -> Result<Exit> {
+    if !quiet {
+        say!(
+            "solving {} in {} load steps: {}",
+            model.name,
+            factors.len(),
+            settings.scheme()
+        );
+    }
+    let count = factors.len();
+    let mut line = |k: usize, factor: f64, sol: &Solution| {
+        if !quiet {
+            say!("{}", step_line(k, count, factor, sol, monitor));
+        }
+    };
+    let steps = solve_steps(
+        model,
+        prepared,
+        settings,
+        factors,
+        Hooks::default(),
+        &mut line,
+    )
+    .map_err(|e| anyhow::anyhow!("{e}"))?;
+    write_step_results(out, model, &steps, monitor)
+        .with_context(|| format!("cannot write the results to '{}'", out.display()))?;
+    let converged = steps.last().is_some_and(|(_, s)| s.converged);
+    let done = steps.len() == count && converged;
+    if done {
+        say!(
+            "all {count} load steps converged; results in {}",
+            out.display()
+        );
+        Ok(Exit::Success)
+    } else {
+        let message = steps
+            .last()
+            .and_then(|(_, s)| s.message.clone())
+            .unwrap_or_else(|| "unknown reason".into());
+        say!(
+            "NOT converged at load step {} of {count}: {message}; results in {}",
+            steps.len(),
+            out.display()
+        );
+        eprintln!(
+            "warning: not converged; the steps up to the failed one were written to '{}'",
+            out.display()
+        );
+        Ok(Exit::NotConverged)
+    }
+}
+
+/// `step 2/4, factor 0.5: converged in 3 iterations; pair: force (0, 4200), max |σn| 2647[;
+/// monitor (ux, uy)]`.
+fn step_line(
+    k: usize,
+    count: usize,
+    factor: f64,
+    sol: &Solution,
+    monitor: Option<&Monitor>,
+) -> String {
+    let state = if sol.converged {
+        format!("converged in {} iterations", sol.iterations)
+    } else {
+        "NOT converged".into()
+    };
+    let mut line = format!("step {k}/{count}, factor {}: {state}", sig(factor));
+    for pair in &sol.contact {
+        let peak = pair.pressure.iter().fold(0.0f64, |m, p| m.max(p.abs()));
+        line += &format!(
+            "; {}: force on {} {}, max |σn| {}",
+            pair.name,
+            pair.bodies[0],
+            vec2(pair.force_on(0)),
+            sig(peak)
+        );
+    }
+    if let Some(m) = monitor {
+        line += &format!("; monitor {}", vec2(monitored_displacement(&sol.bodies, m)));
+    }
+    line
+}
