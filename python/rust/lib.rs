@@ -20,7 +20,8 @@ use contactdd_core::Order;
 use contactdd_ddm::benchmark::Notch;
 use contactdd_ddm::contact::Interface;
 use contactdd_ddm::contact_check;
-use contactdd_ddm::{Gamma, Hooks, Method, Settings, SetupError};
+use contactdd_ddm::{Enforcement, Gamma, Hooks, Method, Model, Settings, SetupError};
+use contactdd_io::problem::EnforcementSpec;
 use contactdd_io::setup::{ModelBuilder, MAX_RECTANGLE_CELLS};
 
 mod convert;
@@ -128,6 +129,12 @@ fn with_threads<T: Send>(
 ///     coarse: the rigid-body coarse correction: ``"chains"`` (the sweeps' default: floating bodies that
 ///         touch each other), ``"all"`` or ``"off"``. A constant ``gamma`` alone selects the
 ///         paper's one-level iteration (accelerator ``"none"``, coarse ``"off"``).
+///     enforcement: ``"penalty"`` or ``"augmented"`` for every contact pair (default: each
+///         pair's own, see :meth:`Problem.add_contact`); ``"augmented"`` converges to the exact
+///         unilateral contact for any penalty.
+///     gap_tol: augmented pairs: the largest violation of the Signorini conditions of a
+///         converged result, a length (default: 1e-6 times the largest normal displacement of
+///         the contact points).
 ///
 /// Returns:
 ///     A :class:`Result`.
@@ -138,7 +145,7 @@ fn with_threads<T: Send>(
 ///         partial result.
 ///     KeyboardInterrupt: interrupted.
 #[pyfunction]
-#[pyo3(signature = (problem, method = None, gamma = None, tol = None, max_iter = None, u0 = None, u_prev = None, threads = None, check = true, accelerator = None, coarse = None))]
+#[pyo3(signature = (problem, method = None, gamma = None, tol = None, max_iter = None, u0 = None, u_prev = None, threads = None, check = true, accelerator = None, coarse = None, enforcement = None, gap_tol = None))]
 #[allow(clippy::too_many_arguments)]
 fn solve(
     py: Python<'_>,
@@ -153,6 +160,8 @@ fn solve(
     check: bool,
     accelerator: Option<String>,
     coarse: Option<String>,
+    enforcement: Option<String>,
+    gap_tol: Option<f64>,
 ) -> PyResult<Py<SolveResult>> {
     let (model, settings, threads) = {
         let p = problem.borrow();
@@ -166,8 +175,10 @@ fn solve(
             u0,
             u_prev,
             threads,
+            gap_tol,
         };
-        (p.model()?, o.apply(&p.settings)?, threads.or(p.threads))
+        let model = with_enforcement(p.model()?, enforcement.as_deref())?;
+        (model, o.apply(&p.settings)?, threads.or(p.threads))
     };
     let model = Arc::new(model);
     let m = model.clone();
@@ -197,6 +208,116 @@ fn solve(
         return Err(convergence_error(py, &message, result.into_any()));
     }
     Ok(result)
+}
+
+/// The model with every pair's enforcement set to `name` (``"penalty"`` or ``"augmented"``), if
+/// given.
+fn with_enforcement(mut model: Model, name: Option<&str>) -> PyResult<Model> {
+    if let Some(name) = name {
+        let e: EnforcementSpec = convert::from_name(name)
+            .map_err(|e| setup_error(SetupError::Solver(format!("enforcement: {e}"))))?;
+        let e: Enforcement = e.into();
+        model.pairs.iter_mut().for_each(|p| p.enforcement = e);
+    }
+    Ok(model)
+}
+
+/// Solves a problem at increasing loads: every load and prescribed displacement times each load
+/// factor in turn, each step starting from the last, on one factorisation of the bodies.
+/// Releases the GIL and can be interrupted with Ctrl-C.
+///
+/// Args:
+///     problem: the :class:`Problem`.
+///     load_steps: a number N of equal steps (load factors 1/N, …, 1), or the list of load
+///         factors (each > 0).
+///     tol, max_iter, threads, accelerator, enforcement, gap_tol: as for :func:`solve`.
+///     check: raise :class:`ConvergenceError` if a step does not converge (default); the steps
+///         stop at the first such step either way.
+///
+/// Returns:
+///     One :class:`Result` per step solved, each with its ``load_factor``.
+#[pyfunction]
+#[pyo3(signature = (problem, load_steps, tol = None, max_iter = None, threads = None, check = true, accelerator = None, enforcement = None, gap_tol = None))]
+#[allow(clippy::too_many_arguments)]
+fn solve_steps<'py>(
+    py: Python<'py>,
+    problem: &Bound<'py, Problem>,
+    load_steps: &Bound<'py, PyAny>,
+    tol: Option<f64>,
+    max_iter: Option<usize>,
+    threads: Option<usize>,
+    check: bool,
+    accelerator: Option<String>,
+    enforcement: Option<String>,
+    gap_tol: Option<f64>,
+) -> PyResult<Bound<'py, PyList>> {
+    let factors: Vec<f64> = match load_steps.extract::<usize>() {
+        Ok(n) => contactdd_ddm::steps::equal_steps(n),
+        Err(_) => load_steps.extract::<Vec<f64>>().map_err(|_| {
+            setup_error(SetupError::Solver(
+                "load_steps: give a number of steps or a list of load factors".into(),
+            ))
+        })?,
+    };
+    contactdd_ddm::steps::check_factors(&factors)
+        .map_err(|m| setup_error(SetupError::Solver(format!("load_steps: {m}"))))?;
+    let (model, settings, threads) = {
+        let p = problem.borrow();
+        let o = Overrides {
+            accelerator,
+            tol,
+            max_iter,
+            threads,
+            gap_tol,
+            ..Overrides::default()
+        };
+        let model = with_enforcement(p.model()?, enforcement.as_deref())?;
+        (model, o.apply(&p.settings)?, threads.or(p.threads))
+    };
+    let model = Arc::new(model);
+    let m = model.clone();
+    let (out, interrupt) = run_interruptible(py, move |cancel| {
+        with_threads(threads, || {
+            let mut prepared = contactdd_ddm::prepare(&m)?;
+            let hooks = Hooks {
+                on_iteration: None,
+                cancel: Some(cancel),
+            };
+            contactdd_ddm::steps::solve_steps(
+                &m,
+                &mut prepared,
+                &settings,
+                &factors,
+                hooks,
+                &mut |_, _, _| (),
+            )
+        })
+    })?;
+    if let Some(e) = interrupt {
+        return Err(e);
+    }
+    let steps = out.map_err(setup_error)?;
+    let mut results = Vec::with_capacity(steps.len());
+    for (factor, sol) in steps {
+        let result = SolveResult::new(py, model.clone(), sol)?.at_load_factor(factor);
+        results.push(result);
+    }
+    let failed = results
+        .last()
+        .filter(|r| !r.is_converged())
+        .map(|r| r.failure_message());
+    let list = PyList::new(
+        py,
+        results
+            .into_iter()
+            .map(|r| Py::new(py, r))
+            .collect::<PyResult<Vec<_>>>()?,
+    )?;
+    if let (true, Some(message)) = (check, failed) {
+        let last = list.get_item(list.len() - 1)?;
+        return Err(convergence_error(py, &message, last.unbind()));
+    }
+    Ok(list)
 }
 
 /// The warnings about the contact geometry as Python `UserWarning`s (the errors among the
@@ -393,6 +514,7 @@ fn _contactdd(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<Contact>()?;
     m.add_class::<MonolithicResult>()?;
     m.add_function(wrap_pyfunction!(solve, m)?)?;
+    m.add_function(wrap_pyfunction!(solve_steps, m)?)?;
     m.add_function(wrap_pyfunction!(sweep, m)?)?;
     m.add_function(wrap_pyfunction!(monolithic, m)?)?;
     m.add_function(wrap_pyfunction!(notch_benchmark, m)?)?;

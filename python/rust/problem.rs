@@ -49,6 +49,7 @@ pub struct Overrides {
     pub u0: Option<f64>,
     pub u_prev: Option<f64>,
     pub threads: Option<usize>,
+    pub gap_tol: Option<f64>,
 }
 
 fn solver_error(key: &str, message: impl std::fmt::Display) -> PyErr {
@@ -85,6 +86,7 @@ impl Overrides {
             u0: self.u0,
             u_prev: self.u_prev,
             threads: self.threads,
+            gap_tol: self.gap_tol,
             ..SolverSpec::default()
         };
         setup::settings(&spec, base).map_err(setup_error)
@@ -554,6 +556,7 @@ impl Problem {
             u0,
             u_prev,
             threads,
+            gap_tol: None,
         };
         self.settings = o.apply(&self.settings)?;
         if threads.is_some() {

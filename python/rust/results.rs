@@ -124,6 +124,13 @@ pub struct Contact {
     /// points (the force the other body exerts).
     #[pyo3(get)]
     forces: ((f64, f64), (f64, f64)),
+    /// The largest penetration max (s − d)⁺ (a length; 0 for exact contact).
+    #[pyo3(get)]
+    max_penetration: f64,
+    /// The largest gap |d − s| where the contact presses: the complementarity residual of the
+    /// Signorini conditions (a length; 0 for exact contact).
+    #[pyo3(get)]
+    complementarity: f64,
 }
 
 #[pymethods]
@@ -161,6 +168,8 @@ impl Contact {
             weight: array1(py, p.weight.clone()).unbind(),
             normal: array2(py, normal, DIM)?.unbind(),
             forces: (force(0), force(1)),
+            max_penetration: p.max_penetration(),
+            complementarity: p.complementarity(),
         })
     }
 }
@@ -227,7 +236,7 @@ pub struct SolveResult {
     #[pyo3(get)]
     theta: Vec<f64>,
     /// Per-iteration history: ``k`` (m,), ``gamma`` (m,), and per body ``rel_change``,
-    /// ``active`` (closed points) and ``contact_force`` (Σ w |σ_n|), each (m, number of bodies).
+    /// ``active`` (closed points) and ``normal_force`` (Σ w |σ_n|), each (m, number of bodies).
     #[pyo3(get)]
     history: Py<PyDict>,
     /// Per-body fields (:class:`Body`), in problem order.
@@ -239,6 +248,16 @@ pub struct SolveResult {
     /// Wall time per phase in seconds.
     #[pyo3(get)]
     timing: Py<PyDict>,
+    /// Augmented Lagrangian multiplier updates (inner solves) taken; 0 when every pair uses the
+    /// penalty formulation.
+    #[pyo3(get)]
+    updates: usize,
+    /// The gap tolerance of the augmented Lagrangian pairs (a length), or ``None``.
+    #[pyo3(get)]
+    gap_tol: Option<f64>,
+    /// The load factor of this solve (1.0 unless it is a step of :func:`solve_steps`).
+    #[pyo3(get)]
+    load_factor: f64,
     model: Arc<Model>,
     solution: Arc<Solution>,
 }
@@ -264,7 +283,7 @@ impl SolveResult {
             .collect();
         history.set_item("active", array2(py, active, nb)?)?;
         history.set_item(
-            "contact_force",
+            "normal_force",
             array2(py, per_body(&|r| r.contact_force.clone()), nb)?,
         )?;
         let timing = PyDict::new(py);
@@ -283,9 +302,20 @@ impl SolveResult {
             bodies: bodies_list(py, &sol.bodies)?,
             contact: contact_list(py, &sol.contact)?,
             timing: timing.unbind(),
+            updates: sol.updates,
+            gap_tol: sol.gap_tol,
+            load_factor: 1.0,
             model,
             solution: Arc::new(sol),
         })
+    }
+
+    /// The result as the step of load factor `factor`.
+    pub fn at_load_factor(self, factor: f64) -> SolveResult {
+        SolveResult {
+            load_factor: factor,
+            ..self
+        }
     }
 
     /// The message of a non-converged solve.

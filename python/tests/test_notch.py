@@ -154,7 +154,7 @@ def test_result_contents(notch):
     m = r.iterations
     assert h["k"].tolist() == list(range(1, m + 1))
     assert h["rel_change"].shape == (m, 2) and h["active"].shape == (m, 2)
-    assert h["contact_force"].shape == (m, 2) and h["gamma"].shape == (m,)
+    assert h["normal_force"].shape == (m, 2) and h["gamma"].shape == (m,)
     assert np.all(h["rel_change"][-1] <= 1e-3)
     lower, upper = r.bodies
     assert (lower.name, upper.name) == ("lower", "upper")

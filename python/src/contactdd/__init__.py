@@ -34,6 +34,7 @@ from ._contactdd import (
     monolithic,
     notch_benchmark,
     solve,
+    solve_steps,
     sweep,
 )
 from . import plot
@@ -53,5 +54,6 @@ __all__ = [
     "notch_benchmark",
     "plot",
     "solve",
+    "solve_steps",
     "sweep",
 ]

@@ -142,8 +142,10 @@ class Problem:
         theta: Optional[float] = None,
         gap: Optional[_GapDict] = None,
         name: Optional[str] = None,
+        enforcement: Optional[Literal["penalty", "augmented"]] = None,
     ) -> None:
-        """Adds a contact pair; penalty by the rod model (c, h) or theta directly."""
+        """Adds a contact pair; penalty by the rod model (c, h) or theta directly;
+        enforcement "augmented" gives the exact unilateral contact for any penalty."""
     def solver(
         self,
         method: Optional[_MethodName] = None,
@@ -230,6 +232,12 @@ class Contact:
     @property
     def forces(self) -> Tuple[Tuple[float, float], Tuple[float, float]]:
         """Total contact force (fx, fy) on side 0 and on side 1."""
+    @property
+    def max_penetration(self) -> float:
+        """Largest penetration max (s - d)+ (a length; 0 for exact contact)."""
+    @property
+    def complementarity(self) -> float:
+        """Largest gap |d - s| where the contact presses (a length; 0 for exact contact)."""
 
 @final
 class Result:
@@ -251,13 +259,22 @@ class Result:
     def theta(self) -> list[float]: ...
     @property
     def history(self) -> dict[str, npt.NDArray[Any]]:
-        """k, gamma (m,); rel_change, active, contact_force (m, number of bodies)."""
+        """k, gamma (m,); rel_change, active, normal_force (m, number of bodies)."""
     @property
     def bodies(self) -> list[Body]: ...
     @property
     def contact(self) -> list[Contact]: ...
     @property
     def timing(self) -> dict[str, float]: ...
+    @property
+    def updates(self) -> int:
+        """Augmented Lagrangian multiplier updates (0 for the penalty formulation)."""
+    @property
+    def gap_tol(self) -> Optional[float]:
+        """The gap tolerance of the augmented Lagrangian pairs (a length), or None."""
+    @property
+    def load_factor(self) -> float:
+        """The load factor (1.0 unless a step of solve_steps)."""
     def write_vtu(self, directory: _StrPath) -> list[str]:
         """Writes summary.json, contact.csv, history.csv and one VTU file per body."""
     def summary(self) -> dict[str, Any]:
@@ -294,8 +311,23 @@ def solve(
     check: bool = True,
     accelerator: Optional[_AcceleratorName] = None,
     coarse: Optional[_CoarseName] = None,
+    enforcement: Optional[Literal["penalty", "augmented"]] = None,
+    gap_tol: Optional[float] = None,
 ) -> Result:
     """Solves a contact problem by the penalty Robin domain decomposition (GIL released)."""
+
+def solve_steps(
+    problem: Problem,
+    load_steps: Union[int, Sequence[float]],
+    tol: Optional[float] = None,
+    max_iter: Optional[int] = None,
+    threads: Optional[int] = None,
+    check: bool = True,
+    accelerator: Optional[_AcceleratorName] = None,
+    enforcement: Optional[Literal["penalty", "augmented"]] = None,
+    gap_tol: Optional[float] = None,
+) -> list[Result]:
+    """Solves at increasing load factors, each step from the last; one Result per step."""
 
 def sweep(
     problem: Problem,
