@@ -141,6 +141,14 @@ pub struct MonolithicArgs {
     /// Newton steps at most [default: 50].
     #[arg(long, value_name = "K", value_parser = clap::value_parser!(u64).range(1..))]
     pub max_steps: Option<u64>,
+    /// Contact enforcement of every pair (overrides each pair's `enforcement`): penalty or
+    /// augmented (Uzawa updates of the multipliers around the Newton solves).
+    #[arg(long, value_name = "E", value_parser = parse_enforcement)]
+    pub enforcement: Option<Enforcement>,
+    /// Augmented Lagrangian: the largest violation of the Signorini conditions, a length
+    /// (overrides solver.gap-tol).
+    #[arg(long, value_name = "L", value_parser = parse_positive)]
+    pub gap_tol: Option<f64>,
     /// Print only the final result line (no per-step lines).
     #[arg(long, short)]
     pub quiet: bool,

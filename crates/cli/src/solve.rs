@@ -224,12 +224,19 @@ fn exit(converged: bool, out: &Path) -> Exit {
 pub fn monolithic(args: MonolithicArgs) -> Result<Exit> {
     let start = Instant::now();
     let loaded = load(&args.file)?;
-    let model = &loaded.model;
+    let mut model = loaded.model;
+    if let Some(e) = args.enforcement {
+        model.pairs.iter_mut().for_each(|p| p.enforcement = e);
+    }
+    let model = &model;
     let threads = args
         .threads
         .map(|n| usize::try_from(n).unwrap_or(usize::MAX))
         .or(loaded.threads);
-    let mut settings = MonolithicSettings::default();
+    let mut settings = MonolithicSettings {
+        gap_tol: args.gap_tol.or(loaded.settings.gap_tol),
+        ..MonolithicSettings::default()
+    };
     if let Some(k) = args.max_steps {
         settings.max_steps = usize::try_from(k).unwrap_or(usize::MAX);
     }
@@ -275,7 +282,14 @@ pub fn monolithic(args: MonolithicArgs) -> Result<Exit> {
             solve_monolithic_with(model, &settings, hook).map_err(|e| anyhow::anyhow!("{e}"))?;
         let written = write_monolithic_results(&out, model, &sol)
             .with_context(|| format!("cannot write the results to '{}'", out.display()))?;
-        let done = format!("converged in {} semismooth Newton steps", sol.newton_steps);
+        let done = if sol.updates > 0 {
+            format!(
+                "converged in {} semismooth Newton solves (augmented Lagrangian multiplier updates), the last {} steps",
+                sol.updates, sol.newton_steps
+            )
+        } else {
+            format!("converged in {} semismooth Newton steps", sol.newton_steps)
+        };
         let outcome = outcome(sol.converged, done, sol.message.as_deref());
         if quiet {
             say!("{outcome}; results in {}", out.display());

@@ -203,7 +203,7 @@ fn inner_solve(
 }
 
 /// The pressure magnitude p = −σ_n ≥ 0 of every point.
-fn pressures(interface: &Interface, un: &[f64]) -> Vec<f64> {
+pub(crate) fn pressures(interface: &Interface, un: &[f64]) -> Vec<f64> {
     let mut s = vec![0.0; un.len()];
     interface.sum_normal(un, &mut s);
     interface
@@ -216,7 +216,7 @@ fn pressures(interface: &Interface, un: &[f64]) -> Vec<f64> {
 
 /// The largest violation of the Signorini conditions over the `augmented` points: the gap
 /// |d − s| where the pressure is positive, the penetration (s − d)⁺ elsewhere.
-fn signorini_violation(
+pub(crate) fn signorini_violation(
     interface: &Interface,
     un: &[f64],
     augmented: &[bool],

@@ -25,9 +25,10 @@ use std::time::Instant;
 
 use rayon::prelude::*;
 
+use crate::augmented::{pressures, signorini_violation, GAP_TOL};
 use crate::contact::Interface;
 use crate::error::SetupError;
-use crate::model::Model;
+use crate::model::{Enforcement, Model};
 use crate::solution::{body_results, pair_results, BodyResult, PairResult};
 
 use modes::{dot, project_out, Mode};
@@ -55,6 +56,12 @@ pub struct MonolithicSettings {
     /// Largest accepted net force, relative to the same, along a rigid motion that no contact
     /// resists (non-matching meshes leave a small one: each side integrates its own pressures).
     pub imbalance_tol: f64,
+    /// Augmented Lagrangian pairs: the largest violation of the Signorini conditions (a length;
+    /// `None`: [`GAP_TOL`] times the largest normal displacement of the contact points).
+    pub gap_tol: Option<f64>,
+    /// Augmented Lagrangian pairs: multiplier updates at most (plain Uzawa updates, each a
+    /// Newton solve).
+    pub max_updates: usize,
 }
 
 impl Default for MonolithicSettings {
@@ -63,6 +70,8 @@ impl Default for MonolithicSettings {
             max_steps: 50,
             equilibrium_tol: 1e-6,
             imbalance_tol: 1e-2,
+            gap_tol: None,
+            max_updates: 200,
         }
     }
 }
@@ -87,8 +96,10 @@ pub struct MonolithicSolution {
     pub converged: bool,
     /// Why it did not converge.
     pub message: Option<String>,
-    /// Newton steps taken.
+    /// Newton steps taken (of the last multiplier update).
     pub newton_steps: usize,
+    /// Augmented Lagrangian multiplier updates (Newton solves); 0 for the penalty formulation.
+    pub updates: usize,
     /// The steps.
     pub history: Vec<MonolithicStep>,
     /// Rigid motions of the final closed set that no contact resists, kept out of the steps.
@@ -123,7 +134,7 @@ pub fn solve_monolithic_with(
 ) -> Result<MonolithicSolution, SetupError> {
     check_settings(settings)?;
     let start = Instant::now();
-    let interface = Interface::new(model)?;
+    let mut interface = Interface::new(model)?;
     // One level of parallelism: over bodies when there are several, inside faer otherwise.
     let par = if model.bodies.len() > 1 {
         faer::Par::Seq
@@ -136,10 +147,77 @@ pub fn solve_monolithic_with(
         .enumerate()
         .map(|(b, body)| ReducedBody::new(body, interface.of_body(b), par))
         .collect::<Result<Vec<_>, _>>()?;
-    let system = System::new(model, &interface, &bodies);
-    let modes = modes::free_rigid_modes(model, &system);
-    let run = newton(&system, &modes, settings, on_step);
+    let augmented: Vec<bool> = interface
+        .points
+        .iter()
+        .map(|p| p.has_partner() && model.pairs[p.pair].enforcement == Enforcement::Augmented)
+        .collect();
+    let mut gap_tol = settings.gap_tol.unwrap_or(f64::NAN);
+    let mut updates = 0;
+    loop {
+        updates += 1;
+        let next = {
+            let system = System::new(model, &interface, &bodies);
+            let modes = modes::free_rigid_modes(model, &system);
+            let run = newton(&system, &modes, settings, on_step);
+            let un: Vec<f64> = system.un.iter().map(|a| a.at(&run.x)).collect();
+            if gap_tol.is_nan() {
+                gap_tol = GAP_TOL * un.iter().fold(0.0, |m: f64, u| m.max(u.abs()));
+            }
+            let lambda = pressures(&interface, &un);
+            let violation = signorini_violation(&interface, &un, &augmented, &lambda);
+            let enforced = !model.is_augmented() || violation <= gap_tol;
+            if run.stop.is_some() || enforced || updates >= settings.max_updates {
+                let unenforced = (!enforced).then(|| {
+                    format!(
+                        "not enforced: after {updates} multiplier updates the contact violates \
+                         the Signorini conditions by {violation:.3e} (gap-tol {gap_tol:.3e})"
+                    )
+                });
+                let end = End {
+                    run,
+                    un,
+                    unenforced,
+                    updates: if model.is_augmented() { updates } else { 0 },
+                };
+                return finish(model, &system, &bodies, &modes, settings, end, start);
+            }
+            lambda
+        };
+        // Uzawa's update: the multipliers become the pressures just found.
+        for (j, p) in interface.points.iter_mut().enumerate() {
+            if augmented[j] {
+                p.multiplier = next[j];
+            }
+        }
+    }
+}
 
+/// How the Newton iteration (and the multiplier updates) ended.
+struct End {
+    run: Run,
+    un: Vec<f64>,
+    /// Why the multiplier updates stopped short of the gap tolerance.
+    unenforced: Option<String>,
+    updates: usize,
+}
+
+/// The fields, forces, equilibrium check and verdict of a finished run.
+fn finish(
+    model: &Model,
+    system: &System,
+    bodies: &[ReducedBody],
+    modes: &[Mode],
+    settings: &MonolithicSettings,
+    end: End,
+    start: Instant,
+) -> Result<MonolithicSolution, SetupError> {
+    let End {
+        run,
+        un,
+        unenforced,
+        updates,
+    } = end;
     let contact = system.contact_forces(model, &run.eval.s);
     let displacements = bodies
         .par_iter()
@@ -150,27 +228,29 @@ pub fn solve_monolithic_with(
             body.recover(&model.bodies[b], &contact[b], &x, &rigid)
         })
         .collect::<Result<Vec<_>, _>>()?;
-    let kernel = modes::kernel(&modes, &run.eval.closed);
-    let check = balance::balance(model, &system, &displacements, &contact, &modes, &kernel);
+    let kernel = modes::kernel(modes, &run.eval.closed);
+    let check = balance::balance(model, system, &displacements, &contact, modes, &kernel);
     let rigid_modes: Vec<String> = kernel
         .weights
         .iter()
-        .map(|w| modes::describe_motion(model, &modes, w))
+        .map(|w| modes::describe_motion(model, modes, w))
         .collect();
     let message = run
         .stop
+        .or(unenforced)
         .or_else(|| verdict(model, settings, &check, &rigid_modes, run.steps));
-    let un: Vec<f64> = system.un.iter().map(|a| a.at(&run.x)).collect();
+    let interface = system.interface;
     Ok(MonolithicSolution {
         converged: message.is_none(),
         message,
         newton_steps: run.steps,
+        updates,
         history: run.history,
         rigid_modes,
         equilibrium: check.bodies,
         imbalance: check.motions,
-        bodies: body_results(model, &interface, &un, displacements),
-        contact: pair_results(model, &interface, &un),
+        bodies: body_results(model, interface, &un, displacements),
+        contact: pair_results(model, interface, &un),
         un,
         seconds: start.elapsed().as_secs_f64(),
     })
@@ -336,7 +416,7 @@ fn jacobian_set(system: &System, modes: &[Mode], eval: &Evaluation) -> Vec<bool>
         if !floating || chi[range.clone()].iter().any(|&c| c) {
             continue;
         }
-        let gap = |j: usize| points[j].gap - eval.s[j];
+        let gap = |j: usize| points[j].penalty_gap() - eval.s[j];
         let partnered = range.clone().filter(|&j| points[j].has_partner());
         let Some(least) = partnered.clone().map(gap).min_by(f64::total_cmp) else {
             continue;

@@ -153,6 +153,8 @@ pub fn monolithic_summary_json(model: &Model, sol: &MonolithicSolution) -> Value
         "converged": sol.converged,
         "message": sol.message,
         "newton_steps": sol.newton_steps,
+        "enforcement": model.pairs.iter().map(|p| p.enforcement.to_string()).collect::<Vec<_>>(),
+        "updates": sol.updates,
         "history": history,
         "rigid_modes": sol.rigid_modes,
         "equilibrium": json_numbers(&sol.equilibrium),

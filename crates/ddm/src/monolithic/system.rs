@@ -161,13 +161,13 @@ impl<'a> System<'a> {
                 let (p, k) = (&points[j], self.spring(j));
                 p.has_partner()
                     && k > 0.0
-                    && lam[j] + self.rho[j] * (k * (s[j] - p.gap) - lam[j]) > 0.0
+                    && lam[j] + self.rho[j] * (k * (s[j] - p.penalty_gap()) - lam[j]) > 0.0
             })
             .collect();
         let phi = (0..points.len())
             .map(|j| {
                 if closed[j] {
-                    self.rho[j] * (self.spring(j) * (s[j] - points[j].gap) - lam[j])
+                    self.rho[j] * (self.spring(j) * (s[j] - points[j].penalty_gap()) - lam[j])
                 } else {
                     lam[j]
                 }
@@ -205,7 +205,7 @@ impl<'a> System<'a> {
         let lam0: Vec<f64> = (0..points.len())
             .map(|j| {
                 if chi[j] {
-                    self.spring(j) * (eval.s[j] - points[j].gap) - lam[j]
+                    self.spring(j) * (eval.s[j] - points[j].penalty_gap()) - lam[j]
                 } else {
                     -lam[j]
                 }
