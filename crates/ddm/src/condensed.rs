@@ -15,6 +15,8 @@
 //! small dense operations per body, never a sparse solve. The full field is K₀⁻¹(f + N T) for the
 //! accumulated interface load T, recovered by one sparse solve at the end.
 
+use std::time::Instant;
+
 use faer::prelude::Solve;
 use faer::{Mat, Side};
 
@@ -102,6 +104,22 @@ pub struct Analysed<'a> {
     nodes: Vec<usize>,
     normals: Vec<Vector>,
     d0: Vec<f64>,
+    /// Seconds spent assembling and in the symbolic analysis.
+    assembly: f64,
+    symbolic: f64,
+}
+
+/// Wall times of one body's setup phases, seconds.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct SetupTimes {
+    /// Assembly of the stiffness matrix.
+    pub assembly: f64,
+    /// Elimination of the supports, fill-reducing ordering and symbolic Cholesky analysis.
+    pub symbolic: f64,
+    /// Numeric Cholesky factorisation.
+    pub numeric: f64,
+    /// Condensation on the contact points: Y = L₂₂⁻¹N, C₀ = YᵀY and f₀.
+    pub condensation: f64,
 }
 
 impl<'a> Analysed<'a> {
@@ -128,7 +146,11 @@ impl<'a> Analysed<'a> {
             .collect();
         interface.sort_unstable();
         interface.dedup();
-        let op = FactoredBody::new(&body.name, body.stiffness(), &body.constraints, &interface)?;
+        let t = Instant::now();
+        let k = body.stiffness();
+        let assembly = t.elapsed().as_secs_f64();
+        let t = Instant::now();
+        let op = FactoredBody::new(&body.name, k, &body.constraints, &interface)?;
         Ok(Analysed {
             body,
             op,
@@ -136,6 +158,8 @@ impl<'a> Analysed<'a> {
             nodes,
             normals,
             d0,
+            assembly,
+            symbolic: t.elapsed().as_secs_f64(),
         })
     }
 
@@ -146,8 +170,9 @@ impl<'a> Analysed<'a> {
         self.op.memory_estimate().saturating_add(dense)
     }
 
-    /// Factorises (with the reference springs) and condenses the body.
-    pub fn condense(self, par: faer::Par) -> Result<CondensedBody, BodyError> {
+    /// Factorises (with the reference springs) and condenses the body; also returns the times
+    /// of its setup phases.
+    pub fn condense(self, par: faer::Par) -> Result<(CondensedBody, SetupTimes), BodyError> {
         let Analysed {
             body,
             mut op,
@@ -155,7 +180,10 @@ impl<'a> Analysed<'a> {
             nodes,
             normals,
             d0,
+            assembly,
+            symbolic,
         } = self;
+        let t = Instant::now();
         op.set_parallelism(par);
         let mut additions = Vec::with_capacity(DIM * DIM * nodes.len());
         for ((&v, n), &k) in nodes.iter().zip(&normals).zip(&d0) {
@@ -165,6 +193,8 @@ impl<'a> Analysed<'a> {
             additions.push((y, x, k * n[0] * n[1]));
         }
         op.factorize(&additions)?;
+        let numeric = t.elapsed().as_secs_f64();
+        let t = Instant::now();
 
         // Y = L₂₂⁻¹ N on the free interface DOFs, C₀ = Yᵀ Y.
         let l22 = op.schur_factor()?;
@@ -192,7 +222,13 @@ impl<'a> Analysed<'a> {
             .zip(&normals)
             .map(|(&v, n)| dot(*n, node_vector(&x, v)))
             .collect();
-        Ok(CondensedBody {
+        let times = SetupTimes {
+            assembly,
+            symbolic,
+            numeric,
+            condensation: t.elapsed().as_secs_f64(),
+        };
+        let condensed = CondensedBody {
             op,
             nodes,
             normals,
@@ -202,7 +238,8 @@ impl<'a> Analysed<'a> {
             f0,
             load: body.load.clone(),
             factor: 1.0,
-        })
+        };
+        Ok((condensed, times))
     }
 }
 

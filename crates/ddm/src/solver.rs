@@ -8,7 +8,7 @@ use std::time::Instant;
 use rayon::prelude::*;
 
 use crate::coarse::Coarse;
-use crate::condensed::{analyse_all, CondensedBody};
+use crate::condensed::{analyse_all, CondensedBody, SetupTimes};
 use crate::contact::Interface;
 use crate::error::SetupError;
 use crate::iteration::{iterate_on, Hooks, Settings, Stop};
@@ -54,11 +54,14 @@ pub fn prepare(model: &Model) -> Result<Prepared, SetupError> {
     } else {
         faer::Par::rayon(0)
     };
-    let bodies = analyse_all(model, &interface)?
+    let (bodies, times): (Vec<CondensedBody>, Vec<SetupTimes>) = analyse_all(model, &interface)?
         .into_par_iter()
         .map(|a| a.condense(par))
-        .collect::<Result<Vec<_>, _>>()?;
+        .collect::<Result<Vec<_>, _>>()?
+        .into_iter()
+        .unzip();
     let t_factor = t.elapsed().as_secs_f64();
+    let sum = |f: fn(&SetupTimes) -> f64| times.iter().map(f).sum::<f64>();
     let scale = model
         .bodies
         .iter()
@@ -73,6 +76,11 @@ pub fn prepare(model: &Model) -> Result<Prepared, SetupError> {
         timing: vec![
             ("contact_setup".into(), t_contact),
             ("assemble_factor_condense".into(), t_factor),
+            // Per phase, summed over the bodies (which run in parallel).
+            ("assembly".into(), sum(|t| t.assembly)),
+            ("symbolic".into(), sum(|t| t.symbolic)),
+            ("numeric".into(), sum(|t| t.numeric)),
+            ("condensation".into(), sum(|t| t.condensation)),
         ],
     })
 }
