@@ -9,7 +9,7 @@
 //! the next iteration boundary and `KeyboardInterrupt` is raised.
 
 use std::sync::atomic::{AtomicBool, Ordering};
-use std::sync::Arc;
+use std::sync::{Arc, Mutex};
 use std::time::Duration;
 
 use pyo3::exceptions::{PyRuntimeError, PyUserWarning};
@@ -20,7 +20,7 @@ use contactdd_core::Order;
 use contactdd_ddm::benchmark::Notch;
 use contactdd_ddm::contact::Interface;
 use contactdd_ddm::contact_check;
-use contactdd_ddm::{Enforcement, Gamma, Hooks, Method, Model, Settings, SetupError};
+use contactdd_ddm::{Enforcement, Gamma, Hooks, Method, Model, Record, Settings, SetupError};
 use contactdd_io::problem::EnforcementSpec;
 use contactdd_io::setup::{ModelBuilder, MAX_RECTANGLE_CELLS};
 
@@ -135,6 +135,9 @@ fn with_threads<T: Send>(
 ///     gap_tol: augmented pairs: the largest violation of the Signorini conditions of a
 ///         converged result, a length (default: 1e-6 times the largest normal displacement of
 ///         the contact points).
+///     progress: a callable called after every iteration with a dict ``{"k", "gamma",
+///         "rel_change", "active", "normal_force"}`` (the last three per body); an exception it
+///         raises stops the solve and is raised by :func:`solve`.
 ///
 /// Returns:
 ///     A :class:`Result`.
@@ -145,7 +148,7 @@ fn with_threads<T: Send>(
 ///         partial result.
 ///     KeyboardInterrupt: interrupted.
 #[pyfunction]
-#[pyo3(signature = (problem, method = None, gamma = None, tol = None, max_iter = None, u0 = None, u_prev = None, threads = None, check = true, accelerator = None, coarse = None, enforcement = None, gap_tol = None))]
+#[pyo3(signature = (problem, method = None, gamma = None, tol = None, max_iter = None, u0 = None, u_prev = None, threads = None, check = true, accelerator = None, coarse = None, enforcement = None, gap_tol = None, progress = None))]
 #[allow(clippy::too_many_arguments)]
 fn solve(
     py: Python<'_>,
@@ -162,6 +165,7 @@ fn solve(
     coarse: Option<String>,
     enforcement: Option<String>,
     gap_tol: Option<f64>,
+    progress: Option<Py<PyAny>>,
 ) -> PyResult<Py<SolveResult>> {
     let (model, settings, threads) = {
         let p = problem.borrow();
@@ -182,12 +186,26 @@ fn solve(
     };
     let model = Arc::new(model);
     let m = model.clone();
-    let (out, interrupt) = run_interruptible(py, move |cancel| {
+    // An exception of the progress callback: it stops the solve and is raised afterwards.
+    let failed: Mutex<Option<PyErr>> = Mutex::new(None);
+    let (out, interrupt) = run_interruptible(py, |cancel| {
+        let report = |r: &Record| {
+            if let Some(callback) = &progress {
+                if let Err(e) = Python::attach(|py| call_progress(py, callback, r)) {
+                    if let Ok(mut slot) = failed.lock() {
+                        slot.get_or_insert(e);
+                    }
+                    cancel.store(true, Ordering::Relaxed);
+                }
+            }
+        };
         with_threads(threads, || {
             let prepared = contactdd_ddm::prepare(&m)?;
             let findings = contact_check::check(&m, &prepared.interface);
             let hooks = Hooks {
-                on_iteration: None,
+                on_iteration: progress
+                    .is_some()
+                    .then_some(&report as &(dyn Fn(&Record) + Sync)),
                 cancel: Some(cancel),
             };
             Ok((
@@ -199,6 +217,9 @@ fn solve(
     if let Some(e) = interrupt {
         return Err(e);
     }
+    if let Some(e) = failed.into_inner().ok().flatten() {
+        return Err(e);
+    }
     let (findings, sol) = out.map_err(setup_error)?;
     warn_contact(py, &findings)?;
     let result = SolveResult::new(py, model, sol)?;
@@ -208,6 +229,18 @@ fn solve(
         return Err(convergence_error(py, &message, result.into_any()));
     }
     Ok(result)
+}
+
+/// Calls the progress callback with one iteration's record as a dict.
+fn call_progress(py: Python<'_>, callback: &Py<PyAny>, r: &Record) -> PyResult<()> {
+    let record = PyDict::new(py);
+    record.set_item("k", r.k)?;
+    record.set_item("gamma", r.gamma)?;
+    record.set_item("rel_change", r.rel_change.clone())?;
+    record.set_item("active", r.active.clone())?;
+    record.set_item("normal_force", r.contact_force.clone())?;
+    callback.call1(py, (record,))?;
+    Ok(())
 }
 
 /// The model with every pair's enforcement set to `name` (``"penalty"`` or ``"augmented"``), if

@@ -40,3 +40,22 @@ def test_load_steps_carry_their_share_of_the_load(notch):
         assert abs(fy - 8400.0 * r.load_factor) <= 1e-6 * 8400.0
     with pytest.raises(contactdd.ContactddError, match="load_steps"):
         contactdd.solve_steps(notch, [0.5, -1.0])
+
+
+def test_progress_sees_every_iteration(notch):
+    seen = []
+    result = contactdd.solve(notch, progress=seen.append)
+    assert [r["k"] for r in seen] == list(range(1, result.iterations + 1))
+    assert len(seen[-1]["rel_change"]) == 2 and len(seen[-1]["normal_force"]) == 2
+
+
+def test_an_exception_in_progress_stops_the_solve(notch):
+    class Stop(Exception):
+        pass
+
+    def stop(record):
+        if record["k"] == 2:
+            raise Stop("enough")
+
+    with pytest.raises(Stop, match="enough"):
+        contactdd.solve(notch, progress=stop)

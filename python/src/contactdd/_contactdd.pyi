@@ -1,7 +1,7 @@
 """Type stubs of the contactdd extension module (``contactdd._contactdd``)."""
 
 from os import PathLike
-from typing import Any, Literal, Mapping, Optional, Sequence, Tuple, TypedDict, Union, final
+from typing import Any, Callable, Literal, Mapping, Optional, Sequence, Tuple, TypedDict, Union, final
 
 import numpy as np
 import numpy.typing as npt
@@ -313,8 +313,10 @@ def solve(
     coarse: Optional[_CoarseName] = None,
     enforcement: Optional[Literal["penalty", "augmented"]] = None,
     gap_tol: Optional[float] = None,
+    progress: Optional[Callable[[dict[str, Any]], object]] = None,
 ) -> Result:
-    """Solves a contact problem by the penalty Robin domain decomposition (GIL released)."""
+    """Solves a contact problem by the penalty Robin domain decomposition (GIL released);
+    progress(record) is called after every iteration."""
 
 def solve_steps(
     problem: Problem,
