@@ -8,7 +8,9 @@
 //! - in every direction in which a body has no support at all, the contact forces balance the
 //!   applied load on that body (the body is held there only by contact);
 //! - the penalty penetration of closed points stays below 1 % of the smaller body's size;
-//! - the file opens with a header that shows the command to run it.
+//! - the file opens with a header that shows the command to run it;
+//! - the iteration count its header quotes (`converged in N iterations`, or `every step converges
+//!   in A to B` for load steps) is the one the solve takes, so the documented numbers stay true.
 
 use std::path::{Path, PathBuf};
 
@@ -78,7 +80,40 @@ fn check_example(file: &Path, stem: &str, out: &Path) -> Result<(), String> {
         &std::fs::read_to_string(out.join("summary.json")).map_err(|e| e.to_string())?,
     )
     .map_err(|e| e.to_string())?;
-    check_summary(&loaded, &summary)
+    check_summary(&loaded, &summary)?;
+    check_quoted_count(&text, &summary)
+}
+
+/// The header's quoted iteration count against the solve's: `converged in N iterations`, or for
+/// load steps `converges in A to B` (the range of the steps' counts).
+fn check_quoted_count(text: &str, summary: &Value) -> Result<(), String> {
+    let number_after = |key: &str| -> Option<usize> {
+        let rest = &text[text.find(key)? + key.len()..];
+        rest.split_whitespace().next()?.parse().ok()
+    };
+    if let Some(steps) = summary["steps"].as_array() {
+        let counts: Vec<usize> = steps
+            .iter()
+            .map(|s| s["iterations"].as_u64().unwrap_or(0) as usize)
+            .collect();
+        let (lo, hi) = (counts.iter().min(), counts.iter().max());
+        let quoted_lo = number_after("converges in ");
+        let quoted_hi = number_after(&format!("converges in {} to ", quoted_lo.unwrap_or(0)));
+        return match (quoted_lo, quoted_hi) {
+            (Some(a), Some(b)) if Some(&a) == lo && Some(&b) == hi => Ok(()),
+            _ => Err(format!(
+                "the header quotes {quoted_lo:?} to {quoted_hi:?} iterations per step; the steps \
+                 took {counts:?}"
+            )),
+        };
+    }
+    let iterations = summary["iterations"].as_u64().unwrap_or(0) as usize;
+    match number_after("#   converged in ") {
+        Some(quoted) if quoted == iterations => Ok(()),
+        quoted => Err(format!(
+            "the header quotes {quoted:?} iterations; the solve took {iterations}"
+        )),
+    }
 }
 
 fn check_summary(loaded: &Loaded, summary: &Value) -> Result<(), String> {
