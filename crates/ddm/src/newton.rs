@@ -57,6 +57,10 @@ const WINDOW: usize = 10;
 const MAX_HALVINGS: usize = 12;
 /// Sufficient decrease of ‖R‖ per unit step length (Armijo).
 const ARMIJO: f64 = 1e-4;
+/// The fill (entries / n²) from which the Newton system is factorised as a dense matrix: two
+/// bodies in contact fill half of it or more, and then the sparse LU does about the dense flops
+/// with more overhead; a chain of bodies stays block-sparse, well below.
+const DENSE_FILL: f64 = 1.0 / 3.0;
 
 /// Runs the interface Newton iteration on a prepared model with the contact points `interface`,
 /// from the interface loads `warm` if given, else from the paper's initial value u⁰.
@@ -326,31 +330,12 @@ impl<'a> System<'a> {
                 trip.push(Triplet::new(m + q, j, v));
             }
         }
-        let a = SparseColMat::<usize, f64>::try_new_from_triplets(n, n, &trip).ok()?;
         let mut rhs = Mat::<f64>::from_fn(n, 1, |i, _| if i < m { -r[i] } else { 0.0 });
-        // Dense blocks per body: the supernodal factorisation uses dense kernels on them.
-        let params = LuSymbolicParams {
-            supernodal_flop_ratio_threshold: SupernodalThreshold::FORCE_SUPERNODAL,
-            ..Default::default()
-        };
-        let symbolic = factorize_symbolic_lu(a.symbolic(), params).ok()?;
-        let mut numeric = NumericLu::new();
-        let mut mem = MemBuffer::try_new(
-            symbolic.factorize_numeric_lu_scratch::<f64>(Par::Seq, Default::default()),
-        )
-        .ok()?;
-        let lu = symbolic
-            .factorize_numeric_lu(
-                &mut numeric,
-                a.as_ref(),
-                Par::Seq,
-                MemStack::new(&mut mem),
-                Default::default(),
-            )
-            .ok()?;
-        let mut mem =
-            MemBuffer::try_new(symbolic.solve_in_place_scratch::<f64>(1, Par::Seq)).ok()?;
-        lu.solve_in_place_with_conj(Conj::No, rhs.as_mut(), Par::Seq, MemStack::new(&mut mem));
+        if trip.len() as f64 >= DENSE_FILL * (n as f64) * (n as f64) {
+            dense_solve(&trip, n, &mut rhs)?;
+        } else {
+            sparse_solve(&trip, n, &mut rhs)?;
+        }
         let delta: Vec<f64> = (0..m).map(|i| rhs[(i, 0)]).collect();
         delta.iter().all(|v| v.is_finite()).then_some(delta)
     }
@@ -379,6 +364,67 @@ impl<'a> System<'a> {
         }
         dot(&r, &r).sqrt()
     }
+}
+
+/// Solves the Newton system (given by its triplets) in place by sparse LU: the dense blocks per
+/// body go through faer's supernodal kernels. Sequential, so the same on any number of threads.
+fn sparse_solve(trip: &[Triplet<usize, usize, f64>], n: usize, rhs: &mut Mat<f64>) -> Option<()> {
+    let a = SparseColMat::<usize, f64>::try_new_from_triplets(n, n, trip).ok()?;
+    // Dense blocks per body: the supernodal factorisation uses dense kernels on them.
+    let params = LuSymbolicParams {
+        supernodal_flop_ratio_threshold: SupernodalThreshold::FORCE_SUPERNODAL,
+        ..Default::default()
+    };
+    let symbolic = factorize_symbolic_lu(a.symbolic(), params).ok()?;
+    let mut numeric = NumericLu::new();
+    let mut mem = MemBuffer::try_new(
+        symbolic.factorize_numeric_lu_scratch::<f64>(Par::Seq, Default::default()),
+    )
+    .ok()?;
+    let lu = symbolic
+        .factorize_numeric_lu(
+            &mut numeric,
+            a.as_ref(),
+            Par::Seq,
+            MemStack::new(&mut mem),
+            Default::default(),
+        )
+        .ok()?;
+    let mut mem = MemBuffer::try_new(symbolic.solve_in_place_scratch::<f64>(1, Par::Seq)).ok()?;
+    lu.solve_in_place_with_conj(Conj::No, rhs.as_mut(), Par::Seq, MemStack::new(&mut mem));
+    Some(())
+}
+
+/// Solves the Newton system (given by its triplets) in place by dense LU with partial pivoting,
+/// for a system whose blocks fill most of it. Sequential, like [`sparse_solve`].
+fn dense_solve(trip: &[Triplet<usize, usize, f64>], n: usize, rhs: &mut Mat<f64>) -> Option<()> {
+    use faer::linalg::lu::partial_pivoting::{factor, solve};
+    let mut a = Mat::<f64>::zeros(n, n);
+    for t in trip {
+        a[(t.row, t.col)] += t.val;
+    }
+    let (mut perm, mut perm_inv) = (vec![0usize; n], vec![0usize; n]);
+    let req = factor::lu_in_place_scratch::<usize, f64>(n, n, Par::Seq, Default::default())
+        .or(solve::solve_in_place_scratch::<usize, f64>(n, 1, Par::Seq));
+    let mut mem = MemBuffer::try_new(req).ok()?;
+    let (_, p) = factor::lu_in_place(
+        a.as_mut(),
+        &mut perm,
+        &mut perm_inv,
+        Par::Seq,
+        MemStack::new(&mut mem),
+        Default::default(),
+    );
+    solve::solve_in_place_with_conj(
+        a.as_ref(),
+        a.as_ref(),
+        p,
+        Conj::No,
+        rhs.as_mut(),
+        Par::Seq,
+        MemStack::new(&mut mem),
+    );
+    Some(())
 }
 
 fn dot(a: &[f64], b: &[f64]) -> f64 {
