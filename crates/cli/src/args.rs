@@ -62,7 +62,7 @@ pub struct SolveArgs {
     /// Problem file (TOML).
     pub file: PathBuf,
     /// Output folder [default: ./<problem name>-out].
-    #[arg(long, value_name = "DIR")]
+    #[arg(long, short, value_name = "DIR")]
     pub out: Option<PathBuf>,
     /// Method: neumann, robin, active-set, newton-chord or newton-kurchatov.
     #[arg(long, value_name = "M", value_parser = parse_method)]
@@ -113,11 +113,14 @@ pub struct SweepArgs {
     pub gamma: GammaList,
     /// CSV file to write; an existing path must be a regular file (never a link, FIFO or device)
     /// [default: ./<problem name>-sweep.csv].
-    #[arg(long, value_name = "PATH")]
+    #[arg(long, short, value_name = "PATH")]
     pub out: Option<PathBuf>,
     /// Solver options.
     #[command(flatten)]
     pub common: Common,
+    /// Print only the line naming the CSV written (no progress, no table).
+    #[arg(long, short)]
+    pub quiet: bool,
 }
 
 /// `contactdd check`.
@@ -133,7 +136,7 @@ pub struct MonolithicArgs {
     /// Problem file (TOML).
     pub file: PathBuf,
     /// Output folder [default: ./<problem name>-monolithic-out].
-    #[arg(long, value_name = "DIR")]
+    #[arg(long, short, value_name = "DIR")]
     pub out: Option<PathBuf>,
     /// Worker threads (default: all cores).
     #[arg(long, value_name = "N", value_parser = clap::value_parser!(u64).range(1..=MAX_THREADS as u64))]

@@ -28,30 +28,37 @@ pub fn sweep(args: SweepArgs) -> Result<Exit> {
         .unwrap_or_else(|| PathBuf::from(format!("{}-sweep.csv", safe_file_name(&model.name))));
     // Checked again when writing; checking first saves a whole sweep when the path is refused.
     check_output_path(&out).with_context(|| format!("cannot write '{}'", out.display()))?;
+    let quiet = args.quiet;
     let runs = with_threads(threads, || {
-        progress(&format!(
-            "assembling and factorising {}…",
-            count(model.bodies.len(), "body", "bodies")
-        ));
+        if !quiet {
+            progress(&format!(
+                "assembling and factorising {}…",
+                count(model.bodies.len(), "body", "bodies")
+            ));
+        }
         let prepared = prepare(model).map_err(|e| anyhow::anyhow!("{e}"))?;
-        progress(&format!(
-            "running {} × {} = {} solves…",
-            count(methods.len(), "method", "methods"),
-            count(gammas.len(), "gamma", "gammas"),
-            methods.len() * gammas.len()
-        ));
+        if !quiet {
+            progress(&format!(
+                "running {} × {} = {} solves…",
+                count(methods.len(), "method", "methods"),
+                count(gammas.len(), "gamma", "gammas"),
+                methods.len() * gammas.len()
+            ));
+        }
         Ok(dd_sweep(model, &prepared, methods, gammas, &settings))
     })?;
     write_atomic(&out, sweep_csv(&runs).as_bytes())
         .with_context(|| format!("cannot write '{}'", out.display()))?;
-    say!(
-        "sweep of {}: iterations m to reach tol {:e} (max-iter {}); div@k = diverged at \
-         iteration k, max = not converged within max-iter",
-        model.name,
-        settings.tol,
-        settings.max_iter
-    );
-    say!("{}", table(methods, gammas, &runs).trim_end());
+    if !quiet {
+        say!(
+            "sweep of {}: iterations m to reach tol {:e} (max-iter {}); div@k = diverged at \
+             iteration k, max = not converged within max-iter",
+            model.name,
+            settings.tol,
+            settings.max_iter
+        );
+        say!("{}", table(methods, gammas, &runs).trim_end());
+    }
     say!("wrote {}", out.display());
     Ok(Exit::Success)
 }
