@@ -11,6 +11,7 @@
 //!                      [--threads N]
 //! contactdd check FILE
 //! contactdd monolithic FILE [--out DIR] [--threads N] [--max-steps K] [--quiet]
+//! contactdd plot RESULTS [--out DIR] [--format svg,png] [--tol T] [--units U]
 //! ```
 //!
 //! Exit codes ([`Exit`]):
@@ -39,6 +40,13 @@ macro_rules! say {
 mod args;
 mod check;
 mod console;
+mod plot;
+mod plot_contact;
+mod plot_data;
+mod plot_draw;
+mod plot_history;
+mod plot_steps;
+mod plot_sweep;
 mod report;
 mod solve;
 mod steps;
@@ -93,6 +101,7 @@ where
         Command::Sweep(a) => sweep::sweep(a),
         Command::Check(a) => check::check(a),
         Command::Monolithic(a) => solve::monolithic(a),
+        Command::Plot(a) => plot::plot(a),
     };
     let exit = match result {
         Ok(exit) => exit,

@@ -1,0 +1,452 @@
+//! What every figure of `contactdd plot` shares: the backends (SVG as text, PNG through a pixel
+//! buffer and the `png` encoder), the embedded font, the frame of a chart, and a series drawn as
+//! a line and markers with its legend entry.
+
+use std::ops::Range;
+use std::path::{Path, PathBuf};
+use std::sync::Once;
+
+use anyhow::{anyhow, Context, Result};
+use plotters::chart::SeriesAnno;
+use plotters::coord::types::RangedCoordf64;
+use plotters::coord::Shift;
+use plotters::element::{Drawable, PointCollection};
+use plotters::prelude::*;
+use plotters_backend::{BackendCoord, DrawingErrorKind};
+
+use contactdd_io::output::write_atomic;
+
+use crate::args::Format;
+
+/// Pixel size of every figure.
+pub const SIZE: (u32, u32) = (800, 500);
+
+/// A figure: draws itself on any backend.
+pub trait Figure {
+    /// Draws the figure on `root` (already white).
+    fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Result<()>;
+}
+
+/// Turns a plotters error (generic in the backend) into an error of ours.
+pub fn ok<T, E: std::fmt::Display>(r: std::result::Result<T, E>) -> Result<T> {
+    r.map_err(|e| anyhow!("cannot draw: {e}"))
+}
+
+/// Registers DejaVu Sans as the sans-serif font, once: plotters' `ab_glyph` text needs it for
+/// the layout of every backend and for the glyphs of PNG, and a fresh machine may have no fonts.
+fn register_font() -> Result<()> {
+    static ONCE: Once = Once::new();
+    let mut result = Ok(());
+    ONCE.call_once(|| {
+        result = plotters::style::register_font(
+            "sans-serif",
+            FontStyle::Normal,
+            dejavu::sans::regular(),
+        )
+        .map_err(|_| anyhow!("the embedded font cannot be read"));
+    });
+    result
+}
+
+/// Writes `fig` as `dir/<stem>.<ext>` in each format; returns the paths written.
+pub fn render(
+    fig: &impl Figure,
+    dir: &Path,
+    stem: &str,
+    formats: &[Format],
+) -> Result<Vec<PathBuf>> {
+    register_font()?;
+    let mut written = Vec::new();
+    for format in formats {
+        let (bytes, ext) = match format {
+            Format::Svg => (svg(fig)?, "svg"),
+            Format::Png => (png(fig)?, "png"),
+        };
+        let path = dir.join(format!("{stem}.{ext}"));
+        write_atomic(&path, &bytes)
+            .with_context(|| format!("cannot write '{}'", path.display()))?;
+        written.push(path);
+    }
+    Ok(written)
+}
+
+fn svg(fig: &impl Figure) -> Result<Vec<u8>> {
+    let mut text = String::new();
+    {
+        let root = SVGBackend::with_string(&mut text, SIZE).into_drawing_area();
+        ok(root.fill(&WHITE))?;
+        fig.draw(&root)?;
+        ok(root.present())?;
+    }
+    Ok(text.into_bytes())
+}
+
+fn png(fig: &impl Figure) -> Result<Vec<u8>> {
+    let (w, h) = SIZE;
+    let mut pixels = vec![0u8; (w * h * 3) as usize];
+    {
+        let root = BitMapBackend::with_buffer(&mut pixels, SIZE).into_drawing_area();
+        ok(root.fill(&WHITE))?;
+        fig.draw(&root)?;
+        ok(root.present())?;
+    }
+    let mut bytes = Vec::new();
+    let mut encoder = png::Encoder::new(&mut bytes, w, h);
+    encoder.set_color(png::ColorType::Rgb);
+    encoder.set_depth(png::BitDepth::Eight);
+    let mut writer = ok(encoder.write_header())?;
+    ok(writer.write_image_data(&pixels))?;
+    ok(writer.finish())?;
+    Ok(bytes)
+}
+
+/// Caption and axes of a chart.
+pub struct Frame {
+    /// Title above the chart.
+    pub caption: String,
+    /// Horizontal axis label (with its unit).
+    pub x_label: String,
+    /// Vertical axis label (with its unit).
+    pub y_label: String,
+}
+
+/// A linear chart over `x` × `y` with its mesh drawn.
+pub fn linear<'a, DB: DrawingBackend>(
+    root: &'a DrawingArea<DB, Shift>,
+    frame: &Frame,
+    x: Range<f64>,
+    y: Range<f64>,
+) -> Result<ChartContext<'a, DB, Cartesian2d<RangedCoordf64, RangedCoordf64>>> {
+    let mut chart = ok(ChartBuilder::on(root)
+        .caption(&frame.caption, ("sans-serif", 22))
+        .margin(12)
+        .margin_right(30)
+        .x_label_area_size(48)
+        .y_label_area_size(72)
+        .build_cartesian_2d(x, y))?;
+    ok(chart
+        .configure_mesh()
+        .x_desc(&frame.x_label)
+        .y_desc(&frame.y_label)
+        .x_label_formatter(&|v| tick(*v))
+        .y_label_formatter(&|v| tick(*v))
+        .label_style(("sans-serif", 15))
+        .axis_desc_style(("sans-serif", 17))
+        .bold_line_style(RGBColor(225, 225, 225))
+        .light_line_style(TRANSPARENT)
+        .draw())?;
+    Ok(chart)
+}
+
+/// A tick label: three significant digits without trailing zeros, powers of ten outside
+/// [1e-3, 1e5).
+pub fn tick(v: f64) -> String {
+    let a = v.abs();
+    if a == 0.0 || !v.is_finite() {
+        return if v == 0.0 { "0".into() } else { v.to_string() };
+    }
+    if !(1e-3..1e5).contains(&a) {
+        return format!("{v:.1e}");
+    }
+    let decimals = (2 - a.log10().floor() as i32).clamp(0, 6) as usize;
+    let s = format!("{v:.decimals$}");
+    if s.contains('.') {
+        s.trim_end_matches('0').trim_end_matches('.').to_string()
+    } else {
+        s
+    }
+}
+
+/// A marker shape.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Marker {
+    /// No marker.
+    None,
+    /// ●
+    Circle,
+    /// ■
+    Square,
+    /// ▲
+    Triangle,
+    /// ◆
+    Diamond,
+    /// ×
+    Cross,
+    /// +
+    Plus,
+}
+
+/// How a series' points are joined.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Line {
+    /// Markers only.
+    None,
+    /// A solid line.
+    Solid,
+    /// A dashed line.
+    Dashed,
+    /// A dotted line (short dashes).
+    Dotted,
+}
+
+/// The look of a series.
+#[derive(Clone, Copy, Debug)]
+pub struct Look {
+    /// Colour of line and markers.
+    pub color: RGBColor,
+    /// Line style.
+    pub line: Line,
+    /// Marker shape.
+    pub marker: Marker,
+    /// Filled markers (else outlines).
+    pub filled: bool,
+    /// Marker size in pixels.
+    pub size: i32,
+}
+
+impl Look {
+    /// A look with a `line` and filled `marker` of size 4 in `color`.
+    pub fn new(color: RGBColor, line: Line, marker: Marker) -> Look {
+        Look {
+            color,
+            line,
+            marker,
+            filled: true,
+            size: 4,
+        }
+    }
+
+    /// The same look with outlined markers of `size` pixels.
+    pub fn hollow(self, size: i32) -> Look {
+        Look {
+            filled: false,
+            size,
+            ..self
+        }
+    }
+
+    fn marker_style(&self) -> ShapeStyle {
+        let style = ShapeStyle::from(&self.color).stroke_width(2);
+        if self.filled {
+            style.filled()
+        } else {
+            style
+        }
+    }
+}
+
+/// Line colours that stay apart in print and for the common colour blindnesses.
+pub const COLORS: [RGBColor; 6] = [
+    RGBColor(0, 114, 178),
+    RGBColor(213, 94, 0),
+    RGBColor(0, 158, 115),
+    RGBColor(204, 121, 167),
+    RGBColor(86, 180, 233),
+    RGBColor(230, 159, 0),
+];
+
+/// Draws `points` with `look` and, when `label` is not empty, its legend entry.
+pub fn series<'a, DB, CT>(
+    chart: &mut ChartContext<'a, DB, CT>,
+    points: &[(f64, f64)],
+    look: Look,
+    label: &str,
+) -> Result<()>
+where
+    DB: DrawingBackend + 'a,
+    CT: CoordTranslate<From = (f64, f64)>,
+{
+    let line_style = ShapeStyle::from(&look.color).stroke_width(2);
+    let pts = points.to_vec();
+    let anno = match look.line {
+        Line::Solid => Some(ok(chart.draw_series(LineSeries::new(pts, line_style)))?),
+        Line::Dashed => Some(ok(
+            chart.draw_series(DashedLineSeries::new(pts, 9, 5, line_style))
+        )?),
+        Line::Dotted => Some(ok(
+            chart.draw_series(DashedLineSeries::new(pts, 3, 4, line_style))
+        )?),
+        Line::None => None,
+    };
+    if anno.is_none() || look.marker != Marker::None {
+        let markers = points.iter().map(|&at| MarkerAt {
+            at,
+            look,
+            with_line: false,
+        });
+        let anno = ok(chart.draw_series(markers))?;
+        legend(anno, look, label);
+    } else if let Some(anno) = anno {
+        legend(anno, look, label);
+    }
+    Ok(())
+}
+
+fn legend<'a, DB: DrawingBackend + 'a>(anno: &mut SeriesAnno<'a, DB>, look: Look, label: &str) {
+    if !label.is_empty() {
+        anno.label(label).legend(move |at| MarkerAt {
+            at,
+            look,
+            with_line: true,
+        });
+    }
+}
+
+/// A marker of a [`Look`] at a point, optionally on a short stretch of its line (a legend's
+/// sample). An element of our own: plotters' shapes are each their own type, and its dynamic
+/// elements must outlive the backend.
+struct MarkerAt<C> {
+    at: C,
+    look: Look,
+    with_line: bool,
+}
+
+impl<'a, C> PointCollection<'a, C> for &'a MarkerAt<C> {
+    type Point = &'a C;
+    type IntoIter = std::iter::Once<&'a C>;
+    fn point_iter(self) -> Self::IntoIter {
+        std::iter::once(&self.at)
+    }
+}
+
+impl<DB: DrawingBackend, C> Drawable<DB> for MarkerAt<C> {
+    fn draw<I: Iterator<Item = BackendCoord>>(
+        &self,
+        mut pos: I,
+        backend: &mut DB,
+        _: (u32, u32),
+    ) -> Result<(), DrawingErrorKind<DB::ErrorType>> {
+        let Some((mut x, y)) = pos.next() else {
+            return Ok(());
+        };
+        if self.with_line {
+            // Keep the sample inside the legend box, clear of the label.
+            x += 4;
+        }
+        let look = self.look;
+        let line = ShapeStyle::from(&look.color).stroke_width(2);
+        if self.with_line {
+            // The legend's line sample: dashes as on the chart.
+            let pieces: &[(i32, i32)] = match look.line {
+                Line::None => &[],
+                Line::Solid => &[(-14, 14)],
+                Line::Dashed => &[(-14, -5), (5, 14)],
+                Line::Dotted => &[(-14, -11), (-6, -3), (3, 6), (11, 14)],
+            };
+            for &(a, b) in pieces {
+                backend.draw_line((x + a, y), (x + b, y), &line)?;
+            }
+        }
+        let (s, style) = (look.size, look.marker_style());
+        let fill = look.filled;
+        let diamond = [
+            (x, y - s - 1),
+            (x + s + 1, y),
+            (x, y + s + 1),
+            (x - s - 1, y),
+        ];
+        match look.marker {
+            Marker::None => Ok(()),
+            Marker::Circle => backend.draw_circle((x, y), s.unsigned_abs(), &style, fill),
+            Marker::Square => backend.draw_rect((x - s, y - s), (x + s, y + s), &style, fill),
+            Marker::Triangle => {
+                let h = s + 1;
+                let tri = [(x, y - h), (x + h, y + h * 2 / 3), (x - h, y + h * 2 / 3)];
+                outline(backend, &tri, &style, fill)
+            }
+            Marker::Diamond => outline(backend, &diamond, &style, fill),
+            Marker::Cross => {
+                let l = s + 1;
+                backend.draw_line((x - l, y - l), (x + l, y + l), &style)?;
+                backend.draw_line((x - l, y + l), (x + l, y - l), &style)
+            }
+            Marker::Plus => {
+                let l = s + 2;
+                backend.draw_line((x - l, y), (x + l, y), &style)?;
+                backend.draw_line((x, y - l), (x, y + l), &style)
+            }
+        }
+    }
+}
+
+/// A closed polygon, filled or outlined.
+fn outline<DB: DrawingBackend>(
+    backend: &mut DB,
+    corners: &[BackendCoord],
+    style: &ShapeStyle,
+    fill: bool,
+) -> Result<(), DrawingErrorKind<DB::ErrorType>> {
+    if fill {
+        backend.fill_polygon(corners.iter().copied(), style)
+    } else {
+        backend.draw_path(corners.iter().chain(corners.first()).copied(), style)
+    }
+}
+
+/// A legend of its own beside a chart: one line per entry, its sample and its label, from the
+/// top of `area` (plotters draws a legend only inside the chart).
+pub fn legend_panel<DB: DrawingBackend>(
+    area: &DrawingArea<DB, Shift>,
+    entries: &[(String, Look)],
+) -> Result<()> {
+    let top = 50;
+    for (i, (label, look)) in entries.iter().enumerate() {
+        let y = top + 22 * i as i32;
+        ok(area.draw(&MarkerAt {
+            at: (4, y),
+            look: *look,
+            with_line: true,
+        }))?;
+        ok(area.draw(&Text::new(label.as_str(), (40, y - 8), ("sans-serif", 15))))?;
+    }
+    Ok(())
+}
+
+/// Draws the legend at `pos`.
+pub fn legend_box<'a, DB, CT>(
+    chart: &mut ChartContext<'a, DB, CT>,
+    pos: SeriesLabelPosition,
+) -> Result<()>
+where
+    DB: DrawingBackend + 'a,
+    CT: CoordTranslate,
+{
+    ok(chart
+        .configure_series_labels()
+        .position(pos)
+        .margin(8)
+        .background_style(WHITE.mix(0.85))
+        .border_style(BLACK.mix(0.4))
+        .label_font(("sans-serif", 15))
+        .draw())
+}
+
+/// The range of `values` (finite ones only) widened by `pad` of its width on both sides; `empty`
+/// when there is none.
+pub fn span(values: impl IntoIterator<Item = f64>, pad: f64, empty: Range<f64>) -> Range<f64> {
+    let (lo, hi) = values
+        .into_iter()
+        .filter(|v| v.is_finite())
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), v| {
+            (lo.min(v), hi.max(v))
+        });
+    if lo > hi {
+        return empty;
+    }
+    let width = if hi > lo { hi - lo } else { lo.abs().max(1.0) };
+    (lo - pad * width)..(hi + pad * width)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn tick_labels() {
+        assert_eq!(tick(5000.0), "5000");
+        assert_eq!(tick(0.0015), "0.0015");
+        assert_eq!(tick(-0.5), "-0.5");
+        assert_eq!(tick(0.0), "0");
+        assert_eq!(tick(2.5e-5), "2.5e-5");
+    }
+}

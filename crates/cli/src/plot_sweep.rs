@@ -1,0 +1,203 @@
+//! The γ study figure of `contactdd plot`, from the CSV of `contactdd sweep`
+//! (`method,gamma,iterations,converged,reason`): iterations against γ per method. A failed run
+//! is drawn at the iteration it stopped, its marker telling how it failed (diverged, ran out of
+//! iterations, stalled); an `auto` run is a horizontal line at its iteration count.
+
+use std::path::{Path, PathBuf};
+
+use anyhow::{bail, Result};
+use plotters::coord::Shift;
+use plotters::prelude::*;
+
+use crate::args::Format;
+use crate::plot_data::Table;
+/// Pixels right of the chart for the legend.
+const LEGEND_WIDTH: u32 = 240;
+
+use crate::plot_draw::{
+    legend_panel, linear, series, span, Figure, Frame, Line, Look, Marker, COLORS, SIZE,
+};
+
+/// How a run ended.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum End {
+    Converged,
+    Diverged,
+    MaxIterations,
+    /// Stalled, interrupted or out of multiplier updates.
+    Other,
+}
+
+impl End {
+    /// From the `converged` and `reason` fields (reasons as in crates/ddm `short_reason`).
+    fn of(converged: &str, reason: &str) -> End {
+        if converged == "true" {
+            End::Converged
+        } else if reason.starts_with("max iterations") {
+            End::MaxIterations
+        } else if reason.contains(" at iteration ") {
+            End::Diverged
+        } else {
+            End::Other
+        }
+    }
+
+    /// The failure marker (hollow and larger than the methods' markers).
+    fn look(self, color: RGBColor) -> Look {
+        let marker = match self {
+            End::Diverged => Marker::Cross,
+            End::MaxIterations => Marker::Triangle,
+            End::Other | End::Converged => Marker::Plus,
+        };
+        Look::new(color, Line::None, marker).hollow(6)
+    }
+
+    fn name(self) -> &'static str {
+        match self {
+            End::Converged => "converged",
+            End::Diverged => "diverged (at its iteration)",
+            End::MaxIterations => "max iterations",
+            End::Other => "stalled / other",
+        }
+    }
+}
+
+/// One run of the sweep.
+struct Run {
+    /// `None` for `auto`.
+    gamma: Option<f64>,
+    iterations: f64,
+    end: End,
+}
+
+/// The runs of one method, in file order.
+struct MethodRuns {
+    method: String,
+    runs: Vec<Run>,
+}
+
+/// The `<stem>` figure of a sweep CSV.
+pub fn figures(table: &Table, out: &Path, stem: &str, formats: &[Format]) -> Result<Vec<PathBuf>> {
+    let methods = read(table)?;
+    crate::plot_draw::render(&Sweep { methods }, out, stem, formats)
+}
+
+fn read(table: &Table) -> Result<Vec<MethodRuns>> {
+    let [mc, gc, ic, cc, rc] =
+        ["method", "gamma", "iterations", "converged", "reason"].map(|n| table.column(n));
+    let (mc, gc, ic, cc, rc) = (mc?, gc?, ic?, cc?, rc?);
+    let mut methods: Vec<MethodRuns> = Vec::new();
+    for (r, row) in table.rows.iter().enumerate() {
+        let run = Run {
+            gamma: if row[gc] == "auto" {
+                None
+            } else {
+                Some(table.number(r, gc)?)
+            },
+            iterations: table.number(r, ic)?,
+            end: End::of(&row[cc], &row[rc]),
+        };
+        match methods.iter_mut().find(|m| m.method == row[mc]) {
+            Some(m) => m.runs.push(run),
+            None => methods.push(MethodRuns {
+                method: row[mc].clone(),
+                runs: vec![run],
+            }),
+        }
+    }
+    if methods.is_empty() {
+        bail!("'{}' has no runs", table.path.display());
+    }
+    Ok(methods)
+}
+
+/// Iterations against γ.
+struct Sweep {
+    methods: Vec<MethodRuns>,
+}
+
+/// The look of method `m`: colour, line style and marker all differ, so that methods with equal
+/// counts stay apart.
+fn method_look(m: usize) -> Look {
+    let lines = [Line::Solid, Line::Dashed, Line::Dotted];
+    let markers = [
+        Marker::Circle,
+        Marker::Square,
+        Marker::Diamond,
+        Marker::Triangle,
+    ];
+    Look::new(COLORS[m % COLORS.len()], lines[m % 3], markers[m % 4])
+}
+
+impl Figure for Sweep {
+    fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Result<()> {
+        let (left, right) = root.split_horizontally(SIZE.0 - LEGEND_WIDTH);
+        let runs = || self.methods.iter().flat_map(|m| m.runs.iter());
+        let x = span(runs().filter_map(|r| r.gamma), 0.04, 0.0..1.0);
+        let y = 0.0..span(runs().map(|r| r.iterations).chain([1.0]), 0.0, 0.0..1.0).end * 1.08;
+        let frame = Frame {
+            caption: "iterations to converge against γ".into(),
+            x_label: "relaxation parameter γ".into(),
+            y_label: "iterations m".into(),
+        };
+        let mut chart = linear(&left, &frame, x.clone(), y)?;
+        let mut legend = Vec::new();
+        for (m, method) in self.methods.iter().enumerate() {
+            let look = method_look(m);
+            let done: Vec<(f64, f64)> = method
+                .runs
+                .iter()
+                .filter(|r| r.end == End::Converged)
+                .filter_map(|r| Some((r.gamma?, r.iterations)))
+                .collect();
+            series(&mut chart, &done, look, "")?;
+            legend.push((method.method.clone(), look));
+            for run in method.runs.iter().filter(|r| r.gamma.is_none()) {
+                let auto = Look {
+                    marker: Marker::None,
+                    line: Line::Dotted,
+                    ..look
+                };
+                let at = [(x.start, run.iterations), (x.end, run.iterations)];
+                series(&mut chart, &at, auto, "")?;
+                legend.push((auto_label(&method.method, run), auto));
+            }
+        }
+        for end in [End::Diverged, End::MaxIterations, End::Other] {
+            if self.failures(&mut chart, end)? {
+                legend.push((end.name().to_string(), end.look(RGBColor(90, 90, 90))));
+            }
+        }
+        legend_panel(&right, &legend)
+    }
+}
+
+/// The legend entry of an `auto` run.
+fn auto_label(method: &str, run: &Run) -> String {
+    match run.end {
+        End::Converged => format!("{method} auto: {}", run.iterations),
+        end => format!("{method} auto: {}", end.name()),
+    }
+}
+
+impl Sweep {
+    /// Draws the failed runs ending with `end`, each in its method's colour; true if any.
+    fn failures<'a, DB: DrawingBackend + 'a, CT: CoordTranslate<From = (f64, f64)>>(
+        &self,
+        chart: &mut ChartContext<'a, DB, CT>,
+        end: End,
+    ) -> Result<bool> {
+        let mut any = false;
+        for (m, method) in self.methods.iter().enumerate() {
+            let pts: Vec<(f64, f64)> = method
+                .runs
+                .iter()
+                .filter(|r| r.end == end)
+                .filter_map(|r| Some((r.gamma?, r.iterations)))
+                .collect();
+            any |= !pts.is_empty();
+            series(chart, &pts, end.look(method_look(m).color), "")?;
+        }
+        Ok(any)
+    }
+}
