@@ -116,17 +116,13 @@ struct Sweep {
     methods: Vec<MethodRuns>,
 }
 
-/// The look of method `m`: colour, line style and marker all differ, so that methods with equal
-/// counts stay apart.
+/// The look of method `m`: colour, line style and marker all differ, and the markers are
+/// outlines of growing size, so that methods with equal counts show as nested shapes.
 fn method_look(m: usize) -> Look {
     let lines = [Line::Solid, Line::Dashed, Line::Dotted];
-    let markers = [
-        Marker::Circle,
-        Marker::Square,
-        Marker::Diamond,
-        Marker::Triangle,
-    ];
-    Look::new(COLORS[m % COLORS.len()], lines[m % 3], markers[m % 4])
+    let markers = [Marker::Circle, Marker::Square, Marker::Diamond];
+    let size = 3 + (m % 5) as i32;
+    Look::new(COLORS[m % COLORS.len()], lines[m % 3], markers[m % 3]).hollow(size)
 }
 
 impl Figure for Sweep {
