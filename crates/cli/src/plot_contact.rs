@@ -1,6 +1,7 @@
 //! The contact figures of `contactdd plot`, one pair at a time from `contact.csv`: the contact
 //! pressure along the contact line (both sides), and the gap with each point's status.
 
+use std::ops::Range;
 use std::path::{Path, PathBuf};
 
 use anyhow::{bail, Result};
@@ -12,7 +13,7 @@ use contactdd_io::output::safe_file_name;
 use crate::args::Format;
 use crate::plot_data::{Table, Units};
 use crate::plot_draw::{
-    legend_box, linear, ok, render, series, span, Figure, Frame, Line, Look, Marker, COLORS,
+    linear, ok, render, series, span, Figure, Frame, Legend, Line, Look, Marker, COLORS,
 };
 
 /// One contact point of `contact.csv`.
@@ -128,11 +129,50 @@ fn side_look(s: usize) -> Look {
     }
 }
 
-/// The points of a side sorted along the contact line, as (coordinate, value).
-fn curve(side: &Side, along: fn(&Point) -> f64, value: fn(&Point) -> f64) -> Vec<(f64, f64)> {
-    let mut pts: Vec<(f64, f64)> = side.points.iter().map(|p| (along(p), value(p))).collect();
+/// The points of a side inside `window` along the contact line, sorted, as (coordinate, value).
+fn curve(
+    side: &Side,
+    along: fn(&Point) -> f64,
+    window: &Range<f64>,
+    value: fn(&Point) -> f64,
+) -> Vec<(f64, f64)> {
+    let mut pts: Vec<(f64, f64)> = side
+        .points
+        .iter()
+        .map(|p| (along(p), value(p)))
+        .filter(|p| window.contains(&p.0))
+        .collect();
     pts.sort_by(|a, b| a.0.total_cmp(&b.0));
     pts
+}
+
+/// The stretch of the contact line to show: the pressed zone and as much again around it (a
+/// Hertz contact is a small part of its boundary), within the points' own extent.
+fn window(pair: &Pair, along: fn(&Point) -> f64) -> Range<f64> {
+    let all = || pair.sides.iter().flat_map(|s| s.points.iter());
+    let whole = span(all().map(along), 0.02, 0.0..1.0);
+    let pressed = span(
+        all().filter(|p| p.pressure < 0.0).map(along),
+        0.5,
+        whole.clone(),
+    );
+    pressed.start.max(whole.start)..pressed.end.min(whole.end)
+}
+
+/// The chart frame of a contact figure: the caption names the pair, the axes carry units.
+fn frame(
+    what: &str,
+    pair: &Pair,
+    axis: &str,
+    y_label: &str,
+    y_unit: Option<&str>,
+    units: &Units,
+) -> Frame {
+    Frame {
+        caption: format!("{what}, pair {}", pair.name),
+        x_label: Units::label(axis, units.length.as_deref()),
+        y_label: Units::label(y_label, y_unit),
+    }
 }
 
 /// Contact pressure −σn ≥ 0 against the coordinate along the contact line.
@@ -144,21 +184,33 @@ struct Pressure<'a> {
 impl Figure for Pressure<'_> {
     fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Result<()> {
         let (axis, along) = self.pair.along();
+        let x = window(self.pair, along);
         let all = || self.pair.sides.iter().flat_map(|s| s.points.iter());
-        let x = span(all().map(along), 0.02, 0.0..1.0);
         let top = span(all().map(|p| -p.pressure), 0.0, 0.0..1.0).end.max(0.0);
         let y = 0.0..if top > 0.0 { top * 1.1 } else { 1.0 };
-        let frame = Frame {
-            caption: format!("contact pressure, pair {}", self.pair.name),
-            x_label: Units::label(axis, self.units.length.as_deref()),
-            y_label: Units::label("contact pressure −σn", self.units.stress.as_deref()),
-        };
-        let mut chart = linear(root, &frame, x, y)?;
+        let mut legend = Legend::default();
         for (s, side) in self.pair.sides.iter().enumerate() {
-            let pts = curve(side, along, |p| -p.pressure);
-            series(&mut chart, &pts, side_look(s), &side.body)?;
+            legend.add(side.body.clone(), side_look(s));
         }
-        legend_box(&mut chart, SeriesLabelPosition::UpperLeft)
+        let (left, right) = legend.split(root);
+        let stress = self.units.stress.as_deref();
+        let frame = frame(
+            "contact pressure",
+            self.pair,
+            axis,
+            "contact pressure −σn",
+            stress,
+            self.units,
+        );
+        let mut chart = linear(&left, &frame, x.clone(), y)?;
+        for (s, side) in self.pair.sides.iter().enumerate() {
+            series(
+                &mut chart,
+                &curve(side, along, &x, |p| -p.pressure),
+                side_look(s),
+            )?;
+        }
+        legend.draw(&right)
     }
 }
 
@@ -178,48 +230,63 @@ fn status_look(status: &str) -> Look {
     }
 }
 
+const STATUSES: [(&str, &str); 3] = [
+    ("closed", "closed"),
+    ("open", "open"),
+    ("no-partner", "no partner (gap ∞)"),
+];
+
 impl Figure for Gap<'_> {
     fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Result<()> {
         let (axis, along) = self.pair.along();
-        let all = || self.pair.sides.iter().flat_map(|s| s.points.iter());
-        let x = span(all().map(along), 0.02, 0.0..1.0);
-        let y = span(all().map(|p| p.gap).chain([0.0]), 0.08, -1.0..1.0);
-        let frame = Frame {
-            caption: format!("gap and status, pair {}", self.pair.name),
-            x_label: Units::label(axis, self.units.length.as_deref()),
-            y_label: Units::label("gap d − s", self.units.length.as_deref()),
+        let x = window(self.pair, along);
+        let shown = || {
+            self.pair
+                .sides
+                .iter()
+                .flat_map(|s| s.points.iter())
+                .filter(|p| x.contains(&along(p)))
         };
-        let top = y.end;
-        let mut chart = linear(root, &frame, x.clone(), y)?;
-        ok(chart.draw_series(LineSeries::new(
-            [(x.start, 0.0), (x.end, 0.0)],
-            BLACK.mix(0.5),
-        )))?;
+        let y = span(shown().map(|p| p.gap).chain([0.0]), 0.08, -1.0..1.0);
+        let line = |s: usize| Look {
+            marker: Marker::None,
+            ..side_look(s)
+        };
+        let mut legend = Legend::default();
         for (s, side) in self.pair.sides.iter().enumerate() {
-            let finite: Vec<(f64, f64)> = curve(side, along, |p| p.gap)
-                .into_iter()
-                .filter(|p| p.1.is_finite())
-                .collect();
-            let look = Look {
-                marker: Marker::None,
-                ..side_look(s)
-            };
-            series(&mut chart, &finite, look, &format!("{} gap", side.body))?;
+            legend.add(format!("{} gap", side.body), line(s));
         }
-        for status in ["closed", "open", "no-partner"] {
-            let pts: Vec<(f64, f64)> = all()
+        for (status, label) in STATUSES {
+            if shown().any(|p| p.status == status) {
+                legend.add(label, status_look(status));
+            }
+        }
+        let (left, right) = legend.split(root);
+        let length = self.units.length.as_deref();
+        let frame = frame(
+            "gap and status",
+            self.pair,
+            axis,
+            "gap d − s",
+            length,
+            self.units,
+        );
+        let top = y.end;
+        let mut chart = linear(&left, &frame, x.clone(), y)?;
+        let zero = LineSeries::new([(x.start, 0.0), (x.end, 0.0)], BLACK.mix(0.5));
+        ok(chart.draw_series(zero))?;
+        for (s, side) in self.pair.sides.iter().enumerate() {
+            let mut finite = curve(side, along, &x, |p| p.gap);
+            finite.retain(|p| p.1.is_finite());
+            series(&mut chart, &finite, line(s))?;
+        }
+        for (status, _) in STATUSES {
+            let pts: Vec<(f64, f64)> = shown()
                 .filter(|p| p.status == status)
                 .map(|p| (along(p), if p.gap.is_finite() { p.gap } else { top }))
                 .collect();
-            if !pts.is_empty() {
-                let label = if status == "no-partner" {
-                    "no partner (gap ∞)"
-                } else {
-                    status
-                };
-                series(&mut chart, &pts, status_look(status), label)?;
-            }
+            series(&mut chart, &pts, status_look(status))?;
         }
-        legend_box(&mut chart, SeriesLabelPosition::UpperLeft)
+        legend.draw(&right)
     }
 }

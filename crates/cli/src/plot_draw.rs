@@ -7,7 +7,6 @@ use std::path::{Path, PathBuf};
 use std::sync::Once;
 
 use anyhow::{anyhow, Context, Result};
-use plotters::chart::SeriesAnno;
 use plotters::coord::types::RangedCoordf64;
 use plotters::coord::Shift;
 use plotters::element::{Drawable, PointCollection};
@@ -117,6 +116,7 @@ pub fn linear<'a, DB: DrawingBackend>(
     x: Range<f64>,
     y: Range<f64>,
 ) -> Result<ChartContext<'a, DB, Cartesian2d<RangedCoordf64, RangedCoordf64>>> {
+    let (xr, yr) = (x.clone(), y.clone());
     let mut chart = ok(ChartBuilder::on(root)
         .caption(&frame.caption, ("sans-serif", 22))
         .margin(12)
@@ -128,14 +128,24 @@ pub fn linear<'a, DB: DrawingBackend>(
         .configure_mesh()
         .x_desc(&frame.x_label)
         .y_desc(&frame.y_label)
-        .x_label_formatter(&|v| tick(*v))
-        .y_label_formatter(&|v| tick(*v))
+        .x_label_formatter(&|v| tick(snap(*v, &xr)))
+        .y_label_formatter(&|v| tick(snap(*v, &yr)))
         .label_style(("sans-serif", 15))
         .axis_desc_style(("sans-serif", 17))
         .bold_line_style(RGBColor(225, 225, 225))
         .light_line_style(TRANSPARENT)
         .draw())?;
     Ok(chart)
+}
+
+/// `v`, or 0 when it is a rounding error away from 0 on an axis over `range` (a tick at
+/// −2.2e−16 is the tick at 0).
+fn snap(v: f64, range: &Range<f64>) -> f64 {
+    if v.abs() < 1e-9 * (range.end - range.start).abs() {
+        0.0
+    } else {
+        v
+    }
 }
 
 /// A tick label: three significant digits without trailing zeros, powers of ten outside
@@ -245,12 +255,11 @@ pub const COLORS: [RGBColor; 6] = [
     RGBColor(230, 159, 0),
 ];
 
-/// Draws `points` with `look` and, when `label` is not empty, its legend entry.
+/// Draws `points` with `look`: its line, then its markers.
 pub fn series<'a, DB, CT>(
     chart: &mut ChartContext<'a, DB, CT>,
     points: &[(f64, f64)],
     look: Look,
-    label: &str,
 ) -> Result<()>
 where
     DB: DrawingBackend + 'a,
@@ -258,38 +267,27 @@ where
 {
     let line_style = ShapeStyle::from(&look.color).stroke_width(2);
     let pts = points.to_vec();
-    let anno = match look.line {
-        Line::Solid => Some(ok(chart.draw_series(LineSeries::new(pts, line_style)))?),
-        Line::Dashed => Some(ok(
-            chart.draw_series(DashedLineSeries::new(pts, 9, 5, line_style))
-        )?),
-        Line::Dotted => Some(ok(
-            chart.draw_series(DashedLineSeries::new(pts, 3, 4, line_style))
-        )?),
-        Line::None => None,
-    };
-    if anno.is_none() || look.marker != Marker::None {
+    match look.line {
+        Line::Solid => ok(chart
+            .draw_series(LineSeries::new(pts, line_style))
+            .map(drop))?,
+        Line::Dashed => ok(chart
+            .draw_series(DashedLineSeries::new(pts, 9, 5, line_style))
+            .map(drop))?,
+        Line::Dotted => ok(chart
+            .draw_series(DashedLineSeries::new(pts, 3, 4, line_style))
+            .map(drop))?,
+        Line::None => {}
+    }
+    if look.marker != Marker::None {
         let markers = points.iter().map(|&at| MarkerAt {
             at,
             look,
             with_line: false,
         });
-        let anno = ok(chart.draw_series(markers))?;
-        legend(anno, look, label);
-    } else if let Some(anno) = anno {
-        legend(anno, look, label);
+        ok(chart.draw_series(markers))?;
     }
     Ok(())
-}
-
-fn legend<'a, DB: DrawingBackend + 'a>(anno: &mut SeriesAnno<'a, DB>, look: Look, label: &str) {
-    if !label.is_empty() {
-        anno.label(label).legend(move |at| MarkerAt {
-            at,
-            look,
-            with_line: true,
-        });
-    }
 }
 
 /// A marker of a [`Look`] at a point, optionally on a short stretch of its line (a legend's
@@ -383,42 +381,47 @@ fn outline<DB: DrawingBackend>(
     }
 }
 
-/// A legend of its own beside a chart: one line per entry, its sample and its label, from the
-/// top of `area` (plotters draws a legend only inside the chart).
-pub fn legend_panel<DB: DrawingBackend>(
-    area: &DrawingArea<DB, Shift>,
-    entries: &[(String, Look)],
-) -> Result<()> {
-    let top = 50;
-    for (i, (label, look)) in entries.iter().enumerate() {
-        let y = top + 22 * i as i32;
-        ok(area.draw(&MarkerAt {
-            at: (4, y),
-            look: *look,
-            with_line: true,
-        }))?;
-        ok(area.draw(&Text::new(label.as_str(), (40, y - 8), ("sans-serif", 15))))?;
-    }
-    Ok(())
-}
+/// The legend of a figure: its entries (label and look), drawn in a panel right of the chart,
+/// where it never hides a curve.
+#[derive(Default)]
+pub struct Legend(pub Vec<(String, Look)>);
 
-/// Draws the legend at `pos`.
-pub fn legend_box<'a, DB, CT>(
-    chart: &mut ChartContext<'a, DB, CT>,
-    pos: SeriesLabelPosition,
-) -> Result<()>
-where
-    DB: DrawingBackend + 'a,
-    CT: CoordTranslate,
-{
-    ok(chart
-        .configure_series_labels()
-        .position(pos)
-        .margin(8)
-        .background_style(WHITE.mix(0.85))
-        .border_style(BLACK.mix(0.4))
-        .label_font(("sans-serif", 15))
-        .draw())
+impl Legend {
+    /// Adds an entry.
+    pub fn add(&mut self, label: impl Into<String>, look: Look) {
+        self.0.push((label.into(), look));
+    }
+
+    /// Splits `root` into the chart's area and the legend's, as wide as the longest label.
+    pub fn split<DB: DrawingBackend>(
+        &self,
+        root: &DrawingArea<DB, Shift>,
+    ) -> (DrawingArea<DB, Shift>, DrawingArea<DB, Shift>) {
+        let longest = self
+            .0
+            .iter()
+            .map(|(l, _)| l.chars().count())
+            .max()
+            .unwrap_or(0);
+        let width = (48 + 8 * longest as u32).clamp(110, 300);
+        let (w, _) = root.dim_in_pixel();
+        root.split_horizontally(w.saturating_sub(width))
+    }
+
+    /// Draws the entries from the top of `area`: each its sample and its label.
+    pub fn draw<DB: DrawingBackend>(&self, area: &DrawingArea<DB, Shift>) -> Result<()> {
+        for (i, (label, look)) in self.0.iter().enumerate() {
+            let y = 50 + 22 * i as i32;
+            ok(area.draw(&MarkerAt {
+                at: (2, y),
+                look: *look,
+                with_line: true,
+            }))?;
+            let text = Text::new(label.as_str(), (36, y - 8), ("sans-serif", 15));
+            ok(area.draw(&text))?;
+        }
+        Ok(())
+    }
 }
 
 /// The range of `values` (finite ones only) widened by `pad` of its width on both sides; `empty`

@@ -9,7 +9,7 @@ use plotters::prelude::*;
 
 use crate::args::Format;
 use crate::plot_data::Table;
-use crate::plot_draw::{legend_box, ok, render, series, Figure, Line, Look, Marker, COLORS};
+use crate::plot_draw::{ok, render, series, Figure, Legend, Line, Look, Marker, COLORS};
 
 /// The `history` figure.
 pub fn figures(
@@ -61,7 +61,16 @@ impl Figure for History {
             Some(_) => "convergence history".to_string(),
             None => "convergence history (tolerance unknown: --tol T draws it)".to_string(),
         };
-        let mut chart = ok(ChartBuilder::on(root)
+        let mut legend = Legend::default();
+        for (b, (name, _)) in self.bodies.iter().enumerate() {
+            legend.add(name.clone(), body_look(b));
+        }
+        let tol_look = Look::new(BLACK, Line::Dashed, Marker::None);
+        if let Some(tol) = self.tol {
+            legend.add(format!("tol = {tol:e}"), tol_look);
+        }
+        let (left, right) = legend.split(root);
+        let mut chart = ok(ChartBuilder::on(&left)
             .caption(caption, ("sans-serif", 22))
             .margin(12)
             .margin_right(30)
@@ -87,26 +96,25 @@ impl Figure for History {
             .bold_line_style(RGBColor(225, 225, 225))
             .light_line_style(TRANSPARENT)
             .draw())?;
-        let markers = [
-            Marker::Circle,
-            Marker::Cross,
-            Marker::Square,
-            Marker::Triangle,
-        ];
-        let lines = [Line::Solid, Line::Dashed, Line::Dotted];
-        for (b, (name, pts)) in self.bodies.iter().enumerate() {
-            let look = Look::new(COLORS[b % COLORS.len()], lines[b % 3], markers[b % 4]);
-            series(&mut chart, pts, look, name)?;
+        for (b, (_, pts)) in self.bodies.iter().enumerate() {
+            series(&mut chart, pts, body_look(b))?;
         }
         if let Some(tol) = self.tol {
-            let look = Look::new(BLACK, Line::Dashed, Marker::None);
-            series(
-                &mut chart,
-                &[(0.0, tol), (k_max + 0.5, tol)],
-                look,
-                &format!("tol = {tol:e}"),
-            )?;
+            series(&mut chart, &[(0.0, tol), (k_max + 0.5, tol)], tol_look)?;
         }
-        legend_box(&mut chart, SeriesLabelPosition::UpperRight)
+        legend.draw(&right)
     }
+}
+
+/// The look of body `b`: colour, line and marker all differ, so that equal changes (two
+/// symmetric bodies) show as both curves.
+fn body_look(b: usize) -> Look {
+    let markers = [
+        Marker::Circle,
+        Marker::Cross,
+        Marker::Square,
+        Marker::Triangle,
+    ];
+    let lines = [Line::Solid, Line::Dashed, Line::Dotted];
+    Look::new(COLORS[b % COLORS.len()], lines[b % 3], markers[b % 4])
 }

@@ -11,7 +11,7 @@ use plotters::prelude::*;
 use crate::args::Format;
 use crate::plot_data::{Table, Units};
 use crate::plot_draw::{
-    legend_box, linear, render, series, span, Figure, Frame, Line, Look, Marker, COLORS,
+    linear, render, series, span, Figure, Frame, Legend, Line, Look, Marker, COLORS,
 };
 
 /// The columns of `steps.csv` that the figures use.
@@ -139,17 +139,26 @@ impl Figure for StepFigure<'_> {
             x_label,
             y_label: Units::label("resultant contact force |F|", self.units.force().as_deref()),
         };
-        let mut chart = linear(root, &frame, x, y)?;
         let markers = [
             Marker::Circle,
             Marker::Square,
             Marker::Triangle,
             Marker::Diamond,
         ];
-        for (p, (pair, f)) in self.steps.forces.iter().enumerate() {
+        let pair_look = |p: usize| Look::new(COLORS[p % COLORS.len()], Line::Solid, markers[p % 4]);
+        let failed_look = Look::new(RGBColor(200, 0, 0), Line::None, Marker::Cross).hollow(7);
+        let mut legend = Legend::default();
+        for (p, (pair, _)) in self.steps.forces.iter().enumerate() {
+            legend.add(format!("pair {pair}"), pair_look(p));
+        }
+        if self.steps.converged.contains(&false) {
+            legend.add("step not converged", failed_look);
+        }
+        let (left, right) = legend.split(root);
+        let mut chart = linear(&left, &frame, x, y)?;
+        for (p, (_, f)) in self.steps.forces.iter().enumerate() {
             let pts: Vec<(f64, f64)> = xs.iter().copied().zip(f.iter().copied()).collect();
-            let look = Look::new(COLORS[p % COLORS.len()], Line::Solid, markers[p % 4]);
-            series(&mut chart, &pts, look, &format!("pair {pair}"))?;
+            series(&mut chart, &pts, pair_look(p))?;
         }
         let failed: Vec<(f64, f64)> = self
             .steps
@@ -159,10 +168,7 @@ impl Figure for StepFigure<'_> {
             .filter(|(_, &ok)| !ok)
             .map(|((&x, &f), _)| (x, f))
             .collect();
-        if !failed.is_empty() {
-            let look = Look::new(RGBColor(200, 0, 0), Line::None, Marker::Cross).hollow(7);
-            series(&mut chart, &failed, look, "step not converged")?;
-        }
-        legend_box(&mut chart, SeriesLabelPosition::LowerRight)
+        series(&mut chart, &failed, failed_look)?;
+        legend.draw(&right)
     }
 }

@@ -11,12 +11,7 @@ use plotters::prelude::*;
 
 use crate::args::Format;
 use crate::plot_data::Table;
-/// Pixels right of the chart for the legend.
-const LEGEND_WIDTH: u32 = 240;
-
-use crate::plot_draw::{
-    legend_panel, linear, series, span, Figure, Frame, Line, Look, Marker, COLORS, SIZE,
-};
+use crate::plot_draw::{linear, series, span, Figure, Frame, Legend, Line, Look, Marker, COLORS};
 
 /// How a run ended.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -127,7 +122,6 @@ fn method_look(m: usize) -> Look {
 
 impl Figure for Sweep {
     fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Result<()> {
-        let (left, right) = root.split_horizontally(SIZE.0 - LEGEND_WIDTH);
         let runs = || self.methods.iter().flat_map(|m| m.runs.iter());
         let x = span(runs().filter_map(|r| r.gamma), 0.04, 0.0..1.0);
         let y = 0.0..span(runs().map(|r| r.iterations).chain([1.0]), 0.0, 0.0..1.0).end * 1.08;
@@ -136,8 +130,9 @@ impl Figure for Sweep {
             x_label: "relaxation parameter γ".into(),
             y_label: "iterations m".into(),
         };
+        let legend = self.legend();
+        let (left, right) = legend.split(root);
         let mut chart = linear(&left, &frame, x.clone(), y)?;
-        let mut legend = Vec::new();
         for (m, method) in self.methods.iter().enumerate() {
             let look = method_look(m);
             let done: Vec<(f64, f64)> = method
@@ -146,25 +141,16 @@ impl Figure for Sweep {
                 .filter(|r| r.end == End::Converged)
                 .filter_map(|r| Some((r.gamma?, r.iterations)))
                 .collect();
-            series(&mut chart, &done, look, "")?;
-            legend.push((method.method.clone(), look));
+            series(&mut chart, &done, look)?;
             for run in method.runs.iter().filter(|r| r.gamma.is_none()) {
-                let auto = Look {
-                    marker: Marker::None,
-                    line: Line::Dotted,
-                    ..look
-                };
                 let at = [(x.start, run.iterations), (x.end, run.iterations)];
-                series(&mut chart, &at, auto, "")?;
-                legend.push((auto_label(&method.method, run), auto));
+                series(&mut chart, &at, auto_look(look))?;
             }
         }
-        for end in [End::Diverged, End::MaxIterations, End::Other] {
-            if self.failures(&mut chart, end)? {
-                legend.push((end.name().to_string(), end.look(RGBColor(90, 90, 90))));
-            }
+        for end in FAILURES {
+            self.failures(&mut chart, end)?;
         }
-        legend_panel(&right, &legend)
+        legend.draw(&right)
     }
 }
 
@@ -176,14 +162,43 @@ fn auto_label(method: &str, run: &Run) -> String {
     }
 }
 
+/// The ways a run fails, in legend order.
+const FAILURES: [End; 3] = [End::Diverged, End::MaxIterations, End::Other];
+
+/// An `auto` run: a dotted line in its method's colour.
+fn auto_look(method: Look) -> Look {
+    Look {
+        marker: Marker::None,
+        line: Line::Dotted,
+        ..method
+    }
+}
+
 impl Sweep {
-    /// Draws the failed runs ending with `end`, each in its method's colour; true if any.
+    /// Per method its look and its `auto` runs, then the kinds of failure that occur (in grey).
+    fn legend(&self) -> Legend {
+        let mut legend = Legend::default();
+        for (m, method) in self.methods.iter().enumerate() {
+            legend.add(method.method.clone(), method_look(m));
+            for run in method.runs.iter().filter(|r| r.gamma.is_none()) {
+                legend.add(auto_label(&method.method, run), auto_look(method_look(m)));
+            }
+        }
+        for end in FAILURES {
+            let failed = |r: &Run| r.end == end && r.gamma.is_some();
+            if self.methods.iter().any(|m| m.runs.iter().any(failed)) {
+                legend.add(end.name(), end.look(RGBColor(90, 90, 90)));
+            }
+        }
+        legend
+    }
+
+    /// Draws the failed runs ending with `end`, each in its method's colour.
     fn failures<'a, DB: DrawingBackend + 'a, CT: CoordTranslate<From = (f64, f64)>>(
         &self,
         chart: &mut ChartContext<'a, DB, CT>,
         end: End,
-    ) -> Result<bool> {
-        let mut any = false;
+    ) -> Result<()> {
         for (m, method) in self.methods.iter().enumerate() {
             let pts: Vec<(f64, f64)> = method
                 .runs
@@ -191,9 +206,8 @@ impl Sweep {
                 .filter(|r| r.end == end)
                 .filter_map(|r| Some((r.gamma?, r.iterations)))
                 .collect();
-            any |= !pts.is_empty();
-            series(chart, &pts, end.look(method_look(m).color), "")?;
+            series(chart, &pts, end.look(method_look(m).color))?;
         }
-        Ok(any)
+        Ok(())
     }
 }
