@@ -128,8 +128,8 @@ pub fn linear<'a, DB: DrawingBackend>(
         .configure_mesh()
         .x_desc(&frame.x_label)
         .y_desc(&frame.y_label)
-        .x_label_formatter(&|v| tick(snap(*v, &xr)))
-        .y_label_formatter(&|v| tick(snap(*v, &yr)))
+        .x_label_formatter(&|v| tick(*v, &xr))
+        .y_label_formatter(&|v| tick(*v, &yr))
         .label_style(("sans-serif", 15))
         .axis_desc_style(("sans-serif", 17))
         .bold_line_style(RGBColor(225, 225, 225))
@@ -138,27 +138,22 @@ pub fn linear<'a, DB: DrawingBackend>(
     Ok(chart)
 }
 
-/// `v`, or 0 when it is a rounding error away from 0 on an axis over `range` (a tick at
-/// −2.2e−16 is the tick at 0).
-fn snap(v: f64, range: &Range<f64>) -> f64 {
-    if v.abs() < 1e-9 * (range.end - range.start).abs() {
-        0.0
-    } else {
-        v
+/// A tick label on an axis over `range`, in one style for the whole axis: powers of ten when
+/// the axis reaches no further than 0.01 or beyond 1e5, else decimals as fine as the axis needs,
+/// without trailing zeros. A rounding error away from 0 (−2.2e−16) is 0.
+pub fn tick(v: f64, range: &Range<f64>) -> String {
+    let reach = range.start.abs().max(range.end.abs());
+    if v.abs() < 1e-9 * reach || !v.is_finite() {
+        return if v.is_finite() {
+            "0".into()
+        } else {
+            v.to_string()
+        };
     }
-}
-
-/// A tick label: three significant digits without trailing zeros, powers of ten outside
-/// [1e-3, 1e5).
-pub fn tick(v: f64) -> String {
-    let a = v.abs();
-    if a == 0.0 || !v.is_finite() {
-        return if v == 0.0 { "0".into() } else { v.to_string() };
-    }
-    if !(1e-3..1e5).contains(&a) {
+    if !(1e-2..1e5).contains(&reach) {
         return format!("{v:.1e}");
     }
-    let decimals = (2 - a.log10().floor() as i32).clamp(0, 6) as usize;
+    let decimals = (2 - reach.log10().floor() as i32).clamp(0, 6) as usize;
     let s = format!("{v:.decimals$}");
     if s.contains('.') {
         s.trim_end_matches('0').trim_end_matches('.').to_string()
@@ -446,10 +441,11 @@ mod tests {
 
     #[test]
     fn tick_labels() {
-        assert_eq!(tick(5000.0), "5000");
-        assert_eq!(tick(0.0015), "0.0015");
-        assert_eq!(tick(-0.5), "-0.5");
-        assert_eq!(tick(0.0), "0");
-        assert_eq!(tick(2.5e-5), "2.5e-5");
+        assert_eq!(tick(5000.0, &(0.0..6000.0)), "5000");
+        assert_eq!(tick(0.5, &(0.0..4.0)), "0.5");
+        assert_eq!(tick(-2.2e-16, &(-1.0..1.0)), "0");
+        assert_eq!(tick(0.0015, &(-0.0025..0.0015)), "1.5e-3");
+        assert_eq!(tick(5e-4, &(-0.0025..0.0015)), "5.0e-4");
+        assert_eq!(tick(0.002, &(0.0..0.014)), "0.002");
     }
 }
