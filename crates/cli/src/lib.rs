@@ -45,6 +45,7 @@ mod plot_contact;
 mod plot_data;
 mod plot_draw;
 mod plot_history;
+mod plot_mesh;
 mod plot_steps;
 mod plot_sweep;
 mod report;

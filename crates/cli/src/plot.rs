@@ -1,5 +1,5 @@
 //! `contactdd plot`: figures from a result folder (contact pressure, gap and status, convergence
-//! history, load steps) or from the CSV of a sweep (iterations against γ), as SVG and PNG.
+//! history, load steps, the deformed bodies coloured by von Mises stress) or from the CSV of a sweep (iterations against γ), as SVG and PNG.
 
 use std::path::{Path, PathBuf};
 
@@ -7,7 +7,7 @@ use anyhow::{Context, Result};
 
 use crate::args::PlotArgs;
 use crate::plot_data::{Summary, Table, Units};
-use crate::{load, plot_contact, plot_history, plot_steps, plot_sweep, Exit};
+use crate::{load, plot_contact, plot_history, plot_mesh, plot_steps, plot_sweep, Exit};
 
 /// `contactdd plot`.
 pub fn plot(args: PlotArgs) -> Result<Exit> {
@@ -49,6 +49,13 @@ fn folder(args: &PlotArgs) -> Result<Vec<PathBuf>> {
         let table = Table::read(&dir.join("steps.csv"))?;
         written.extend(plot_steps::figures(&table, &units, &out, &args.format)?);
     }
+    written.extend(plot_mesh::figures(
+        dir,
+        &summary.files,
+        &units,
+        &out,
+        &args.format,
+    )?);
     Ok(written)
 }
 

@@ -124,7 +124,12 @@ fn a_solved_example_gets_its_figures() {
         "{}",
         String::from_utf8_lossy(&o.stderr)
     );
-    for name in ["pressure-notch.svg", "gap-notch.svg", "history.svg"] {
+    for name in [
+        "pressure-notch.svg",
+        "gap-notch.svg",
+        "history.svg",
+        "bodies.svg",
+    ] {
         assert!(
             String::from_utf8_lossy(&o.stdout).contains(name),
             "{name} not reported"
@@ -144,6 +149,12 @@ fn a_solved_example_gets_its_figures() {
     let history = svg(&plots.join("history.svg"));
     for label in ["iteration k", "tol = 1e-3", "lower", "upper"] {
         assert!(history.contains(label), "history figure lacks '{label}'");
+    }
+    // Every element of both bodies (32 × 16 × 2 triangles each) is a coloured polygon.
+    let bodies = svg(&plots.join("bodies.svg"));
+    assert_eq!(bodies.matches("<polygon").count(), 2 * 1024);
+    for label in ["von Mises (N/cm^2)", "displacements ×", "y (cm)"] {
+        assert!(bodies.contains(label), "bodies figure lacks '{label}'");
     }
     let gap = svg(&plots.join("gap-notch.svg"));
     for label in ["gap d − s (cm)", "closed", "open"] {
@@ -274,6 +285,8 @@ fn load_steps_get_the_load_displacement_curve() {
             "load–displacement figure lacks '{label}'"
         );
     }
+    // The bodies of the last step.
+    assert!(svg(&out.join("plots/bodies.svg")).contains("<polygon"));
     let forces = svg(&out.join("plots/steps-force.svg"));
     assert!(forces.contains("load factor"));
     // Three steps: a polyline through three points.
@@ -347,6 +360,44 @@ fn a_malformed_file_is_named() {
     let err = String::from_utf8_lossy(&o.stderr);
     assert!(
         err.contains("summary.json") && err.contains("not valid JSON"),
+        "{err}"
+    );
+}
+
+#[test]
+fn the_bodies_figure_reads_only_sound_ascii_vtu() {
+    let dir = temp("vtu");
+    let out = solved_notch(&dir);
+    let lower = out.join("lower.vtu");
+    let text = read(&lower);
+    let ascii = "Name=\"element_von_mises\" NumberOfComponents=\"1\" format=\"ascii\"";
+    assert!(text.contains(ascii), "the writer changed: update this test");
+    // A binary array (as a NaN makes) leaves the figure out, not the command.
+    std::fs::write(
+        &lower,
+        text.replace(ascii, &ascii.replace("ascii", "binary")),
+    )
+    .expect("write");
+    let o = contactdd(&["plot", path(&out), "--format", "svg"]);
+    assert_eq!(
+        o.status.code(),
+        Some(0),
+        "{}",
+        String::from_utf8_lossy(&o.stderr)
+    );
+    assert!(String::from_utf8_lossy(&o.stderr).contains("bodies figure is left out"));
+    assert!(!out.join("plots/bodies.svg").exists());
+    assert!(out.join("plots/pressure-notch.svg").exists());
+    // A cell naming a node that does not exist is an error naming the file.
+    let cells = "Name=\"connectivity\" format=\"ascii\">";
+    let at = text.find(cells).expect("connectivity") + cells.len();
+    let broken = format!("{} 99999{}", &text[..at], &text[at..]);
+    std::fs::write(&lower, broken).expect("write");
+    let o = contactdd(&["plot", path(&out), "--format", "svg"]);
+    assert_eq!(o.status.code(), Some(1));
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(
+        err.contains("lower.vtu") && err.contains("cells do not fit"),
         "{err}"
     );
 }
