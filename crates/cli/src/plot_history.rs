@@ -53,7 +53,8 @@ impl Figure for History {
         let lo = values().fold(f64::INFINITY, f64::min);
         let hi = values().fold(0.0, f64::max);
         let (lo, hi) = if lo.is_finite() && hi > 0.0 {
-            (lo / 3.0, hi * 3.0)
+            // At least two decades: plotters then labels the powers of ten only.
+            ((lo / 3.0).min(hi / 100.0), hi * 3.0)
         } else {
             (1e-6, 1.0)
         };

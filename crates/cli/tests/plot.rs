@@ -401,3 +401,41 @@ fn the_bodies_figure_reads_only_sound_ascii_vtu() {
         "{err}"
     );
 }
+
+#[test]
+fn every_example_plots() {
+    for name in ["notch", "hertz", "stack", "three_bodies"] {
+        let dir = temp(&format!("example-{name}"));
+        let (file, out) = (example(&format!("{name}.toml")), dir.join("out"));
+        let o = contactdd(&["solve", path(&file), "--out", path(&out), "--quiet"]);
+        assert_eq!(
+            o.status.code(),
+            Some(0),
+            "{name}: {}",
+            String::from_utf8_lossy(&o.stderr)
+        );
+        let o = contactdd(&["plot", path(&out), "--problem", path(&file)]);
+        assert_eq!(
+            o.status.code(),
+            Some(0),
+            "{name}: {}",
+            String::from_utf8_lossy(&o.stderr)
+        );
+        let stdout = String::from_utf8_lossy(&o.stdout);
+        let written: Vec<&str> = stdout
+            .lines()
+            .filter_map(|l| l.strip_prefix("wrote "))
+            .collect();
+        // Per pair two figures, the history and the bodies, each as SVG and PNG.
+        assert!(written.len() >= 8, "{name}: {written:?}");
+        for file in written {
+            let bytes = std::fs::read(file).unwrap_or_else(|e| panic!("{file}: {e}"));
+            assert!(bytes.len() > 5_000, "{file}: only {} bytes", bytes.len());
+            if file.ends_with(".svg") {
+                svg(Path::new(file));
+            } else {
+                assert!(bytes.starts_with(b"\x89PNG"), "{file}: not a PNG");
+            }
+        }
+    }
+}
