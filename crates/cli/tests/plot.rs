@@ -25,6 +25,12 @@ fn contactdd(args: &[&str]) -> Output {
         .expect("run contactdd")
 }
 
+/// Asserts exit 0, showing stderr otherwise.
+fn succeeded(o: &Output) {
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(0), "{err}");
+}
+
 fn path(p: &Path) -> &str {
     p.to_str().expect("a UTF-8 temp path")
 }
@@ -34,12 +40,7 @@ fn solved_notch(dir: &Path) -> PathBuf {
     let out = dir.join("out");
     let file = example("notch.toml");
     let o = contactdd(&["solve", path(&file), "--out", path(&out), "--quiet"]);
-    assert_eq!(
-        o.status.code(),
-        Some(0),
-        "{}",
-        String::from_utf8_lossy(&o.stderr)
-    );
+    succeeded(&o);
     out
 }
 
@@ -118,12 +119,7 @@ fn a_solved_example_gets_its_figures() {
         "--problem",
         path(&notch),
     ]);
-    assert_eq!(
-        o.status.code(),
-        Some(0),
-        "{}",
-        String::from_utf8_lossy(&o.stderr)
-    );
+    succeeded(&o);
     for name in [
         "pressure-notch.svg",
         "gap-notch.svg",
@@ -167,12 +163,7 @@ fn the_pressure_curve_is_contact_csv() {
     let dir = temp("values");
     let out = solved_notch(&dir);
     let o = contactdd(&["plot", path(&out), "--format", "svg"]);
-    assert_eq!(
-        o.status.code(),
-        Some(0),
-        "{}",
-        String::from_utf8_lossy(&o.stderr)
-    );
+    succeeded(&o);
     let figure = svg(&out.join("plots/pressure-notch.svg"));
     let lower = pressures(&read(&out.join("contact.csv")), "lower");
     assert!(lower.len() > 10);
@@ -226,12 +217,7 @@ fn png_is_an_image() {
     let dir = temp("png");
     let out = solved_notch(&dir);
     let o = contactdd(&["plot", path(&out), "--format", "png"]);
-    assert_eq!(
-        o.status.code(),
-        Some(0),
-        "{}",
-        String::from_utf8_lossy(&o.stderr)
-    );
+    succeeded(&o);
     let bytes = std::fs::read(out.join("plots/pressure-notch.png")).expect("the PNG");
     assert!(bytes.starts_with(b"\x89PNG\r\n\x1a\n"), "not a PNG");
     // 800 × 500 in the IHDR chunk.
@@ -254,12 +240,7 @@ fn load_steps_get_the_load_displacement_curve() {
     std::fs::write(&file, format!("{body}{solver}")).expect("write");
     let out = dir.join("out");
     let o = contactdd(&["solve", path(&file), "--out", path(&out), "--quiet"]);
-    assert_eq!(
-        o.status.code(),
-        Some(0),
-        "{}",
-        String::from_utf8_lossy(&o.stderr)
-    );
+    succeeded(&o);
     let o = contactdd(&[
         "plot",
         path(&out),
@@ -268,12 +249,7 @@ fn load_steps_get_the_load_displacement_curve() {
         "--units",
         "cm, N/cm^2",
     ]);
-    assert_eq!(
-        o.status.code(),
-        Some(0),
-        "{}",
-        String::from_utf8_lossy(&o.stderr)
-    );
+    succeeded(&o);
     let curve = svg(&out.join("plots/load-displacement.svg"));
     for label in [
         "monitored displacement −u_y (cm)",
@@ -311,12 +287,7 @@ fn a_sweep_csv_marks_each_kind_of_failure() {
     )
     .expect("write");
     let o = contactdd(&["plot", path(&csv), "--format", "svg"]);
-    assert_eq!(
-        o.status.code(),
-        Some(0),
-        "{}",
-        String::from_utf8_lossy(&o.stderr)
-    );
+    succeeded(&o);
     let figure = svg(&dir.join("notch-sweep.svg"));
     for label in [
         "relaxation parameter γ",
@@ -379,12 +350,7 @@ fn the_bodies_figure_reads_only_sound_ascii_vtu() {
     )
     .expect("write");
     let o = contactdd(&["plot", path(&out), "--format", "svg"]);
-    assert_eq!(
-        o.status.code(),
-        Some(0),
-        "{}",
-        String::from_utf8_lossy(&o.stderr)
-    );
+    succeeded(&o);
     assert!(String::from_utf8_lossy(&o.stderr).contains("bodies figure is left out"));
     assert!(!out.join("plots/bodies.svg").exists());
     assert!(out.join("plots/pressure-notch.svg").exists());
@@ -408,19 +374,9 @@ fn every_example_plots() {
         let dir = temp(&format!("example-{name}"));
         let (file, out) = (example(&format!("{name}.toml")), dir.join("out"));
         let o = contactdd(&["solve", path(&file), "--out", path(&out), "--quiet"]);
-        assert_eq!(
-            o.status.code(),
-            Some(0),
-            "{name}: {}",
-            String::from_utf8_lossy(&o.stderr)
-        );
+        succeeded(&o);
         let o = contactdd(&["plot", path(&out), "--problem", path(&file)]);
-        assert_eq!(
-            o.status.code(),
-            Some(0),
-            "{name}: {}",
-            String::from_utf8_lossy(&o.stderr)
-        );
+        succeeded(&o);
         let stdout = String::from_utf8_lossy(&o.stdout);
         let written: Vec<&str> = stdout
             .lines()
