@@ -11,7 +11,7 @@ use contactdd_io::setup::MAX_THREADS;
 
 const EXIT_CODES: &str = "\
 Exit codes:
-  0  success (solve: converged; sweep: ran; check: the file is valid)
+  0  success (solve: converged; sweep: ran; check: the file is valid; plot: figures written)
   1  bad input (command line, problem file) or I/O error
   2  the solve ran but did not converge or diverged; the results of the last iterate
      are still written and summary.json says \"converged\": false with the reason";

@@ -18,7 +18,8 @@
 //!
 //! | code | meaning                                                                            |
 //! |------|------------------------------------------------------------------------------------|
-//! | 0    | success: solved and converged (`solve`), ran (`sweep`), valid (`check`)             |
+//! | 0    | success: solved and converged (`solve`), ran (`sweep`), valid (`check`),            |
+//! |      | figures written (`plot`)                                                           |
 //! | 1    | bad input or I/O error: invalid command line, unreadable or invalid problem file,  |
 //! |      | a body that cannot be factorised, results that cannot be written                   |
 //! | 2    | ran but did not converge or diverged; the last iterate's results are still written |
