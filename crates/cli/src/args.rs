@@ -11,7 +11,7 @@ use contactdd_io::setup::MAX_THREADS;
 
 const EXIT_CODES: &str = "\
 Exit codes:
-  0  success (solve: converged; sweep: ran; check: the file is valid)
+  0  success (solve: converged; sweep: ran; check: the file is valid; plot: figures written)
   1  bad input (command line, problem file) or I/O error
   2  the solve ran but did not converge or diverged; the results of the last iterate
      are still written and summary.json says \"converged\": false with the reason";
@@ -40,6 +40,9 @@ pub enum Command {
     /// Solve all bodies at once by semismooth Newton (the reference the DD methods converge to).
     #[command(after_help = EXIT_CODES)]
     Monolithic(MonolithicArgs),
+    /// Draw figures (SVG, PNG) from a result folder or a sweep CSV, without ParaView or Python.
+    #[command(after_help = EXIT_CODES)]
+    Plot(PlotArgs),
 }
 
 /// Options shared by the solving commands; they override the file's `[solver]` table.
@@ -155,6 +158,46 @@ pub struct MonolithicArgs {
     /// Print only the final result line (no per-step lines).
     #[arg(long, short)]
     pub quiet: bool,
+}
+
+/// `contactdd plot`.
+#[derive(Debug, Args)]
+pub struct PlotArgs {
+    /// A result folder (of `solve` or `monolithic`: summary.json, contact.csv, …) or the CSV of a
+    /// sweep.
+    pub results: PathBuf,
+    /// Output folder [default: RESULTS/plots for a folder, the CSV's own folder for a sweep].
+    #[arg(long, value_name = "DIR")]
+    pub out: Option<PathBuf>,
+    /// Image formats, comma-separated.
+    #[arg(
+        long,
+        value_name = "F",
+        value_delimiter = ',',
+        default_value = "svg,png"
+    )]
+    pub format: Vec<Format>,
+    /// The problem file that was solved: its `units` note labels the axes and its `tol` draws
+    /// the tolerance line, when summary.json does not record them (and unless --units or --tol
+    /// say otherwise).
+    #[arg(long, value_name = "FILE")]
+    pub problem: Option<PathBuf>,
+    /// Tolerance line of the convergence history [default: summary.json's `tol`].
+    #[arg(long, value_name = "T", value_parser = parse_positive)]
+    pub tol: Option<f64>,
+    /// Units note "length, stress" for the axes, e.g. "cm, N/cm^2" [default: summary.json's
+    /// `units`].
+    #[arg(long, value_name = "U")]
+    pub units: Option<String>,
+}
+
+/// An image format of `contactdd plot`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+pub enum Format {
+    /// Scalable vector graphics (text as text: no font needed).
+    Svg,
+    /// A bitmap, its text drawn with the embedded DejaVu Sans font.
+    Png,
 }
 
 /// A list of methods.

@@ -11,13 +11,15 @@
 //!                      [--threads N]
 //! contactdd check FILE
 //! contactdd monolithic FILE [--out DIR] [--threads N] [--max-steps K] [--quiet]
+//! contactdd plot RESULTS [--out DIR] [--format svg,png] [--tol T] [--units U]
 //! ```
 //!
 //! Exit codes ([`Exit`]):
 //!
 //! | code | meaning                                                                            |
 //! |------|------------------------------------------------------------------------------------|
-//! | 0    | success: solved and converged (`solve`), ran (`sweep`), valid (`check`)             |
+//! | 0    | success: solved and converged (`solve`), ran (`sweep`), valid (`check`),            |
+//! |      | figures written (`plot`)                                                           |
 //! | 1    | bad input or I/O error: invalid command line, unreadable or invalid problem file,  |
 //! |      | a body that cannot be factorised, results that cannot be written                   |
 //! | 2    | ran but did not converge or diverged; the last iterate's results are still written |
@@ -39,6 +41,14 @@ macro_rules! say {
 mod args;
 mod check;
 mod console;
+mod plot;
+mod plot_contact;
+mod plot_data;
+mod plot_draw;
+mod plot_history;
+mod plot_mesh;
+mod plot_steps;
+mod plot_sweep;
 mod report;
 mod solve;
 mod steps;
@@ -93,6 +103,7 @@ where
         Command::Sweep(a) => sweep::sweep(a),
         Command::Check(a) => check::check(a),
         Command::Monolithic(a) => solve::monolithic(a),
+        Command::Plot(a) => plot::plot(a),
     };
     let exit = match result {
         Ok(exit) => exit,

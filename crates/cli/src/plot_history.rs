@@ -1,0 +1,121 @@
+//! The convergence figure of `contactdd plot`: each body's relative change per iteration from
+//! `history.csv`, on a log scale, with the stopping tolerance as a line.
+
+use std::path::{Path, PathBuf};
+
+use anyhow::{bail, Result};
+use plotters::coord::Shift;
+use plotters::prelude::*;
+
+use crate::args::Format;
+use crate::plot_data::Table;
+use crate::plot_draw::{ok, render, series, Figure, Legend, Line, Look, Marker, COLORS};
+
+/// The `history` figure.
+pub fn figures(
+    table: &Table,
+    tol: Option<f64>,
+    out: &Path,
+    formats: &[Format],
+) -> Result<Vec<PathBuf>> {
+    let k = table.numbers("k")?;
+    let mut bodies = Vec::new();
+    for name in &table.header {
+        if let Some(body) = name.strip_prefix("rel_change_") {
+            let change = table.numbers(name)?;
+            // A log scale has no place for 0, NaN or infinity: those iterations are left out.
+            let pts: Vec<(f64, f64)> = k
+                .iter()
+                .zip(change)
+                .filter(|(_, c)| c.is_finite() && *c > 0.0)
+                .map(|(&k, c)| (k, c))
+                .collect();
+            bodies.push((body.to_string(), pts));
+        }
+    }
+    if bodies.is_empty() {
+        bail!("'{}' has no rel_change_<body> column", table.path.display());
+    }
+    render(&History { bodies, tol }, out, "history", formats)
+}
+
+/// Relative change per body against the iteration.
+struct History {
+    bodies: Vec<(String, Vec<(f64, f64)>)>,
+    tol: Option<f64>,
+}
+
+impl Figure for History {
+    fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Result<()> {
+        let pts = || self.bodies.iter().flat_map(|(_, p)| p.iter());
+        let k_max = pts().map(|p| p.0).fold(1.0, f64::max);
+        let values = || pts().map(|p| p.1).chain(self.tol);
+        let lo = values().fold(f64::INFINITY, f64::min);
+        let hi = values().fold(0.0, f64::max);
+        let (lo, hi) = if lo.is_finite() && hi > 0.0 {
+            // At least two decades: plotters then labels the powers of ten only.
+            ((lo / 3.0).min(hi / 100.0), hi * 3.0)
+        } else {
+            (1e-6, 1.0)
+        };
+        let caption = match self.tol {
+            Some(_) => "convergence history".to_string(),
+            None => "convergence history (tolerance unknown: --tol T draws it)".to_string(),
+        };
+        let mut legend = Legend::default();
+        for (b, (name, _)) in self.bodies.iter().enumerate() {
+            legend.add(name.clone(), body_look(b));
+        }
+        let tol_look = Look::new(BLACK, Line::Dashed, Marker::None);
+        if let Some(tol) = self.tol {
+            legend.add(format!("tol = {tol:e}"), tol_look);
+        }
+        let (left, right) = legend.split(root);
+        let mut chart = ok(ChartBuilder::on(&left)
+            .caption(caption, ("sans-serif", 22))
+            .margin(12)
+            .margin_right(30)
+            .x_label_area_size(48)
+            .y_label_area_size(72)
+            .build_cartesian_2d(0.0..k_max + 0.5, (lo..hi).log_scale()))?;
+        ok(chart
+            .configure_mesh()
+            .x_desc("iteration k")
+            .y_desc("relative change of the contact displacements")
+            .y_label_formatter(&|v| format!("{v:.0e}"))
+            // Iterations are whole numbers: no label between them.
+            .x_labels((k_max as usize + 1).clamp(2, 11))
+            .x_label_formatter(&|v| {
+                if v.fract() == 0.0 {
+                    format!("{v:.0}")
+                } else {
+                    String::new()
+                }
+            })
+            .label_style(("sans-serif", 15))
+            .axis_desc_style(("sans-serif", 17))
+            .bold_line_style(RGBColor(225, 225, 225))
+            .light_line_style(TRANSPARENT)
+            .draw())?;
+        for (b, (_, pts)) in self.bodies.iter().enumerate() {
+            series(&mut chart, pts, body_look(b))?;
+        }
+        if let Some(tol) = self.tol {
+            series(&mut chart, &[(0.0, tol), (k_max + 0.5, tol)], tol_look)?;
+        }
+        legend.draw(&right)
+    }
+}
+
+/// The look of body `b`: colour, line and marker all differ, so that equal changes (two
+/// symmetric bodies) show as both curves.
+fn body_look(b: usize) -> Look {
+    let markers = [
+        Marker::Circle,
+        Marker::Cross,
+        Marker::Square,
+        Marker::Triangle,
+    ];
+    let lines = [Line::Solid, Line::Dashed, Line::Dotted];
+    Look::new(COLORS[b % COLORS.len()], lines[b % 3], markers[b % 4])
+}

@@ -1,0 +1,348 @@
+//! The deformed bodies of `contactdd plot`, each element coloured by its von Mises stress, read
+//! back from the bodies' `.vtu` files (the last load step's with load steps). The reader knows
+//! only what `crates/io/src/vtu.rs` writes: ASCII arrays, triangles (the corners of a quadratic
+//! triangle).
+
+use std::ops::Range;
+use std::path::{Path, PathBuf};
+
+use anyhow::{anyhow, Context, Result};
+use plotters::coord::Shift;
+use plotters::prelude::*;
+
+use crate::args::Format;
+use crate::plot_data::Units;
+use crate::plot_draw::{linear, ok, render, span, tick, Figure, Frame};
+
+/// Pixels right of the chart for the colour bar.
+const BAR_WIDTH: u32 = 140;
+
+/// One body: deformed corner coordinates of its triangles and their von Mises stress.
+struct Body {
+    triangles: Vec<[(f64, f64); 3]>,
+    stress: Vec<f64>,
+    /// The undeformed node coordinates and the displacements, for the scale.
+    points: Vec<(f64, f64)>,
+    displacement: Vec<(f64, f64)>,
+    cells: Vec<[usize; 3]>,
+}
+
+/// The `bodies` figure from the `.vtu` files among `files` (names in `dir`).
+pub fn figures(
+    dir: &Path,
+    files: &[String],
+    units: &Units,
+    out: &Path,
+    formats: &[Format],
+) -> Result<Vec<PathBuf>> {
+    let names = last_step(files);
+    if names.is_empty() {
+        return Ok(Vec::new());
+    }
+    let mut bodies = Vec::new();
+    for name in &names {
+        match read_body(&dir.join(name))? {
+            Some(body) => bodies.push(body),
+            None => {
+                // Not an error of the folder: a field holding NaN (the iterate of a failed solve)
+                // is written in base64; the other figures are still worth having.
+                eprintln!("note: {name} has binary arrays; the bodies figure is left out");
+                return Ok(Vec::new());
+            }
+        }
+    }
+    let mut fig = Bodies {
+        bodies,
+        units,
+        scale: 1.0,
+    };
+    fig.scale = fig.scale();
+    fig.deform();
+    render(&fig, out, "bodies", formats)
+}
+
+/// The `.vtu` files of the last load step (`<body>-step<k>.vtu` with the largest k), or all.
+fn last_step(files: &[String]) -> Vec<String> {
+    let vtu: Vec<&String> = files.iter().filter(|f| f.ends_with(".vtu")).collect();
+    let step =
+        |f: &str| -> Option<u64> { f.strip_suffix(".vtu")?.rsplit_once("-step")?.1.parse().ok() };
+    match vtu.iter().filter_map(|f| step(f)).max() {
+        Some(k) => vtu
+            .into_iter()
+            .filter(|f| step(f) == Some(k))
+            .cloned()
+            .collect(),
+        None => vtu.into_iter().cloned().collect(),
+    }
+}
+
+/// The numbers of the ASCII `DataArray` whose opening tag holds `key` (e.g. `Name="von_mises"`),
+/// searched after `after`; `None` when the array is binary (base64), which this reader skips.
+fn array(text: &str, path: &Path, after: &str, key: &str) -> Result<Option<Vec<f64>>> {
+    let missing = || anyhow!("'{}' has no array {key}", path.display());
+    let start = text.find(after).ok_or_else(missing)?;
+    let rest = &text[start..];
+    let tag_at = rest
+        .match_indices("<DataArray")
+        .map(|(i, _)| i)
+        .find(|&i| {
+            rest[i..]
+                .split('>')
+                .next()
+                .is_some_and(|tag| tag.contains(key))
+        })
+        .ok_or_else(missing)?;
+    let rest = &rest[tag_at..];
+    let tag_end = rest.find('>').ok_or_else(missing)?;
+    if !rest[..tag_end].contains("format=\"ascii\"") {
+        return Ok(None);
+    }
+    let body = &rest[tag_end + 1..];
+    let end = body.find("</DataArray>").ok_or_else(missing)?;
+    let values = body[..end]
+        .split_whitespace()
+        .map(|v| {
+            v.parse::<f64>()
+                .map_err(|_| anyhow!("'{}': array {key}: '{v}' is not a number", path.display()))
+        })
+        .collect::<Result<Vec<f64>>>()?;
+    Ok(Some(values))
+}
+
+/// A body's mesh and stress, or `None` when an array it needs is binary.
+fn read_body(path: &Path) -> Result<Option<Body>> {
+    let text = std::fs::read_to_string(path)
+        .with_context(|| format!("cannot read '{}'", path.display()))?;
+    let arrays = [
+        ("<Points>", "NumberOfComponents=\"3\""),
+        ("<PointData", "Name=\"displacement\""),
+        ("<Cells>", "Name=\"connectivity\""),
+        ("<Cells>", "Name=\"offsets\""),
+        ("<CellData", "Name=\"element_von_mises\""),
+    ]
+    .map(|(after, key)| array(&text, path, after, key));
+    let [xyz, u, conn, offsets, stress] = arrays;
+    let (Some(xyz), Some(u), Some(conn), Some(offsets), Some(stress)) =
+        (xyz?, u?, conn?, offsets?, stress?)
+    else {
+        return Ok(None);
+    };
+    let points: Vec<(f64, f64)> = xyz.chunks_exact(3).map(|p| (p[0], p[1])).collect();
+    let displacement: Vec<(f64, f64)> = u.chunks_exact(3).map(|p| (p[0], p[1])).collect();
+    let bad = || anyhow!("'{}': cells do not fit the points", path.display());
+    if displacement.len() != points.len() || stress.len() != offsets.len() {
+        return Err(bad());
+    }
+    let mut cells = Vec::with_capacity(offsets.len());
+    let mut begin = 0usize;
+    for &end in &offsets {
+        // The first three nodes of a (linear or quadratic) triangle are its corners.
+        let corner = |k: usize| -> Result<usize> {
+            let v = *conn.get(begin + k).ok_or_else(bad)?;
+            let i = v as usize;
+            if v < 0.0 || v.fract() != 0.0 || i >= points.len() {
+                return Err(bad());
+            }
+            Ok(i)
+        };
+        cells.push([corner(0)?, corner(1)?, corner(2)?]);
+        begin = end as usize;
+    }
+    Ok(Some(Body {
+        triangles: Vec::new(),
+        stress,
+        points,
+        displacement,
+        cells,
+    }))
+}
+
+/// The bodies, deformed, coloured by stress.
+struct Bodies<'a> {
+    bodies: Vec<Body>,
+    units: &'a Units,
+    scale: f64,
+}
+
+impl Bodies<'_> {
+    /// The displacement scale that makes the largest displacement 5% of the bodies' extent,
+    /// rounded to 1, 2 or 5 times a power of ten.
+    fn scale(&self) -> f64 {
+        let pts = || self.bodies.iter().flat_map(|b| b.points.iter());
+        let (x, y) = (
+            span(pts().map(|p| p.0), 0.0, 0.0..1.0),
+            span(pts().map(|p| p.1), 0.0, 0.0..1.0),
+        );
+        let extent = (x.end - x.start).max(y.end - y.start);
+        let umax = self
+            .bodies
+            .iter()
+            .flat_map(|b| b.displacement.iter())
+            .map(|u| u.0.hypot(u.1))
+            .filter(|u| u.is_finite())
+            .fold(0.0, f64::max);
+        if umax == 0.0 || extent == 0.0 {
+            return 1.0;
+        }
+        let raw = 0.05 * extent / umax;
+        let p = 10f64.powf(raw.log10().floor());
+        [5.0, 2.0, 1.0]
+            .into_iter()
+            .map(|m| m * p)
+            .find(|&s| s <= raw)
+            .unwrap_or(p)
+    }
+
+    fn deform(&mut self) {
+        let s = self.scale;
+        for b in &mut self.bodies {
+            let at = |i: usize| {
+                (
+                    b.points[i].0 + s * b.displacement[i].0,
+                    b.points[i].1 + s * b.displacement[i].1,
+                )
+            };
+            b.triangles = b
+                .cells
+                .iter()
+                .map(|c| [at(c[0]), at(c[1]), at(c[2])])
+                .collect();
+        }
+    }
+}
+
+/// Viridis at 0 ≤ t ≤ 1, from five stops.
+fn viridis(t: f64) -> RGBColor {
+    const STOPS: [(f64, f64, f64); 5] = [
+        (68.0, 1.0, 84.0),
+        (59.0, 82.0, 139.0),
+        (33.0, 145.0, 140.0),
+        (94.0, 201.0, 98.0),
+        (253.0, 231.0, 37.0),
+    ];
+    let t = if t.is_finite() {
+        t.clamp(0.0, 1.0)
+    } else {
+        0.0
+    } * 4.0;
+    let i = (t.floor() as usize).min(3);
+    let f = t - i as f64;
+    let (a, b) = (STOPS[i], STOPS[i + 1]);
+    let mix = |x: f64, y: f64| (x + f * (y - x)).round() as u8;
+    RGBColor(mix(a.0, b.0), mix(a.1, b.1), mix(a.2, b.2))
+}
+
+impl Figure for Bodies<'_> {
+    fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Result<()> {
+        let (w, h) = root.dim_in_pixel();
+        let (left, right) = root.split_horizontally(w.saturating_sub(BAR_WIDTH));
+        let corners = || {
+            self.bodies
+                .iter()
+                .flat_map(|b| b.triangles.iter().flatten())
+        };
+        let stress = span(
+            self.bodies.iter().flat_map(|b| b.stress.iter().copied()),
+            0.0,
+            0.0..1.0,
+        );
+        let (x, y) = equal_aspect(
+            span(corners().map(|p| p.0), 0.03, 0.0..1.0),
+            span(corners().map(|p| p.1), 0.03, 0.0..1.0),
+            (w.saturating_sub(BAR_WIDTH + 72 + 42)) as f64 / (h - 48 - 60) as f64,
+        );
+        let length = self.units.length.as_deref();
+        let frame = Frame {
+            caption: format!(
+                "von Mises stress, displacements × {}",
+                tick(self.scale, &(0.0..self.scale))
+            ),
+            x_label: Units::label("x", length),
+            y_label: Units::label("y", length),
+        };
+        let mut chart = linear(&left, &frame, x, y)?;
+        let width = (stress.end - stress.start).max(f64::MIN_POSITIVE);
+        for b in &self.bodies {
+            let polys = b.triangles.iter().zip(&b.stress).map(|(t, &s)| {
+                let c = viridis((s - stress.start) / width);
+                Polygon::new(t.to_vec(), c.filled())
+            });
+            ok(chart.draw_series(polys))?;
+        }
+        colour_bar(&right, &stress, self.units)
+    }
+}
+
+/// Widens `x` or `y` about its centre so that one unit is as long on both axes, for a plotting
+/// area `aspect` = width / height.
+fn equal_aspect(x: Range<f64>, y: Range<f64>, aspect: f64) -> (Range<f64>, Range<f64>) {
+    let (dx, dy) = (x.end - x.start, y.end - y.start);
+    let widen = |r: Range<f64>, to: f64| {
+        let c = 0.5 * (r.start + r.end);
+        (c - 0.5 * to)..(c + 0.5 * to)
+    };
+    if dx / dy > aspect {
+        (x, widen(y, dx / aspect))
+    } else {
+        (widen(x, dy * aspect), y)
+    }
+}
+
+/// The colour bar of `range` with five labelled ticks, in `area`.
+fn colour_bar<DB: DrawingBackend>(
+    area: &DrawingArea<DB, Shift>,
+    range: &Range<f64>,
+    units: &Units,
+) -> Result<()> {
+    let (top, bottom, steps) = (60, 400, 85);
+    let label = Units::label("von Mises", units.stress.as_deref());
+    ok(area.draw(&Text::new(label, (0, top - 30), ("sans-serif", 14))))?;
+    let step = (bottom - top) / steps;
+    for k in 0..steps {
+        let t = 1.0 - (k as f64 + 0.5) / steps as f64;
+        let y0 = top + k * step;
+        ok(area.draw(&Rectangle::new(
+            [(10, y0), (30, y0 + step)],
+            viridis(t).filled(),
+        )))?;
+    }
+    let bar_end = top + steps * step;
+    for k in 0..=4 {
+        let t = k as f64 / 4.0;
+        let v = range.start + t * (range.end - range.start);
+        let y = bar_end - ((bar_end - top) as f64 * t) as i32;
+        ok(area.draw(&PathElement::new(vec![(30, y), (35, y)], BLACK)))?;
+        ok(area.draw(&Text::new(tick(v, range), (38, y - 7), ("sans-serif", 13))))?;
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_last_load_step_is_drawn() {
+        let files: Vec<String> = [
+            "a-step1.vtu",
+            "b-step1.vtu",
+            "a-step2.vtu",
+            "b-step2.vtu",
+            "steps.csv",
+        ]
+        .map(String::from)
+        .into();
+        assert_eq!(last_step(&files), ["a-step2.vtu", "b-step2.vtu"]);
+        let files: Vec<String> = ["lower.vtu", "upper.vtu", "contact.csv"]
+            .map(String::from)
+            .into();
+        assert_eq!(last_step(&files), ["lower.vtu", "upper.vtu"]);
+    }
+
+    #[test]
+    fn colours_run_from_dark_to_bright() {
+        assert_eq!(viridis(0.0), RGBColor(68, 1, 84));
+        assert_eq!(viridis(1.0), RGBColor(253, 231, 37));
+        assert_eq!(viridis(f64::NAN), viridis(0.0));
+    }
+}

@@ -1,0 +1,174 @@
+//! The load-step figures of `contactdd plot`, from `steps.csv`: the load–displacement curve (the
+//! monitored displacement against each pair's resultant contact force) and the force against the
+//! load factor. Steps that did not converge are marked apart.
+
+use std::path::{Path, PathBuf};
+
+use anyhow::Result;
+use plotters::coord::Shift;
+use plotters::prelude::*;
+
+use crate::args::Format;
+use crate::plot_data::{Table, Units};
+use crate::plot_draw::{
+    linear, render, series, span, Figure, Frame, Legend, Line, Look, Marker, COLORS,
+};
+
+/// The columns of `steps.csv` that the figures use.
+struct Steps {
+    factor: Vec<f64>,
+    converged: Vec<bool>,
+    /// The monitored displacement component that moves most, with its name, if monitored.
+    monitor: Option<(&'static str, Vec<f64>)>,
+    /// Per pair, its name and |F| per step (the resultant on its first body).
+    forces: Vec<(String, Vec<f64>)>,
+}
+
+/// `load-displacement` (with a monitor) and `steps-force`.
+pub fn figures(
+    table: &Table,
+    units: &Units,
+    out: &Path,
+    formats: &[Format],
+) -> Result<Vec<PathBuf>> {
+    let steps = read(table)?;
+    let mut written = Vec::new();
+    if steps.monitor.is_some() {
+        let fig = StepFigure {
+            steps: &steps,
+            units,
+            against_factor: false,
+        };
+        written.extend(render(&fig, out, "load-displacement", formats)?);
+    }
+    let fig = StepFigure {
+        steps: &steps,
+        units,
+        against_factor: true,
+    };
+    written.extend(render(&fig, out, "steps-force", formats)?);
+    Ok(written)
+}
+
+fn read(table: &Table) -> Result<Steps> {
+    let converged_col = table.column("converged")?;
+    let converged = table
+        .rows
+        .iter()
+        .map(|r| r[converged_col] == "true")
+        .collect();
+    let monitor = match (table.column("monitor_ux"), table.column("monitor_uy")) {
+        (Ok(_), Ok(_)) => {
+            let (ux, uy) = (table.numbers("monitor_ux")?, table.numbers("monitor_uy")?);
+            let reach = |u: &[f64]| {
+                u.iter()
+                    .filter(|v| v.is_finite())
+                    .fold(0.0, |m: f64, v| m.max(v.abs()))
+            };
+            let (name, u) = if reach(&ux) > reach(&uy) {
+                (["u_x", "−u_x"], ux)
+            } else {
+                (["u_y", "−u_y"], uy)
+            };
+            // A body pushed down (or left) plots as a positive displacement −u, as usual for a
+            // load–displacement curve.
+            if u.iter().filter(|v| v.is_finite()).sum::<f64>() < 0.0 {
+                Some((name[1], u.iter().map(|v| -v).collect()))
+            } else {
+                Some((name[0], u))
+            }
+        }
+        _ => None,
+    };
+    let mut forces = Vec::new();
+    for name in &table.header {
+        if let Some(pair) = name.strip_suffix("_force_x") {
+            let fx = table.numbers(name)?;
+            let fy = table.numbers(&format!("{pair}_force_y"))?;
+            let norm = fx.iter().zip(&fy).map(|(x, y)| x.hypot(*y)).collect();
+            forces.push((pair.to_string(), norm));
+        }
+    }
+    Ok(Steps {
+        factor: table.numbers("factor")?,
+        converged,
+        monitor,
+        forces,
+    })
+}
+
+/// Force against the monitored displacement, or against the load factor.
+struct StepFigure<'a> {
+    steps: &'a Steps,
+    units: &'a Units,
+    against_factor: bool,
+}
+
+impl StepFigure<'_> {
+    fn abscissa(&self) -> (&[f64], String) {
+        match (&self.steps.monitor, self.against_factor) {
+            (Some((name, u)), false) => (
+                u,
+                Units::label(
+                    &format!("monitored displacement {name}"),
+                    self.units.length.as_deref(),
+                ),
+            ),
+            _ => (&self.steps.factor, "load factor".to_string()),
+        }
+    }
+}
+
+impl Figure for StepFigure<'_> {
+    fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Result<()> {
+        let (xs, x_label) = self.abscissa();
+        let all_f = || {
+            self.steps
+                .forces
+                .iter()
+                .flat_map(|(_, f)| f.iter().copied())
+        };
+        let x = span(xs.iter().copied().chain([0.0]), 0.05, 0.0..1.0);
+        let y = 0.0..span(all_f().chain([0.0]), 0.08, 0.0..1.0).end;
+        let frame = Frame {
+            caption: if self.against_factor {
+                "contact force per load step".into()
+            } else {
+                "load–displacement curve".into()
+            },
+            x_label,
+            y_label: Units::label("resultant contact force |F|", self.units.force().as_deref()),
+        };
+        let markers = [
+            Marker::Circle,
+            Marker::Square,
+            Marker::Triangle,
+            Marker::Diamond,
+        ];
+        let pair_look = |p: usize| Look::new(COLORS[p % COLORS.len()], Line::Solid, markers[p % 4]);
+        let failed_look = Look::new(RGBColor(200, 0, 0), Line::None, Marker::Cross).hollow(7);
+        let mut legend = Legend::default();
+        for (p, (pair, _)) in self.steps.forces.iter().enumerate() {
+            legend.add(format!("pair {pair}"), pair_look(p));
+        }
+        if self.steps.converged.contains(&false) {
+            legend.add("step not converged", failed_look);
+        }
+        let (left, right) = legend.split(root);
+        let mut chart = linear(&left, &frame, x, y)?;
+        for (p, (_, f)) in self.steps.forces.iter().enumerate() {
+            let pts: Vec<(f64, f64)> = xs.iter().copied().zip(f.iter().copied()).collect();
+            series(&mut chart, &pts, pair_look(p))?;
+        }
+        let failed: Vec<(f64, f64)> = self
+            .steps
+            .forces
+            .iter()
+            .flat_map(|(_, f)| xs.iter().zip(f).zip(&self.steps.converged))
+            .filter(|(_, &ok)| !ok)
+            .map(|((&x, &f), _)| (x, f))
+            .collect();
+        series(&mut chart, &failed, failed_look)?;
+        legend.draw(&right)
+    }
+}
