@@ -14,14 +14,14 @@ use contactdd_ddm::{
     prepare, solve as dd_solve, Accelerator, CoarseMode, Gamma, Hooks, Model, MonolithicSolution,
     Record,
 };
-use contactdd_io::output::{safe_file_name, write_monolithic_results, write_results};
+use contactdd_io::output::{safe_file_name, write_monolithic_results, write_results_noted};
 use contactdd_io::reactions::reactions;
 
 use crate::args::{Common, MonolithicArgs, SolveArgs};
 use crate::report::{
     applied_loads, pair_report, progress, reaction_report, sig, timing, IterationTable,
 };
-use crate::steps::run_steps;
+use crate::steps::{run_steps, StepRun};
 use crate::{load, with_threads, Exit};
 
 /// Applies `--tol`, `--max-iter` and `--threads` to the file's settings; returns the thread count.
@@ -110,16 +110,16 @@ pub fn solve(args: SolveArgs) -> Result<Exit> {
             prepare(model).map_err(|e| anyhow::anyhow!("{}: {e}", args.file.display()))?;
         warn_contact(&args.file, model, &prepared.interface);
         if let Some(factors) = &loaded.steps {
-            let monitor = loaded.monitor.as_ref();
-            return run_steps(
+            let run = StepRun {
                 model,
-                &mut prepared,
-                &settings,
+                settings: &settings,
                 factors,
-                monitor,
-                &out,
+                monitor: loaded.monitor.as_ref(),
+                units: loaded.problem.units.as_deref(),
+                out: &out,
                 quiet,
-            );
+            };
+            return run_steps(run, &mut prepared);
         }
         let table = IterationTable::new(model);
         if !quiet {
@@ -149,7 +149,7 @@ pub fn solve(args: SolveArgs) -> Result<Exit> {
             Some(last) if !quiet && !shown(last.k) => say!("{}", table.line(last)),
             _ => {}
         }
-        let written = write_results(&out, model, &sol)
+        let written = write_results_noted(&out, model, &sol, loaded.problem.units.as_deref())
             .with_context(|| format!("cannot write the results to '{}'", out.display()))?;
 
         let updates = match sol.gap_tol {

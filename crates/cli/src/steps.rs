@@ -13,17 +13,36 @@ use contactdd_io::steps::{monitored_displacement, write_step_results};
 use crate::report::{sig, vec2};
 use crate::Exit;
 
+/// What a load-step run needs besides the prepared model.
+pub struct StepRun<'a> {
+    /// The model.
+    pub model: &'a Model,
+    /// Iteration settings.
+    pub settings: &'a Settings,
+    /// The load factors.
+    pub factors: &'a [f64],
+    /// The boundary whose mean displacement each step reports.
+    pub monitor: Option<&'a Monitor>,
+    /// The problem's units note, for `summary.json`.
+    pub units: Option<&'a str>,
+    /// The result folder.
+    pub out: &'a Path,
+    /// Only the final line.
+    pub quiet: bool,
+}
+
 /// Solves at every load factor, prints a line per step, writes the results; the exit code is
 /// that of the last step.
-pub fn run_steps(
-    model: &Model,
-    prepared: &mut Prepared,
-    settings: &Settings,
-    factors: &[f64],
-    monitor: Option<&Monitor>,
-    out: &Path,
-    quiet: bool,
-) -> Result<Exit> {
+pub fn run_steps(run: StepRun<'_>, prepared: &mut Prepared) -> Result<Exit> {
+    let StepRun {
+        model,
+        settings,
+        factors,
+        monitor,
+        units,
+        out,
+        quiet,
+    } = run;
     if !quiet {
         say!(
             "solving {} in {} load steps: {}",
@@ -47,7 +66,7 @@ pub fn run_steps(
         &mut line,
     )
     .map_err(|e| anyhow::anyhow!("{e}"))?;
-    write_step_results(out, model, &steps, monitor)
+    write_step_results(out, model, &steps, monitor, units)
         .with_context(|| format!("cannot write the results to '{}'", out.display()))?;
     let converged = steps.last().is_some_and(|(_, s)| s.converged);
     let done = steps.len() == count && converged;

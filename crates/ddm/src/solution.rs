@@ -121,6 +121,8 @@ pub struct Solution {
     pub updates: usize,
     /// The gap tolerance of the augmented Lagrangian pairs (a length; `None` without such pairs).
     pub gap_tol: Option<f64>,
+    /// The stopping tolerance the solve used (`Settings::tol`).
+    pub tol: f64,
     /// The final interface loads T of the contact points (a warm start for another solve of the
     /// same prepared model: [`crate::solver::solve_from`]).
     pub interface_loads: Vec<f64>,

@@ -191,6 +191,7 @@ pub fn solve_from(
         equilibrium,
         updates,
         gap_tol,
+        tol: settings.tol,
         interface_loads: outcome.t_load,
         timing,
     })

@@ -110,6 +110,7 @@ pub fn summary_json(model: &Model, sol: &Solution) -> Value {
     json!({
         "converged": sol.converged,
         "iterations": sol.iterations,
+        "tol": json_number(sol.tol),
         "method": sol.method.name(),
         "gamma": gamma_json(sol.gamma),
         "theta": json_numbers(&sol.theta),
@@ -318,7 +319,20 @@ pub fn sweep_csv(runs: &[SweepRun]) -> String {
 /// then `summary.json` with the manifest of those files.
 /// The previous set in `dir` is removed first. Returns the paths written, `summary.json` last.
 pub fn write_results(dir: &Path, model: &Model, sol: &Solution) -> std::io::Result<Vec<PathBuf>> {
-    write_set(dir, summary_json(model, sol), |set| {
+    write_results_noted(dir, model, sol, None)
+}
+
+/// [`write_results`] with the problem's units note (`units` of the problem file) in
+/// `summary.json`, for the axes of `contactdd plot`.
+pub fn write_results_noted(
+    dir: &Path,
+    model: &Model,
+    sol: &Solution,
+    units: Option<&str>,
+) -> std::io::Result<Vec<PathBuf>> {
+    let mut summary = summary_json(model, sol);
+    summary["units"] = json!(units);
+    write_set(dir, summary, |set| {
         set.write("contact.csv", contact_csv(sol).as_bytes())?;
         set.write("history.csv", history_csv(sol).as_bytes())?;
         let before = set.len();

@@ -154,13 +154,14 @@ fn xml_escape(s: &str) -> String {
         .replace('>', "&gt;")
 }
 
-/// Writes the result folder of a load-step run as a set (see the module docs). Returns the paths
-/// written, `summary.json` last.
+/// Writes the result folder of a load-step run as a set (see the module docs), with the problem's
+/// `units` note in `summary.json`. Returns the paths written, `summary.json` last.
 pub fn write_step_results(
     dir: &Path,
     model: &Model,
     steps: &[(f64, Solution)],
     monitor: Option<&Monitor>,
+    units: Option<&str>,
 ) -> std::io::Result<Vec<PathBuf>> {
     let Some((_, last)) = steps.last() else {
         return Err(std::io::Error::new(
@@ -170,6 +171,7 @@ pub fn write_step_results(
     };
     let mut summary = summary_json(model, last);
     summary["steps"] = steps_json(steps, monitor);
+    summary["units"] = json!(units);
     write_set(dir, summary, |set| {
         set.write("contact.csv", contact_csv(last).as_bytes())?;
         set.write("history.csv", history_csv(last).as_bytes())?;
