@@ -127,11 +127,15 @@ pub enum MeshSpec {
         #[serde(default = "default_order")]
         order: Order,
     },
-    /// A Gmsh `.msh` file (ASCII 4.1 or 2.2); boundaries are its physical lines.
+    /// A Gmsh `.msh` file (ASCII 4.1 or 2.2); boundaries are its physical curves and points.
     #[serde(rename_all = "kebab-case")]
     Gmsh {
         /// File path; relative paths resolve against the problem file's folder.
         file: PathBuf,
+        /// The body's physical surface, for a file holding several bodies; its boundaries are the
+        /// physical curves and points that touch it. Default: the file's only body.
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        surface: Option<String>,
         /// Element order: `p2` promotes P1 triangles to P2; default: as in the file.
         #[serde(default, skip_serializing_if = "Option::is_none")]
         order: Option<Order>,

@@ -13,7 +13,7 @@
 //!
 //! Resolution rules:
 //! - a rectangle mesh is built by [`Rectangle::mesh`], a Gmsh file is read by
-//!   [`contactdd_core::gmsh::read_msh`] (relative paths against `base_dir`), scaled, translated
+//!   [`contactdd_core::gmsh::read_msh_surface`] (relative paths against `base_dir`), scaled, translated
 //!   and, with `order = "p2"`, promoted by [`Mesh::to_p2`];
 //! - supports are applied in file order by [`Constraints::fix`] (a DOF fixed twice keeps the last
 //!   value), all loads of a body form one load vector ([`contactdd_core::loads::load_vector`]);
@@ -34,6 +34,7 @@ use contactdd_core::{
     Point, Rectangle, DIM,
 };
 
+use contactdd_core::gmsh::read_msh_surface;
 use contactdd_ddm::iteration::ANDERSON_DEPTH;
 use contactdd_ddm::steps::{check_factors, equal_steps};
 use contactdd_ddm::{
@@ -705,6 +706,7 @@ pub fn mesh(body: &str, spec: &MeshSpec, base_dir: &Path) -> Result<Mesh, LoadEr
         }
         MeshSpec::Gmsh {
             file,
+            surface,
             order,
             translate,
             scale,
@@ -733,7 +735,7 @@ pub fn mesh(body: &str, spec: &MeshSpec, base_dir: &Path) -> Result<Mesh, LoadEr
                 base_dir.join(file)
             };
             let mut mesh =
-                contactdd_core::gmsh::read_msh(&path).map_err(|source| LoadError::Gmsh {
+                read_msh_surface(&path, surface.as_deref()).map_err(|source| LoadError::Gmsh {
                     body: body.to_string(),
                     path: path.display().to_string(),
                     source,

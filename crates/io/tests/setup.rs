@@ -918,3 +918,59 @@ fn solver_keys_select_the_iteration() {
         .to_string();
     assert!(err.contains("coarse"), "{err}");
 }
+
+// ---------------------------------------------------------------------------------------------
+// Two bodies from one Gmsh file.
+
+const TWO_BLOCKS: &str = r#"
+plane = "strain"
+
+[materials.steel]
+young = 1000.0
+poisson = 0.3
+
+[[bodies]]
+name = "lower"
+material = "steel"
+mesh = { kind = "gmsh", file = "two_blocks.msh", surface = "lower" }
+supports = [{ boundary = "floor", component = "y" }, { boundary = "left", component = "x" }]
+
+[[bodies]]
+name = "upper"
+material = "steel"
+mesh = { kind = "gmsh", file = "two_blocks.msh", surface = "upper" }
+supports = [{ boundary = "left", component = "x" }]
+loads = [{ kind = "pressure", boundary = "load", value = 10.0 }]
+
+[[contact]]
+bodies = ["lower", "upper"]
+boundaries = ["lower-top", "upper-bottom"]
+penalty = { c = 0.05, h = 1.0 }
+"#;
+
+fn core_data() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../core/tests/data")
+}
+
+#[test]
+fn two_bodies_of_one_gmsh_file_carry_the_applied_load() {
+    let mut loaded =
+        load_str(TWO_BLOCKS, "two.toml", &core_data()).unwrap_or_else(|e| panic!("{e}"));
+    loaded.settings.tol = 1e-10;
+    let model = &loaded.model;
+    let prepared = prepare(model).expect("prepared");
+    let sol = solve(model, &prepared, &loaded.settings, Hooks::default()).expect("solved");
+    assert!(sol.converged, "{:?}", sol.message);
+    // The pressure 10 on the 2-long top is carried by the contact alone.
+    let force = sol.contact[0].force_on(1);
+    assert!(
+        (force[1] - 20.0).abs() < 1e-8 * 20.0,
+        "contact force on upper {force:?}"
+    );
+    // Without `surface`, the file's bodies are listed.
+    let m = error_in(
+        &TWO_BLOCKS.replacen(", surface = \"lower\"", "", 1),
+        &core_data(),
+    );
+    assert_contains(&m, &["body 'lower'", "two_blocks.msh", "lower, upper"]);
+}
