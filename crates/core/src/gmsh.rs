@@ -29,8 +29,12 @@
 //! line or point belongs to the body when all its nodes are nodes of the body, so a physical
 //! curve running along two bodies gives each its own part.
 //! All coordinates must share one `z` (the mesh lies in a plane parallel to `xy`). 6-node
-//! triangles must be straight-sided (gmsh option `Mesh.SecondOrderLinear = 1`): curved ones are
-//! reported as [`GmshError::Unsupported`].
+//! triangles must be straight-sided: the element code maps every triangle affinely (constant
+//! barycentric gradients, [`crate::element::Affine`]), so isoparametric triangles would need a
+//! point-wise Jacobian in assembly, loads, stresses and the contact geometry. Curved ones (Gmsh's
+//! default for `SetOrder(2)` on curved geometry) are reported as [`GmshError::Unsupported`] at
+//! their line, naming the two ways out: a P1 mesh promoted to P2 by contactdd, or the gmsh option
+//! `Mesh.SecondOrderLinear = 1`.
 //!
 //! Why this reader lives in the numerical core while every other file format lives in
 //! `contactdd-io`: it is a mesh source like [`crate::rectangle`], not a front end. It needs no
@@ -605,12 +609,26 @@ impl RawMsh {
         let (nodes, new_index) = self.renumber_nodes(&used)?;
         let (cells, boundaries, node_sets) = self.sort_elements(order, &nodes, &new_index, body)?;
         Mesh::new(nodes, order, cells, boundaries, node_sets).map_err(|e| match e {
-            MeshError::CurvedEdge { .. } => GmshError::Unsupported(format!(
-                "{e}; mesh with straight-sided 6-node triangles in gmsh \
-                 (-setnumber Mesh.SecondOrderLinear 1)"
+            // The element code maps every triangle affinely (crate::element::Affine), so a
+            // curved (isoparametric) triangle cannot be represented: say how to avoid one.
+            MeshError::CurvedEdge { element } => GmshError::Unsupported(format!(
+                "line {}: curved 6-node triangle (a mid-side node off its edge's midpoint); \
+                 contactdd's P2 triangles are straight-sided. Mesh with order 1 and promote to \
+                 P2 in contactdd (mesh key order = \"p2\"), or keep order 2 with straight sides \
+                 (gmsh -setnumber Mesh.SecondOrderLinear 1)",
+                self.triangle_line(element, body)
             )),
             e => GmshError::Mesh(e),
         })
+    }
+
+    /// The file line of triangle `index` of the body (0 if there is no such triangle).
+    fn triangle_line(&self, index: usize, body: Option<i64>) -> usize {
+        self.elements
+            .iter()
+            .filter(|e| self.in_body(e, body))
+            .nth(index)
+            .map_or(0, |e| e.line)
     }
 
     /// The 2D physical tags the triangles belong to.

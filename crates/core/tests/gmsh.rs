@@ -533,3 +533,31 @@ fn missing_surfaces_and_boundaries_say_what_to_do() {
         .to_string();
     assert!(message.contains("physical curves"), "{message}");
 }
+
+#[test]
+fn curved_p2_triangles_are_rejected_with_the_ways_out() {
+    let text = std::fs::read_to_string(data("square_p2.msh")).expect("square_p2.msh");
+    // Node 2 is the mid-side node of the bottom edge from (0, 0) to (0.5, 0): bow it outwards, as
+    // Gmsh does on a curved boundary.
+    let at = line_index(&text, "0.25 0.0 0");
+    let curved = replace_line(&text, at, "0.25 -0.02 0");
+    let message = match parse_msh(&curved) {
+        Err(GmshError::Unsupported(m)) => m,
+        other => panic!("expected unsupported, got {other:?}"),
+    };
+    for part in ["curved", "order = \"p2\"", "SecondOrderLinear", "line "] {
+        assert!(message.contains(part), "{message}");
+    }
+    // The reported line holds a triangle that uses node 2.
+    let line: usize = message
+        .trim_start_matches("line ")
+        .split(':')
+        .next()
+        .and_then(|n| n.parse().ok())
+        .unwrap_or_else(|| panic!("no line in {message}"));
+    let element = text.lines().nth(line - 1).expect("line in file");
+    assert!(
+        element.split_whitespace().skip(1).any(|n| n == "2"),
+        "line {line}: {element}"
+    );
+}
