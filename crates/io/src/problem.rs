@@ -123,6 +123,13 @@ pub enum MeshSpec {
         /// body of a pair so that the two meshes are mirror images.
         #[serde(default)]
         mirror: bool,
+        /// Mirror the mesh about its vertical centre line (default false); used for the right
+        /// body of a pair side by side.
+        #[serde(default, skip_serializing_if = "std::ops::Not::not")]
+        mirror_x: bool,
+        /// Grading of the cells in x and y (default uniform).
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        grading: Option<GradingSpec>,
         /// Element order (default `p1`).
         #[serde(default = "default_order")]
         order: Order,
@@ -150,6 +157,23 @@ pub enum MeshSpec {
 
 fn default_order() -> Order {
     Order::P1
+}
+
+/// Grading of a rectangle mesh: per axis, the size of the last cell (at x1, y1) over that of the
+/// first (at x0, y0), the cell sizes in geometric progression.
+#[derive(Clone, Copy, Debug, PartialEq, Deserialize, Serialize)]
+#[serde(deny_unknown_fields, rename_all = "kebab-case")]
+pub struct GradingSpec {
+    /// Grading in x (> 0, default 1: uniform).
+    #[serde(default = "one")]
+    pub x: f64,
+    /// Grading in y (> 0, default 1: uniform).
+    #[serde(default = "one")]
+    pub y: f64,
+}
+
+fn one() -> f64 {
+    1.0
 }
 
 /// A prescribed displacement component on a named boundary.

@@ -30,8 +30,8 @@ use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
 use contactdd_core::{
-    BodyError, Constraints, Edge, ElasticBody, Load, Material, Mesh, MeshError, Order, Plane,
-    Point, Rectangle, DIM,
+    BodyError, Constraints, Edge, ElasticBody, Layout, Load, Material, Mesh, MeshError, Order,
+    Plane, Point, Rectangle, DIM,
 };
 
 use contactdd_core::gmsh::read_msh_surface;
@@ -663,6 +663,8 @@ pub fn mesh(body: &str, spec: &MeshSpec, base_dir: &Path) -> Result<Mesh, LoadEr
             ny,
             diagonal,
             mirror,
+            mirror_x,
+            grading,
             order,
         } => {
             for (key, n) in [("mesh.nx", nx), ("mesh.ny", ny)] {
@@ -692,6 +694,24 @@ pub fn mesh(body: &str, spec: &MeshSpec, base_dir: &Path) -> Result<Mesh, LoadEr
                     .into());
                 }
             }
+            let grading = grading.map_or([1.0; DIM], |g| [g.x, g.y]);
+            for (key, g) in [
+                ("mesh.grading.x", grading[0]),
+                ("mesh.grading.y", grading[1]),
+            ] {
+                if !(g.is_finite() && g > 0.0) {
+                    return Err(body_error(
+                        body,
+                        key,
+                        format!("must be a positive number, got {}", num(g)),
+                    )
+                    .into());
+                }
+            }
+            let layout = Layout {
+                grading,
+                mirror_x: *mirror_x,
+            };
             Rectangle {
                 origin: [x[0], y[0]],
                 corner: [x[1], y[1]],
@@ -701,7 +721,7 @@ pub fn mesh(body: &str, spec: &MeshSpec, base_dir: &Path) -> Result<Mesh, LoadEr
                 mirror: *mirror,
                 order: *order,
             }
-            .mesh()
+            .mesh_with(&layout)
             .map_err(|e| mesh_error(body, "mesh", e).into())
         }
         MeshSpec::Gmsh {

@@ -974,3 +974,35 @@ fn two_bodies_of_one_gmsh_file_carry_the_applied_load() {
     );
     assert_contains(&m, &["body 'lower'", "two_blocks.msh", "lower, upper"]);
 }
+
+#[test]
+fn graded_and_x_mirrored_rectangles() {
+    let text = small_with(
+        "nx = 4, ny = 2 }",
+        "nx = 4, ny = 2, grading = { x = 3.0 }, mirror-x = true }",
+    );
+    let loaded = load_str(&text, "graded.toml", Path::new(".")).unwrap_or_else(|e| panic!("{e}"));
+    let mesh = &loaded.model.bodies[0].mesh;
+    let expected = contactdd_core::Rectangle {
+        origin: [0.0, 0.0],
+        corner: [2.0, 1.0],
+        nx: 4,
+        ny: 2,
+        diagonal: contactdd_core::Diagonal::Right,
+        mirror: false,
+        order: contactdd_core::Order::P1,
+    }
+    .mesh_with(&contactdd_core::Layout {
+        grading: [3.0, 1.0],
+        mirror_x: true,
+    })
+    .expect("mesh");
+    assert_eq!(mesh.nodes(), expected.nodes());
+    for bad in ["grading = { x = 0.0 }", "grading = { y = -1.0 }"] {
+        let m = error_of(&small_with(
+            "nx = 4, ny = 2 }",
+            &format!("nx = 4, ny = 2, {bad} }}"),
+        ));
+        assert_contains(&m, &["body 'lower'", "mesh.grading", "positive"]);
+    }
+}
