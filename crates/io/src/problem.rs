@@ -295,7 +295,8 @@ pub enum GapSpec {
         /// Exponent (default 1.5).
         #[serde(default = "default_power")]
         power: f64,
-        /// Contact coordinate ξ: `x` (default) or `y`.
+        /// The line of the contact coordinate ξ: `x` (default), `y`, `{ direction = [dx, dy] }`
+        /// or `{ angle = degrees }`; ξ = p · d with d the line's unit direction.
         #[serde(default)]
         along: Along,
     },

@@ -951,7 +951,16 @@ fn gap_profile(pair: &str, spec: &GapSpec) -> Result<GapProfile, SetupError> {
             b: check("b", b, true)?,
             centre: check("centre", centre, false)?,
             power: check("power", power, true)?,
-            along,
+            along: match along.unit() {
+                Some(_) => along,
+                None => {
+                    return Err(pair_error(
+                        pair,
+                        "gap.along",
+                        format!("needs a finite, non-zero direction, got {along:?}"),
+                    ))
+                }
+            },
         },
         GapSpec::Uniform { value } => GapProfile::Uniform {
             value: check("value", value, false)?,

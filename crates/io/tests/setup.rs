@@ -6,6 +6,7 @@
 use std::path::{Path, PathBuf};
 
 use contactdd_ddm::benchmark::Notch;
+use contactdd_ddm::profile::Along;
 use contactdd_ddm::*;
 use contactdd_io::problem::{GammaSpec, Problem};
 use contactdd_io::setup::resolve;
@@ -1005,4 +1006,31 @@ fn graded_and_x_mirrored_rectangles() {
         ));
         assert_contains(&m, &["body 'lower'", "mesh.grading", "positive"]);
     }
+}
+
+#[test]
+fn gap_profiles_along_any_line() {
+    let with_along = |along: &str| {
+        small_with(
+            "penalty = { c = 0.05, h = 1.0 }",
+            &format!(
+                "penalty = {{ c = 0.05, h = 1.0 }}\n\
+                 gap = {{ kind = \"notch\", r0 = 0.01, b = 0.5, centre = 1.0, along = {along} }}"
+            ),
+        )
+    };
+    for (text, want) in [
+        ("{ angle = 30.0 }", Along::Angle(30.0)),
+        ("{ direction = [1.0, -2.0] }", Along::Direction([1.0, -2.0])),
+        ("\"y\"", Along::Y),
+    ] {
+        let loaded = load_str(&with_along(text), "gap.toml", Path::new("."))
+            .unwrap_or_else(|e| panic!("{text}: {e}"));
+        match loaded.model.pairs[0].profile {
+            Some(GapProfile::Notch { along, .. }) => assert_eq!(along, want, "{text}"),
+            ref other => panic!("{text}: {other:?}"),
+        }
+    }
+    let m = error_of(&with_along("{ direction = [0.0, 0.0] }"));
+    assert_contains(&m, &["gap.along", "non-zero direction"]);
 }
