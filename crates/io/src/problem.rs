@@ -355,10 +355,11 @@ pub struct SolverSpec {
     /// A boundary whose mean displacement the load steps report: `{ body, boundary }`.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub monitor: Option<MonitorSpec>,
-    /// Initial normal displacement u⁰ₙ on all contact points (default 1e-4).
+    /// Initial normal displacement u⁰ₙ on all contact points (default: the model's size / 20 000,
+    /// see [`crate::setup::model_size`]).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub u0: Option<f64>,
-    /// Initial u⁻¹ₙ of the two-point methods (default 2e-4).
+    /// Initial u⁻¹ₙ of the two-point methods (default: the model's size / 10 000).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub u_prev: Option<f64>,
     /// Worker threads ≥ 1 (default: the machine's).

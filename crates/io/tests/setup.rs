@@ -1034,3 +1034,67 @@ fn gap_profiles_along_any_line() {
     let m = error_of(&with_along("{ direction = [0.0, 0.0] }"));
     assert_contains(&m, &["gap.along", "non-zero direction"]);
 }
+
+// ---------------------------------------------------------------------------------------------
+// The default starting values scale with the model.
+
+/// Two blocks with a notched interface, every length multiplied by `k` (the pressure, a stress,
+/// is unchanged), solved with the `[solver]` table `solver`.
+fn notched_blocks(k: f64, solver: &str) -> (Model, Solution) {
+    let text = format!(
+        r#"
+plane = "strain"
+[materials.steel]
+young = 1000.0
+poisson = 0.3
+[[bodies]]
+name = "lower"
+material = "steel"
+mesh = {{ kind = "rectangle", x = [0.0, {w}], y = [0.0, {h}], nx = 16, ny = 4 }}
+supports = [{{ boundary = "bottom", component = "y" }}, {{ boundary = "right", component = "x" }}]
+[[bodies]]
+name = "upper"
+material = "steel"
+mesh = {{ kind = "rectangle", x = [0.0, {w}], y = [{h}, {h2}], nx = 16, ny = 4, mirror = true }}
+supports = [{{ boundary = "right", component = "x" }}]
+loads = [{{ kind = "pressure", boundary = "top", value = 10.0 }}]
+[[contact]]
+bodies = ["lower", "upper"]
+boundaries = ["top", "bottom"]
+penalty = {{ c = 0.05, h = {h} }}
+gap = {{ kind = "notch", r0 = {r0}, b = {b}, centre = {w} }}
+[solver]
+{solver}
+"#,
+        w = 4.0 * k,
+        h = k,
+        h2 = 2.0 * k,
+        r0 = 0.05 * k,
+        b = k,
+    );
+    let loaded = load_str(&text, "scaled.toml", Path::new(".")).unwrap_or_else(|e| panic!("{e}"));
+    let prepared = prepare(&loaded.model).expect("prepared");
+    let sol = solve(&loaded.model, &prepared, &loaded.settings, Hooks::default()).expect("solve");
+    assert!(sol.converged, "scale {k}: {:?}", sol.message);
+    (loaded.model, sol)
+}
+
+#[test]
+fn default_starting_values_make_the_solve_independent_of_the_length_unit() {
+    for solver in ["", "accelerator = \"none\"\ngamma = 0.5\ntol = 1e-4"] {
+        let (_, unit) = notched_blocks(1.0, solver);
+        for k in [1e3, 1e-3] {
+            let (_, scaled) = notched_blocks(k, solver);
+            assert_eq!(
+                unit.iterations, scaled.iterations,
+                "×{k}, [solver] {solver}"
+            );
+            let (a, b) = (&unit.contact[0], &scaled.contact[0]);
+            let peak = a.pressure.iter().fold(0.0f64, |m, p| m.max(p.abs()));
+            for (p, q) in a.pressure.iter().zip(&b.pressure) {
+                assert!((p - q).abs() <= 1e-6 * peak, "×{k}: pressure {p} vs {q}");
+            }
+            assert_eq!(a.closed, b.closed, "×{k}");
+        }
+    }
+}
