@@ -923,31 +923,34 @@ fn solver_keys_select_the_iteration() {
 // ---------------------------------------------------------------------------------------------
 // Two bodies from one Gmsh file.
 
-const TWO_BLOCKS: &str = r#"
-plane = "strain"
-
-[materials.steel]
-young = 1000.0
-poisson = 0.3
-
-[[bodies]]
-name = "lower"
-material = "steel"
-mesh = { kind = "gmsh", file = "two_blocks.msh", surface = "lower" }
-supports = [{ boundary = "floor", component = "y" }, { boundary = "left", component = "x" }]
-
-[[bodies]]
-name = "upper"
-material = "steel"
-mesh = { kind = "gmsh", file = "two_blocks.msh", surface = "upper" }
-supports = [{ boundary = "left", component = "x" }]
-loads = [{ kind = "pressure", boundary = "load", value = 10.0 }]
-
-[[contact]]
-bodies = ["lower", "upper"]
-boundaries = ["lower-top", "upper-bottom"]
-penalty = { c = 0.05, h = 1.0 }
-"#;
+/// [`SMALL`] with both bodies read from one Gmsh file (`two_blocks.msh`: the same blocks, with
+/// the physical curves `floor`, `lower-top`, `upper-bottom`, `load` and `left`).
+fn two_blocks() -> String {
+    let lower = "mesh = { kind = \"rectangle\", x = [0.0, 2.0], y = [0.0, 1.0], nx = 4, ny = 2 }";
+    let upper = "mesh = { kind = \"rectangle\", x = [0.0, 2.0], y = [1.0, 2.0], nx = 4, ny = 2, \
+                 mirror = true }";
+    let gmsh = |s: &str| {
+        format!("mesh = {{ kind = \"gmsh\", file = \"two_blocks.msh\", surface = \"{s}\" }}")
+    };
+    let mut text = SMALL.to_string();
+    for (find, replace) in [
+        (lower.to_string(), gmsh("lower")),
+        (upper.to_string(), gmsh("upper")),
+        (
+            "\"bottom\", component".into(),
+            "\"floor\", component".into(),
+        ),
+        ("\"top\", value".into(), "\"load\", value".into()),
+        (
+            "[\"top\", \"bottom\"]".into(),
+            "[\"lower-top\", \"upper-bottom\"]".into(),
+        ),
+    ] {
+        assert!(text.contains(&find), "test setup: {find}");
+        text = text.replacen(&find, &replace, 1);
+    }
+    text
+}
 
 fn core_data() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("../core/tests/data")
@@ -956,7 +959,7 @@ fn core_data() -> PathBuf {
 #[test]
 fn two_bodies_of_one_gmsh_file_carry_the_applied_load() {
     let mut loaded =
-        load_str(TWO_BLOCKS, "two.toml", &core_data()).unwrap_or_else(|e| panic!("{e}"));
+        load_str(&two_blocks(), "two.toml", &core_data()).unwrap_or_else(|e| panic!("{e}"));
     loaded.settings.tol = 1e-10;
     let model = &loaded.model;
     let prepared = prepare(model).expect("prepared");
@@ -970,7 +973,7 @@ fn two_bodies_of_one_gmsh_file_carry_the_applied_load() {
     );
     // Without `surface`, the file's bodies are listed.
     let m = error_in(
-        &TWO_BLOCKS.replacen(", surface = \"lower\"", "", 1),
+        &two_blocks().replacen(", surface = \"lower\"", "", 1),
         &core_data(),
     );
     assert_contains(&m, &["body 'lower'", "two_blocks.msh", "lower, upper"]);
