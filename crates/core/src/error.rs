@@ -69,7 +69,7 @@ pub enum MeshError {
         b: usize,
     },
     /// A boundary or node set name that does not exist.
-    #[error("no boundary named '{name}' (known: {})", known.join(", "))]
+    #[error("no boundary named '{name}' ({})", known_names(known))]
     NoSuchBoundary {
         /// Requested name.
         name: String,
@@ -87,6 +87,18 @@ pub enum MeshError {
     /// Bad parameters of the structured rectangle mesher.
     #[error("rectangle mesh: {0}")]
     BadRectangle(String),
+}
+
+/// The names that exist, for [`MeshError::NoSuchBoundary`]; a mesh without any says where names
+/// come from.
+fn known_names(known: &[String]) -> String {
+    if known.is_empty() {
+        "the mesh has no named boundaries: a rectangle has left, right, bottom and top; a Gmsh \
+         file names them with physical curves and points"
+            .to_string()
+    } else {
+        format!("known: {}", known.join(", "))
+    }
 }
 
 /// A Gmsh file that cannot be read.
@@ -108,6 +120,9 @@ pub enum GmshError {
         /// What is wrong.
         message: String,
     },
+    /// No physical surface of the requested name, or several bodies and none requested.
+    #[error("{0}")]
+    Surface(String),
     /// Valid Gmsh, but not something contactdd reads.
     #[error("unsupported: {0}")]
     Unsupported(String),

@@ -20,13 +20,21 @@
 //! nodes of edges (0,1), (1,2), (2,0), as [`Order::P2`]), 1 (2-node line), 8 (3-node line: ends,
 //! then middle) and 15 (point). Quadrilaterals, higher-order and 3D elements are unsupported.
 //!
-//! The mesh is the set of all triangles. Node tags are renumbered `0..n` in file order, keeping
-//! only nodes used by a triangle; clockwise triangles are reoriented. Every physical group of
-//! dimension 1 becomes a named boundary (named by `$PhysicalNames`, or by its tag number), every
-//! physical group of dimension 0 a named node set; names of 2D groups are not used.
+//! The mesh is a set of triangles: those of one physical surface (2D physical group) when
+//! [`read_msh_surface`] names one, otherwise all of them, which is an error if the triangles
+//! belong to several physical surfaces (several bodies). Node tags are renumbered `0..n` in file
+//! order, keeping only nodes used by a chosen triangle; clockwise triangles are reoriented. Every
+//! physical group of dimension 1 becomes a named boundary (named by `$PhysicalNames`, or by its
+//! tag number), every physical group of dimension 0 a named node set. With a chosen surface, a
+//! line or point belongs to the body when all its nodes are nodes of the body, so a physical
+//! curve running along two bodies gives each its own part.
 //! All coordinates must share one `z` (the mesh lies in a plane parallel to `xy`). 6-node
-//! triangles must be straight-sided (gmsh option `Mesh.SecondOrderLinear = 1`): curved ones are
-//! reported as [`GmshError::Unsupported`].
+//! triangles must be straight-sided: the element code maps every triangle affinely (constant
+//! barycentric gradients, [`crate::element::Affine`]), so isoparametric triangles would need a
+//! point-wise Jacobian in assembly, loads, stresses and the contact geometry. Curved ones (Gmsh's
+//! default for `SetOrder(2)` on curved geometry) are reported as [`GmshError::Unsupported`] at
+//! their line, naming the two ways out: a P1 mesh promoted to P2 by contactdd, or the gmsh option
+//! `Mesh.SecondOrderLinear = 1`.
 //!
 //! Why this reader lives in the numerical core while every other file format lives in
 //! `contactdd-io`: it is a mesh source like [`crate::rectangle`], not a front end. It needs no
@@ -41,22 +49,35 @@ use crate::error::{GmshError, MeshError};
 use crate::geometry::{Point, DIM};
 use crate::mesh::{dist, Edge, Mesh, Order};
 
-/// Reads a Gmsh ASCII mesh file (MSH 4.1 or 2.2) into a validated [`Mesh`].
+/// Reads a Gmsh ASCII mesh file (MSH 4.1 or 2.2) holding one body into a validated [`Mesh`].
 pub fn read_msh(path: &Path) -> Result<Mesh, GmshError> {
+    read_msh_surface(path, None)
+}
+
+/// Reads the body of physical surface `surface` (a name, or a tag number for an unnamed group)
+/// of a Gmsh ASCII mesh file; `None` reads a file holding one body. See the module documentation.
+pub fn read_msh_surface(path: &Path, surface: Option<&str>) -> Result<Mesh, GmshError> {
     let bytes = std::fs::read(path).map_err(|source| GmshError::Io {
         path: path.display().to_string(),
         source,
     })?;
     // Binary files have an ASCII header, so a lossy conversion still lets `parse_msh` see the
     // file type in `$MeshFormat` and report them as unsupported.
-    parse_msh(&String::from_utf8_lossy(&bytes))
+    parse_msh_surface(&String::from_utf8_lossy(&bytes), surface)
 }
 
-/// Parses the text of a Gmsh ASCII mesh file (MSH 4.1 or 2.2) into a validated [`Mesh`].
+/// Parses the text of a Gmsh ASCII mesh file (MSH 4.1 or 2.2) holding one body into a validated
+/// [`Mesh`].
 pub fn parse_msh(text: &str) -> Result<Mesh, GmshError> {
+    parse_msh_surface(text, None)
+}
+
+/// Parses the body of physical surface `surface` (`None`: the file's only body) of the text of a
+/// Gmsh ASCII mesh file into a validated [`Mesh`].
+pub fn parse_msh_surface(text: &str, surface: Option<&str>) -> Result<Mesh, GmshError> {
     let text = text.strip_prefix('\u{feff}').unwrap_or(text);
     let raw = RawMsh::parse(text)?;
-    raw.build()
+    raw.build(surface)
 }
 
 /// The file format version.
@@ -581,18 +602,76 @@ impl RawMsh {
 
     /// Assembles and validates the mesh: the triangles' order and nodes, the nodes renumbered,
     /// the elements sorted into cells, boundaries and node sets, then [`Mesh::new`].
-    fn build(self) -> Result<Mesh, GmshError> {
+    fn build(self, surface: Option<&str>) -> Result<Mesh, GmshError> {
         self.check_names_used()?;
-        let (order, used) = self.triangle_order_and_nodes()?;
+        let body = self.surface_tag(surface)?;
+        let (order, used) = self.triangle_order_and_nodes(body)?;
         let (nodes, new_index) = self.renumber_nodes(&used)?;
-        let (cells, boundaries, node_sets) = self.sort_elements(order, &nodes, &new_index)?;
+        let (cells, boundaries, node_sets) = self.sort_elements(order, &nodes, &new_index, body)?;
         Mesh::new(nodes, order, cells, boundaries, node_sets).map_err(|e| match e {
-            MeshError::CurvedEdge { .. } => GmshError::Unsupported(format!(
-                "{e}; mesh with straight-sided 6-node triangles in gmsh \
-                 (-setnumber Mesh.SecondOrderLinear 1)"
+            // The element code maps every triangle affinely (crate::element::Affine), so a
+            // curved (isoparametric) triangle cannot be represented: say how to avoid one.
+            MeshError::CurvedEdge { element } => GmshError::Unsupported(format!(
+                "line {}: curved 6-node triangle (a mid-side node off its edge's midpoint); \
+                 contactdd's P2 triangles are straight-sided. Mesh with order 1 and promote to \
+                 P2 in contactdd (mesh key order = \"p2\"), or keep order 2 with straight sides \
+                 (gmsh -setnumber Mesh.SecondOrderLinear 1)",
+                self.triangle_line(element, body)
             )),
             e => GmshError::Mesh(e),
         })
+    }
+
+    /// The file line of triangle `index` of the body (0 if there is no such triangle).
+    fn triangle_line(&self, index: usize, body: Option<i64>) -> usize {
+        self.elements
+            .iter()
+            .filter(|e| self.in_body(e, body))
+            .nth(index)
+            .map_or(0, |e| e.line)
+    }
+
+    /// The 2D physical tags the triangles belong to.
+    fn surface_tags(&self) -> BTreeSet<i64> {
+        self.elements
+            .iter()
+            .filter(|e| matches!(e.kind, Kind::Triangle(_)))
+            .flat_map(|e| self.physicals(e).iter().copied())
+            .collect()
+    }
+
+    /// The physical surface whose triangles make the body: the one named `surface`, or `None`
+    /// (every triangle) when no surface is named and the file has at most one physical surface.
+    fn surface_tag(&self, surface: Option<&str>) -> Result<Option<i64>, GmshError> {
+        let tags = self.surface_tags();
+        let names: Vec<String> = tags.iter().map(|&t| self.group_name(2, t)).collect();
+        let listed = if names.is_empty() {
+            "the file has no physical surface".to_string()
+        } else {
+            format!("physical surfaces: {}", names.join(", "))
+        };
+        match surface {
+            Some(name) => match tags.iter().find(|&&t| self.group_name(2, t) == name) {
+                Some(&tag) => Ok(Some(tag)),
+                None => Err(GmshError::Surface(format!(
+                    "no physical surface named '{name}' ({listed})"
+                ))),
+            },
+            None if tags.len() > 1 => Err(GmshError::Surface(format!(
+                "the file holds {} bodies ({listed}); name the body's physical surface",
+                tags.len()
+            ))),
+            None => Ok(None),
+        }
+    }
+
+    /// Whether `element` is a triangle of the body (`body`: its physical surface, `None`: all).
+    fn in_body(&self, element: &RawElement, body: Option<i64>) -> bool {
+        let chosen = match body {
+            Some(tag) => self.physicals(element).contains(&tag),
+            None => true,
+        };
+        matches!(element.kind, Kind::Triangle(_)) && chosen
     }
 
     /// Checks that every `$PhysicalNames` entry names a group some element belongs to: a name
@@ -631,15 +710,28 @@ impl RawMsh {
             })
     }
 
+    /// Whether every node of `element` is a node of the body (`new_index` is set).
+    fn touches(&self, element: &RawElement, new_index: &[usize]) -> bool {
+        element.nodes.iter().all(|&tag| {
+            self.node_index
+                .get(&tag)
+                .and_then(|&i| new_index.get(i))
+                .is_some_and(|&n| n != usize::MAX)
+        })
+    }
+
     /// The order of the triangles (all the same) and, per node of `coords`, whether a triangle
     /// uses it.
-    fn triangle_order_and_nodes(&self) -> Result<(Order, Vec<bool>), GmshError> {
+    fn triangle_order_and_nodes(&self, body: Option<i64>) -> Result<(Order, Vec<bool>), GmshError> {
         let mut order = None;
         let mut used = vec![false; self.coords.len()];
         for element in &self.elements {
             let Kind::Triangle(o) = element.kind else {
                 continue;
             };
+            if !self.in_body(element, body) {
+                continue;
+            }
             match order {
                 None => order = Some(o),
                 Some(first) if first != o => {
@@ -658,8 +750,13 @@ impl RawMsh {
             }
         }
         let Some(order) = order else {
+            // Gmsh saves only the elements of physical groups once a model defines any: a model
+            // with physical curves but no physical surface comes out without triangles.
             return Err(GmshError::Unsupported(
-                "the file has no triangles (3- or 6-node); contactdd needs a 2D triangle mesh"
+                "the file has no triangles (3- or 6-node); contactdd needs a 2D triangle mesh. \
+                 When a model has physical groups, Gmsh saves only their elements: add a physical \
+                 surface for each body (Physical Surface(\"name\") = {...}), or set \
+                 Mesh.SaveAll = 1"
                     .to_string(),
             ));
         };
@@ -702,6 +799,7 @@ impl RawMsh {
         order: Order,
         nodes: &[Point],
         new_index: &[usize],
+        body: Option<i64>,
     ) -> Result<
         (
             Vec<usize>,
@@ -714,6 +812,13 @@ impl RawMsh {
         let mut boundaries: BTreeMap<String, Vec<Edge>> = BTreeMap::new();
         let mut node_sets: BTreeMap<String, BTreeSet<usize>> = BTreeMap::new();
         for element in &self.elements {
+            if matches!(element.kind, Kind::Triangle(_)) && !self.in_body(element, body) {
+                continue;
+            }
+            // A line or point of another body of the file does not touch this one.
+            if body.is_some() && !self.touches(element, new_index) {
+                continue;
+            }
             let mut ids = Vec::with_capacity(element.nodes.len());
             for &tag in &element.nodes {
                 let i = self.node_position(element, tag)?;

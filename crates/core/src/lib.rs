@@ -36,6 +36,6 @@ pub use geometry::{component_of, dof, node_of, node_vector, num_dofs, Point, Vec
 pub use loads::Load;
 pub use material::{Material, Plane};
 pub use mesh::{Edge, Mesh, Order};
-pub use rectangle::{Diagonal, Rectangle};
+pub use rectangle::{Diagonal, Layout, Rectangle};
 pub use rigid::RigidBasis;
 pub use supports::{Component, Constraints};

@@ -3,7 +3,7 @@
 use std::path::{Path, PathBuf};
 
 use contactdd_core::error::GmshError;
-use contactdd_core::gmsh::{parse_msh, read_msh};
+use contactdd_core::gmsh::{parse_msh, parse_msh_surface, read_msh, read_msh_surface};
 use contactdd_core::mesh::{Mesh, Order};
 
 fn data(name: &str) -> PathBuf {
@@ -448,4 +448,116 @@ fn io_errors_name_the_file() {
         Err(GmshError::Io { path, .. }) => assert_eq!(path, "/nonexistent/mesh.msh"),
         other => panic!("expected an I/O error, got {other:?}"),
     }
+}
+
+// ---------------------------------------------------------------------------------------------
+// Several bodies in one file (two_blocks.msh, written by make_two_blocks.py).
+
+fn two_blocks(surface: Option<&str>) -> Result<Mesh, GmshError> {
+    read_msh_surface(&data("two_blocks.msh"), surface)
+}
+
+fn names<T>(map: &std::collections::BTreeMap<String, T>) -> Vec<&str> {
+    map.keys().map(String::as_str).collect()
+}
+
+#[test]
+fn a_surface_picks_its_body_and_the_curves_that_touch_it() {
+    for (name, y0, curves, sets) in [
+        ("lower", 0.0, ["floor", "left", "lower-top"], vec!["origin"]),
+        ("upper", 1.0, ["left", "load", "upper-bottom"], vec![]),
+    ] {
+        let mesh = two_blocks(Some(name)).unwrap_or_else(|e| panic!("{name}: {e}"));
+        // 4 × 2 cells of two triangles, 5 × 3 nodes, all in the block.
+        assert_eq!((mesh.num_cells(), mesh.num_nodes()), (16, 15), "{name}");
+        for p in mesh.nodes() {
+            assert!(p[1] >= y0 && p[1] <= y0 + 1.0, "{name}: node {p:?}");
+        }
+        assert_eq!(names(mesh.boundaries()), curves, "{name}");
+        assert_eq!(names(mesh.node_sets()), sets, "{name}");
+        // "left" spans both bodies in the file; each body gets its own side, of length 1.
+        assert!(
+            (boundary_length(&mesh, "left") - 1.0).abs() < 1e-12,
+            "{name}"
+        );
+    }
+}
+
+#[test]
+fn several_surfaces_need_a_choice_and_unknown_ones_are_listed() {
+    let message = two_blocks(None).expect_err("two bodies").to_string();
+    for part in ["2 bodies", "lower, upper"] {
+        assert!(message.contains(part), "{message}");
+    }
+    let message = two_blocks(Some("disc")).expect_err("no disc").to_string();
+    for part in ["'disc'", "lower, upper"] {
+        assert!(message.contains(part), "{message}");
+    }
+    // A file with one physical surface reads as before with or without its name.
+    let by_name = read_msh_surface(&data("square.msh"), Some("body")).expect("square by name");
+    assert_eq!(by_name.nodes(), square().nodes());
+    let message = parse_msh_surface(&square_text(), Some("lower"))
+        .expect_err("square has no surface 'lower'")
+        .to_string();
+    assert!(message.contains("physical surfaces: body"), "{message}");
+}
+
+#[test]
+fn missing_surfaces_and_boundaries_say_what_to_do() {
+    // Physical curves without a physical surface: Gmsh saves no triangles.
+    let text = square_text();
+    let start = line_index(&text, "2 1 2 8");
+    let lines: Vec<&str> = text.lines().collect();
+    let mut kept: Vec<&str> = lines[..start].to_vec();
+    kept.extend_from_slice(&lines[start + 9..]);
+    let text = kept
+        .join("\n")
+        .replace("6 17 1 17", "5 9 1 9")
+        .replace("2 10 \"body\"\n", "");
+    let text = text.replace("$PhysicalNames\n6", "$PhysicalNames\n5");
+    let message = parse_msh(&text).expect_err("no triangles").to_string();
+    assert!(message.contains("Physical Surface"), "{message}");
+    // A mesh without named boundaries says where names come from.
+    let plain = square();
+    let bare = Mesh::new(
+        plain.nodes().to_vec(),
+        plain.order(),
+        plain.cells().to_vec(),
+        Default::default(),
+        Default::default(),
+    )
+    .expect("valid");
+    let message = bare
+        .boundary("bottom")
+        .expect_err("no boundaries")
+        .to_string();
+    assert!(message.contains("physical curves"), "{message}");
+}
+
+#[test]
+fn curved_p2_triangles_are_rejected_with_the_ways_out() {
+    let text = std::fs::read_to_string(data("square_p2.msh")).expect("square_p2.msh");
+    // Node 2 is the mid-side node of the bottom edge from (0, 0) to (0.5, 0): bow it outwards, as
+    // Gmsh does on a curved boundary.
+    let at = line_index(&text, "0.25 0.0 0");
+    let curved = replace_line(&text, at, "0.25 -0.02 0");
+    let message = match parse_msh(&curved) {
+        Err(GmshError::Unsupported(m)) => m,
+        other => panic!("expected unsupported, got {other:?}"),
+    };
+    for part in ["curved", "order = \"p2\"", "SecondOrderLinear", "line "] {
+        assert!(message.contains(part), "{message}");
+    }
+    // The reported line holds a triangle that uses node 2.
+    let line: usize = message
+        .trim_start_matches("line ")
+        .split(':')
+        .next()
+        .and_then(|n| n.parse().ok())
+        .unwrap_or_else(|| panic!("no line in {message}"));
+    let element = text.lines().nth(line - 1).expect("line in file");
+    assert!(
+        element.split_whitespace().skip(1).any(|n| n == "2"),
+        "line {line}: {element}"
+    );
 }

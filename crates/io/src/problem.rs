@@ -123,15 +123,26 @@ pub enum MeshSpec {
         /// body of a pair so that the two meshes are mirror images.
         #[serde(default)]
         mirror: bool,
+        /// Mirror the mesh about its vertical centre line (default false); used for the right
+        /// body of a pair side by side.
+        #[serde(default, skip_serializing_if = "std::ops::Not::not")]
+        mirror_x: bool,
+        /// Grading of the cells in x and y (default uniform).
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        grading: Option<GradingSpec>,
         /// Element order (default `p1`).
         #[serde(default = "default_order")]
         order: Order,
     },
-    /// A Gmsh `.msh` file (ASCII 4.1 or 2.2); boundaries are its physical lines.
+    /// A Gmsh `.msh` file (ASCII 4.1 or 2.2); boundaries are its physical curves and points.
     #[serde(rename_all = "kebab-case")]
     Gmsh {
         /// File path; relative paths resolve against the problem file's folder.
         file: PathBuf,
+        /// The body's physical surface, for a file holding several bodies; its boundaries are the
+        /// physical curves and points that touch it. Default: the file's only body.
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        surface: Option<String>,
         /// Element order: `p2` promotes P1 triangles to P2; default: as in the file.
         #[serde(default, skip_serializing_if = "Option::is_none")]
         order: Option<Order>,
@@ -146,6 +157,23 @@ pub enum MeshSpec {
 
 fn default_order() -> Order {
     Order::P1
+}
+
+/// Grading of a rectangle mesh: per axis, the size of the last cell (at x1, y1) over that of the
+/// first (at x0, y0), the cell sizes in geometric progression.
+#[derive(Clone, Copy, Debug, PartialEq, Deserialize, Serialize)]
+#[serde(deny_unknown_fields, rename_all = "kebab-case")]
+pub struct GradingSpec {
+    /// Grading in x (> 0, default 1: uniform).
+    #[serde(default = "one")]
+    pub x: f64,
+    /// Grading in y (> 0, default 1: uniform).
+    #[serde(default = "one")]
+    pub y: f64,
+}
+
+fn one() -> f64 {
+    1.0
 }
 
 /// A prescribed displacement component on a named boundary.
@@ -267,7 +295,8 @@ pub enum GapSpec {
         /// Exponent (default 1.5).
         #[serde(default = "default_power")]
         power: f64,
-        /// Contact coordinate ξ: `x` (default) or `y`.
+        /// The line of the contact coordinate ξ: `x` (default), `y`, `{ direction = [dx, dy] }`
+        /// or `{ angle = degrees }`; ξ = p · d with d the line's unit direction.
         #[serde(default)]
         along: Along,
     },
@@ -326,10 +355,11 @@ pub struct SolverSpec {
     /// A boundary whose mean displacement the load steps report: `{ body, boundary }`.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub monitor: Option<MonitorSpec>,
-    /// Initial normal displacement u⁰ₙ on all contact points (default 1e-4).
+    /// Initial normal displacement u⁰ₙ on all contact points (default: the model's size / 20 000,
+    /// see [`crate::setup::model_size`]).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub u0: Option<f64>,
-    /// Initial u⁻¹ₙ of the two-point methods (default 2e-4).
+    /// Initial u⁻¹ₙ of the two-point methods (default: the model's size / 10 000).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub u_prev: Option<f64>,
     /// Worker threads ≥ 1 (default: the machine's).

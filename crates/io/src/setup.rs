@@ -13,7 +13,7 @@
 //!
 //! Resolution rules:
 //! - a rectangle mesh is built by [`Rectangle::mesh`], a Gmsh file is read by
-//!   [`contactdd_core::gmsh::read_msh`] (relative paths against `base_dir`), scaled, translated
+//!   [`contactdd_core::gmsh::read_msh_surface`] (relative paths against `base_dir`), scaled, translated
 //!   and, with `order = "p2"`, promoted by [`Mesh::to_p2`];
 //! - supports are applied in file order by [`Constraints::fix`] (a DOF fixed twice keeps the last
 //!   value), all loads of a body form one load vector ([`contactdd_core::loads::load_vector`]);
@@ -30,10 +30,11 @@ use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
 use contactdd_core::{
-    BodyError, Constraints, Edge, ElasticBody, Load, Material, Mesh, MeshError, Order, Plane,
-    Point, Rectangle, DIM,
+    BodyError, Constraints, Edge, ElasticBody, Layout, Load, Material, Mesh, MeshError, Order,
+    Plane, Point, Rectangle, DIM,
 };
 
+use contactdd_core::gmsh::read_msh_surface;
 use contactdd_ddm::iteration::ANDERSON_DEPTH;
 use contactdd_ddm::steps::{check_factors, equal_steps};
 use contactdd_ddm::{
@@ -154,6 +155,7 @@ fn resolve_named(
         .clone()
         .unwrap_or_else(|| default_name.to_string());
     let model = builder.into_model(&name)?;
+    let settings = starting_values(settings, &problem.solver, &model);
     let steps = problem
         .solver
         .load_steps
@@ -175,6 +177,40 @@ fn resolve_named(
         problem,
     })
 }
+
+/// The model's size: the longest side of the bounding box of every body's nodes.
+pub fn model_size(model: &Model) -> f64 {
+    let (mut lo, mut hi) = ([f64::INFINITY; DIM], [f64::NEG_INFINITY; DIM]);
+    for p in model.bodies.iter().flat_map(|b| b.mesh.nodes()) {
+        for d in 0..DIM {
+            lo[d] = lo[d].min(p[d]);
+            hi[d] = hi[d].max(p[d]);
+        }
+    }
+    (hi[0] - lo[0]).max(hi[1] - lo[1])
+}
+
+/// `settings` with the starting values the `[solver]` table leaves out set relative to the
+/// model's size L: u0 = L/20 000 and u-prev = L/10 000. An absolute default would make the
+/// iteration depend on the length unit. The fractions give a model 2 units long the former
+/// absolute defaults 1e-4 and 2e-4 (bit for bit), so the measured iteration counts of
+/// `examples/hertz.toml` and `examples/stack.toml` stand; the notch benchmarks set the paper's
+/// values explicitly.
+fn starting_values(mut settings: Settings, spec: &SolverSpec, model: &Model) -> Settings {
+    let size = model_size(model);
+    if spec.u0.is_none() {
+        settings.u0 = size / U0_FRACTION;
+    }
+    if spec.u_prev.is_none() {
+        settings.u_prev = size / U_PREV_FRACTION;
+    }
+    settings
+}
+
+/// The model's size over the default u0.
+const U0_FRACTION: f64 = 20_000.0;
+/// The model's size over the default u-prev.
+const U_PREV_FRACTION: f64 = 10_000.0;
 
 /// The load factors of `load-steps`.
 fn load_steps(spec: &LoadStepsSpec) -> Result<Vec<f64>, SetupError> {
@@ -662,6 +698,8 @@ pub fn mesh(body: &str, spec: &MeshSpec, base_dir: &Path) -> Result<Mesh, LoadEr
             ny,
             diagonal,
             mirror,
+            mirror_x,
+            grading,
             order,
         } => {
             for (key, n) in [("mesh.nx", nx), ("mesh.ny", ny)] {
@@ -691,6 +729,24 @@ pub fn mesh(body: &str, spec: &MeshSpec, base_dir: &Path) -> Result<Mesh, LoadEr
                     .into());
                 }
             }
+            let grading = grading.map_or([1.0; DIM], |g| [g.x, g.y]);
+            for (key, g) in [
+                ("mesh.grading.x", grading[0]),
+                ("mesh.grading.y", grading[1]),
+            ] {
+                if !(g.is_finite() && g > 0.0) {
+                    return Err(body_error(
+                        body,
+                        key,
+                        format!("must be a positive number, got {}", num(g)),
+                    )
+                    .into());
+                }
+            }
+            let layout = Layout {
+                grading,
+                mirror_x: *mirror_x,
+            };
             Rectangle {
                 origin: [x[0], y[0]],
                 corner: [x[1], y[1]],
@@ -700,11 +756,12 @@ pub fn mesh(body: &str, spec: &MeshSpec, base_dir: &Path) -> Result<Mesh, LoadEr
                 mirror: *mirror,
                 order: *order,
             }
-            .mesh()
+            .mesh_with(&layout)
             .map_err(|e| mesh_error(body, "mesh", e).into())
         }
         MeshSpec::Gmsh {
             file,
+            surface,
             order,
             translate,
             scale,
@@ -733,7 +790,7 @@ pub fn mesh(body: &str, spec: &MeshSpec, base_dir: &Path) -> Result<Mesh, LoadEr
                 base_dir.join(file)
             };
             let mut mesh =
-                contactdd_core::gmsh::read_msh(&path).map_err(|source| LoadError::Gmsh {
+                read_msh_surface(&path, surface.as_deref()).map_err(|source| LoadError::Gmsh {
                     body: body.to_string(),
                     path: path.display().to_string(),
                     source,
@@ -929,7 +986,16 @@ fn gap_profile(pair: &str, spec: &GapSpec) -> Result<GapProfile, SetupError> {
             b: check("b", b, true)?,
             centre: check("centre", centre, false)?,
             power: check("power", power, true)?,
-            along,
+            along: match along.unit() {
+                Some(_) => along,
+                None => {
+                    return Err(pair_error(
+                        pair,
+                        "gap.along",
+                        format!("needs a finite, non-zero direction, got {along:?}"),
+                    ))
+                }
+            },
         },
         GapSpec::Uniform { value } => GapProfile::Uniform {
             value: check("value", value, false)?,

@@ -6,6 +6,7 @@
 use std::path::{Path, PathBuf};
 
 use contactdd_ddm::benchmark::Notch;
+use contactdd_ddm::profile::Along;
 use contactdd_ddm::*;
 use contactdd_io::problem::{GammaSpec, Problem};
 use contactdd_io::setup::resolve;
@@ -917,4 +918,186 @@ fn solver_keys_select_the_iteration() {
         .unwrap_err()
         .to_string();
     assert!(err.contains("coarse"), "{err}");
+}
+
+// ---------------------------------------------------------------------------------------------
+// Two bodies from one Gmsh file.
+
+/// [`SMALL`] with both bodies read from one Gmsh file (`two_blocks.msh`: the same blocks, with
+/// the physical curves `floor`, `lower-top`, `upper-bottom`, `load` and `left`).
+fn two_blocks() -> String {
+    let lower = "mesh = { kind = \"rectangle\", x = [0.0, 2.0], y = [0.0, 1.0], nx = 4, ny = 2 }";
+    let upper = "mesh = { kind = \"rectangle\", x = [0.0, 2.0], y = [1.0, 2.0], nx = 4, ny = 2, \
+                 mirror = true }";
+    let gmsh = |s: &str| {
+        format!("mesh = {{ kind = \"gmsh\", file = \"two_blocks.msh\", surface = \"{s}\" }}")
+    };
+    let mut text = SMALL.to_string();
+    for (find, replace) in [
+        (lower.to_string(), gmsh("lower")),
+        (upper.to_string(), gmsh("upper")),
+        (
+            "\"bottom\", component".into(),
+            "\"floor\", component".into(),
+        ),
+        ("\"top\", value".into(), "\"load\", value".into()),
+        (
+            "[\"top\", \"bottom\"]".into(),
+            "[\"lower-top\", \"upper-bottom\"]".into(),
+        ),
+    ] {
+        assert!(text.contains(&find), "test setup: {find}");
+        text = text.replacen(&find, &replace, 1);
+    }
+    text
+}
+
+fn core_data() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../core/tests/data")
+}
+
+#[test]
+fn two_bodies_of_one_gmsh_file_carry_the_applied_load() {
+    let mut loaded =
+        load_str(&two_blocks(), "two.toml", &core_data()).unwrap_or_else(|e| panic!("{e}"));
+    loaded.settings.tol = 1e-10;
+    let model = &loaded.model;
+    let prepared = prepare(model).expect("prepared");
+    let sol = solve(model, &prepared, &loaded.settings, Hooks::default()).expect("solved");
+    assert!(sol.converged, "{:?}", sol.message);
+    // The pressure 10 on the 2-long top is carried by the contact alone.
+    let force = sol.contact[0].force_on(1);
+    assert!(
+        (force[1] - 20.0).abs() < 1e-8 * 20.0,
+        "contact force on upper {force:?}"
+    );
+    // Without `surface`, the file's bodies are listed.
+    let m = error_in(
+        &two_blocks().replacen(", surface = \"lower\"", "", 1),
+        &core_data(),
+    );
+    assert_contains(&m, &["body 'lower'", "two_blocks.msh", "lower, upper"]);
+}
+
+#[test]
+fn graded_and_x_mirrored_rectangles() {
+    let text = small_with(
+        "nx = 4, ny = 2 }",
+        "nx = 4, ny = 2, grading = { x = 3.0 }, mirror-x = true }",
+    );
+    let loaded = load_str(&text, "graded.toml", Path::new(".")).unwrap_or_else(|e| panic!("{e}"));
+    let mesh = &loaded.model.bodies[0].mesh;
+    let expected = contactdd_core::Rectangle {
+        origin: [0.0, 0.0],
+        corner: [2.0, 1.0],
+        nx: 4,
+        ny: 2,
+        diagonal: contactdd_core::Diagonal::Right,
+        mirror: false,
+        order: contactdd_core::Order::P1,
+    }
+    .mesh_with(&contactdd_core::Layout {
+        grading: [3.0, 1.0],
+        mirror_x: true,
+    })
+    .expect("mesh");
+    assert_eq!(mesh.nodes(), expected.nodes());
+    for bad in ["grading = { x = 0.0 }", "grading = { y = -1.0 }"] {
+        let m = error_of(&small_with(
+            "nx = 4, ny = 2 }",
+            &format!("nx = 4, ny = 2, {bad} }}"),
+        ));
+        assert_contains(&m, &["body 'lower'", "mesh.grading", "positive"]);
+    }
+}
+
+#[test]
+fn gap_profiles_along_any_line() {
+    let with_along = |along: &str| {
+        small_with(
+            "penalty = { c = 0.05, h = 1.0 }",
+            &format!(
+                "penalty = {{ c = 0.05, h = 1.0 }}\n\
+                 gap = {{ kind = \"notch\", r0 = 0.01, b = 0.5, centre = 1.0, along = {along} }}"
+            ),
+        )
+    };
+    for (text, want) in [
+        ("{ angle = 30.0 }", Along::Angle(30.0)),
+        ("{ direction = [1.0, -2.0] }", Along::Direction([1.0, -2.0])),
+        ("\"y\"", Along::Y),
+    ] {
+        let loaded = load_str(&with_along(text), "gap.toml", Path::new("."))
+            .unwrap_or_else(|e| panic!("{text}: {e}"));
+        match loaded.model.pairs[0].profile {
+            Some(GapProfile::Notch { along, .. }) => assert_eq!(along, want, "{text}"),
+            ref other => panic!("{text}: {other:?}"),
+        }
+    }
+    let m = error_of(&with_along("{ direction = [0.0, 0.0] }"));
+    assert_contains(&m, &["gap.along", "non-zero direction"]);
+}
+
+// ---------------------------------------------------------------------------------------------
+// The default starting values scale with the model.
+
+/// Two blocks with a notched interface, every length multiplied by `k` (the pressure, a stress,
+/// is unchanged), solved with the `[solver]` table `solver`.
+fn notched_blocks(k: f64, solver: &str) -> (Model, Solution) {
+    let text = format!(
+        r#"
+plane = "strain"
+[materials.steel]
+young = 1000.0
+poisson = 0.3
+[[bodies]]
+name = "lower"
+material = "steel"
+mesh = {{ kind = "rectangle", x = [0.0, {w}], y = [0.0, {h}], nx = 16, ny = 4 }}
+supports = [{{ boundary = "bottom", component = "y" }}, {{ boundary = "right", component = "x" }}]
+[[bodies]]
+name = "upper"
+material = "steel"
+mesh = {{ kind = "rectangle", x = [0.0, {w}], y = [{h}, {h2}], nx = 16, ny = 4, mirror = true }}
+supports = [{{ boundary = "right", component = "x" }}]
+loads = [{{ kind = "pressure", boundary = "top", value = 10.0 }}]
+[[contact]]
+bodies = ["lower", "upper"]
+boundaries = ["top", "bottom"]
+penalty = {{ c = 0.05, h = {h} }}
+gap = {{ kind = "notch", r0 = {r0}, b = {b}, centre = {w} }}
+[solver]
+{solver}
+"#,
+        w = 4.0 * k,
+        h = k,
+        h2 = 2.0 * k,
+        r0 = 0.05 * k,
+        b = k,
+    );
+    let loaded = load_str(&text, "scaled.toml", Path::new(".")).unwrap_or_else(|e| panic!("{e}"));
+    let prepared = prepare(&loaded.model).expect("prepared");
+    let sol = solve(&loaded.model, &prepared, &loaded.settings, Hooks::default()).expect("solve");
+    assert!(sol.converged, "scale {k}: {:?}", sol.message);
+    (loaded.model, sol)
+}
+
+#[test]
+fn default_starting_values_make_the_solve_independent_of_the_length_unit() {
+    for solver in ["", "accelerator = \"none\"\ngamma = 0.5\ntol = 1e-4"] {
+        let (_, unit) = notched_blocks(1.0, solver);
+        for k in [1e3, 1e-3] {
+            let (_, scaled) = notched_blocks(k, solver);
+            assert_eq!(
+                unit.iterations, scaled.iterations,
+                "×{k}, [solver] {solver}"
+            );
+            let (a, b) = (&unit.contact[0], &scaled.contact[0]);
+            let peak = a.pressure.iter().fold(0.0f64, |m, p| m.max(p.abs()));
+            for (p, q) in a.pressure.iter().zip(&b.pressure) {
+                assert!((p - q).abs() <= 1e-6 * peak, "×{k}: pressure {p} vs {q}");
+            }
+            assert_eq!(a.closed, b.closed, "×{k}");
+        }
+    }
 }
