@@ -447,6 +447,8 @@ impl Problem {
                 ny,
                 diagonal: from_name(diagonal).map_err(|e| err("mesh.diagonal", e))?,
                 mirror,
+                grading: None,
+                mirror_x: false,
                 order: from_name(order).map_err(|e| err("mesh.order", e))?,
             },
             supports: specs(name, "supports", supports)?,
