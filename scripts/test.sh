@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Runs every test of contactdd: the Rust workspace (release mode: the convergence and contact
 # tests are numerical) and the Python package (built and installed into a private venv).
-# Needs only cargo and python3; installs maturin, numpy, pytest and matplotlib itself.
+# Needs only cargo and python3; installs maturin, numpy, pytest, matplotlib and meshio itself.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
