@@ -318,7 +318,8 @@ impl Problem {
     ///     name: unique body name.
     ///     nodes: ``(n, 2)`` node coordinates.
     ///     triangles: ``(m, 3)`` (P1) or ``(m, 6)`` (P2: vertices, then the mid-side nodes of edges
-    ///         (0,1), (1,2), (2,0)) node indices, counter-clockwise.
+    ///         (0,1), (1,2), (2,0)) node indices; clockwise triangles are reordered
+    ///         counter-clockwise, as the Gmsh reader does.
     ///     boundaries: named boundary edge sets, ``{name: (k, 2) array of node pairs}`` (a
     ///         third column with P2 mid-side nodes is accepted and ignored).
     ///     material: name of a material added with :meth:`add_material`.

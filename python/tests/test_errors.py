@@ -80,8 +80,9 @@ def test_bad_dicts_and_names():
 def test_bad_arrays():
     p = body_problem()
     nodes = np.array([[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]])
-    with pytest.raises(ContactddError, match="inverted"):
-        p.add_body("t", nodes, [[0, 2, 1]], {}, "steel")
+    collinear = np.array([[0.0, 0.0], [1.0, 0.0], [2.0, 0.0]])
+    with pytest.raises(ContactddError, match="degenerate"):
+        p.add_body("t", collinear, [[0, 1, 2]], {}, "steel")
     with pytest.raises(ContactddError, match="3 \\(P1\\) or 6 \\(P2\\) columns"):
         p.add_body("t", nodes, [[0, 1, 2, 0]], {}, "steel")
     with pytest.raises(ContactddError, match="refers to node 7"):
@@ -237,8 +238,9 @@ def test_add_body_messages_as_a_file():
     assert code_message(lambda p: p.add_body("b", nodes, [[0, 1, 2]], {}, "iron")) == \
         toml_message(f'[[bodies]]\nname = "b"\nmaterial = "iron"\n{RECT}\n')
     # A bad mesh is a mesh error of the body, as for a rectangle or Gmsh mesh.
-    message = code_message(lambda p: p.add_body("t", nodes, [[0, 2, 1]], {}, "steel"))
-    assert message.startswith("body 't': mesh: ") and "inverted" in message
+    collinear = np.array([[0.0, 0.0], [1.0, 0.0], [2.0, 0.0]])
+    message = code_message(lambda p: p.add_body("t", collinear, [[0, 1, 2]], {}, "steel"))
+    assert message.startswith("body 't': mesh: ") and "degenerate" in message
 
 
 def test_solver_names_use_the_schema():

@@ -47,7 +47,7 @@ use std::path::Path;
 
 use crate::error::{GmshError, MeshError};
 use crate::geometry::{Point, DIM};
-use crate::mesh::{dist, Edge, Mesh, Order};
+use crate::mesh::{counter_clockwise, dist, Edge, Mesh, Order};
 
 /// Reads a Gmsh ASCII mesh file (MSH 4.1 or 2.2) holding one body into a validated [`Mesh`].
 pub fn read_msh(path: &Path) -> Result<Mesh, GmshError> {
@@ -831,16 +831,10 @@ impl RawMsh {
                 })?);
             }
             match (element.kind, ids.as_slice()) {
-                (Kind::Triangle(_), &[a, b, c, ref mids @ ..]) => {
-                    if signed_area2(nodes, a, b, c) < 0.0 {
-                        cells.extend([a, c, b]);
-                        // Mid-side nodes of (0,2), (2,1), (1,0).
-                        if let &[m01, m12, m20] = mids {
-                            cells.extend([m20, m12, m01]);
-                        }
-                    } else {
-                        cells.extend_from_slice(&ids);
-                    }
+                (Kind::Triangle(_), _) => {
+                    let start = cells.len();
+                    cells.extend_from_slice(&ids);
+                    counter_clockwise(nodes, order, &mut cells[start..]);
                 }
                 (Kind::Line, &[a, b, ref mid @ ..]) => {
                     let mid = match (order, mid) {
@@ -941,15 +935,5 @@ fn skip_section(tokens: &mut Tokens<'_>, start: usize, name: &str) -> Result<(),
         if tokens.rest_of_line() == end {
             return Ok(());
         }
-    }
-}
-
-/// Twice the signed area of triangle (a, b, c); zero if an index is out of range.
-fn signed_area2(nodes: &[Point], a: usize, b: usize, c: usize) -> f64 {
-    match (nodes.get(a), nodes.get(b), nodes.get(c)) {
-        (Some(p0), Some(p1), Some(p2)) => {
-            (p1[0] - p0[0]) * (p2[1] - p0[1]) - (p2[0] - p0[0]) * (p1[1] - p0[1])
-        }
-        _ => 0.0,
     }
 }

@@ -364,6 +364,26 @@ impl Mesh {
     }
 }
 
+/// Reorders every clockwise triangle of the flat connectivity `cells` (3 vertices, then for P2
+/// the mid-side nodes of edges (0,1), (1,2), (2,0)) into counter-clockwise order: vertices
+/// (0, 2, 1), mid-side nodes of (0,2), (2,1), (1,0). Degenerate triangles and indices out of
+/// range are left for [`Mesh::new`] to report.
+pub fn counter_clockwise(nodes: &[Point], order: Order, cells: &mut [usize]) {
+    for cell in cells.chunks_exact_mut(order.nodes_per_cell()) {
+        let corner = |k: usize| nodes.get(cell[k]).copied();
+        let (Some(p0), Some(p1), Some(p2)) = (corner(0), corner(1), corner(2)) else {
+            continue;
+        };
+        let area2 = (p1[0] - p0[0]) * (p2[1] - p0[1]) - (p2[0] - p0[0]) * (p1[1] - p0[1]);
+        if area2 < 0.0 {
+            cell.swap(1, 2);
+            if cell.len() == 6 {
+                cell.swap(3, 5);
+            }
+        }
+    }
+}
+
 /// Euclidean distance of two points.
 pub fn dist(a: Point, b: Point) -> f64 {
     (a[0] - b[0]).hypot(a[1] - b[1])

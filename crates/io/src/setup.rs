@@ -819,15 +819,18 @@ pub fn mesh(body: &str, spec: &MeshSpec, base_dir: &Path) -> Result<Mesh, LoadEr
 }
 
 /// A mesh given as arrays (nodes, the node indices of each triangle, named boundary edges and
-/// node sets) → a validated mesh of body `body`, with the errors of a mesh read from a file.
+/// node sets) → a validated mesh of body `body`, with the errors of a mesh read from a file;
+/// clockwise triangles are reordered as the Gmsh reader does.
 pub fn mesh_from_arrays(
     body: &str,
     nodes: Vec<Point>,
     order: Order,
-    cells: Vec<usize>,
+    mut cells: Vec<usize>,
     boundaries: BTreeMap<String, Vec<Edge>>,
     node_sets: BTreeMap<String, Vec<usize>>,
 ) -> Result<Mesh, SetupError> {
+    // Clockwise triangles are reordered, as the Gmsh reader does.
+    contactdd_core::mesh::counter_clockwise(&nodes, order, &mut cells);
     Mesh::new(nodes, order, cells, boundaries, node_sets).map_err(|e| mesh_error(body, "mesh", e))
 }
 
