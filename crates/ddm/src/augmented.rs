@@ -16,8 +16,6 @@
 //! normal displacement of the contact points). The result is that inner solve: its pressures and
 //! fields are consistent with each other, and its multipliers are the reported pressures.
 
-use std::borrow::Cow;
-
 use crate::anderson::Anderson;
 use crate::contact::Interface;
 use crate::iteration::{iterate_on, Hooks, Outcome, Record, Settings, Stop, ANDERSON_DEPTH};
@@ -33,11 +31,11 @@ pub const GAP_TOL: f64 = 1e-6;
 pub const STALL: usize = 5;
 
 /// The outcome of the multiplier loop.
-pub struct Augmented<'p> {
+pub struct Augmented {
     /// The last inner solve; `iterations` and `history` count every inner iteration.
     pub outcome: Outcome,
     /// The contact points with the multipliers of the last inner solve.
-    pub interface: Cow<'p, Interface>,
+    pub interface: Interface,
     /// Multiplier updates (inner solves) taken.
     pub updates: usize,
     /// The gap tolerance used (length).
@@ -47,19 +45,15 @@ pub struct Augmented<'p> {
 /// Solves the model's contact problem with augmented Lagrangian enforcement on the pairs that
 /// ask for it (the others keep λ = 0, the penalty formulation); the first inner solve starts from
 /// the interface loads `warm` when given.
-pub fn solve<'p>(
+pub fn solve(
     model: &Model,
-    prepared: &'p Prepared,
+    prepared: &Prepared,
     settings: &Settings,
     hooks: Hooks<'_>,
     warm: Option<&[f64]>,
-) -> Augmented<'p> {
+) -> Augmented {
     let mut interface = prepared.interface.clone();
-    let augmented: Vec<bool> = interface
-        .points
-        .iter()
-        .map(|p| p.has_partner() && model.pairs[p.pair].enforcement == Enforcement::Augmented)
-        .collect();
+    let augmented = augmented_points(model, &interface);
     let m = interface.len();
     let mut history: Vec<Record> = Vec::new();
     let mut memory = Anderson::new(ANDERSON_DEPTH);
@@ -87,15 +81,10 @@ pub fn solve<'p>(
             };
         }
         if gap_tol.is_nan() {
-            let size = outcome.un.iter().fold(0.0, |m: f64, u| m.max(u.abs()));
-            gap_tol = GAP_TOL * size;
+            gap_tol = default_gap_tol(&outcome.un);
         }
-        // G(λ): the pressures of this solve, on the augmented points.
-        let mut next: Vec<f64> = pressures(&interface, &outcome.un);
-        next.iter_mut()
-            .zip(&augmented)
-            .for_each(|(p, &a)| *p = if a { *p } else { 0.0 });
-        let violation = signorini_violation(&interface, &outcome.un, &augmented, &next);
+        // G(λ): the pressures of this solve on the augmented points, and how far it is from exact.
+        let (next, violation) = uzawa_update(&interface, &outcome.un, &augmented);
         if violation <= gap_tol {
             return finish(outcome, history, interface, updates, gap_tol);
         }
@@ -132,18 +121,18 @@ pub fn solve<'p>(
 }
 
 /// The result of the loop: `outcome` with the whole history.
-fn finish<'p>(
+fn finish(
     mut outcome: Outcome,
     history: Vec<Record>,
     interface: Interface,
     updates: usize,
     gap_tol: f64,
-) -> Augmented<'p> {
+) -> Augmented {
     outcome.iterations = history.len();
     outcome.history = history;
     Augmented {
         outcome,
-        interface: Cow::Owned(interface),
+        interface,
         updates,
         gap_tol,
     }
@@ -159,12 +148,7 @@ struct Best {
 
 impl Best {
     /// The solve returned as [`Stop::Unenforced`] after `updates` updates in all.
-    fn unenforced<'p>(
-        mut self,
-        history: Vec<Record>,
-        updates: usize,
-        gap_tol: f64,
-    ) -> Augmented<'p> {
+    fn unenforced(mut self, history: Vec<Record>, updates: usize, gap_tol: f64) -> Augmented {
         self.outcome.stop = Stop::Unenforced {
             updates,
             violation: self.violation,
@@ -202,40 +186,49 @@ fn inner_solve(
     outcome
 }
 
-/// The pressure magnitude p = −σ_n ≥ 0 of every point.
-pub(crate) fn pressures(interface: &Interface, un: &[f64]) -> Vec<f64> {
-    let mut s = vec![0.0; un.len()];
-    interface.sum_normal(un, &mut s);
+/// The points of `interface` whose pair uses the augmented Lagrangian (and that have a partner).
+pub(crate) fn augmented_points(model: &Model, interface: &Interface) -> Vec<bool> {
     interface
         .points
         .iter()
-        .zip(&s)
-        .map(|(p, &s)| -p.pressure(s))
+        .map(|p| p.has_partner() && model.pairs[p.pair].enforcement == Enforcement::Augmented)
         .collect()
 }
 
-/// The largest violation of the Signorini conditions over the `augmented` points: the gap
-/// |d − s| where the pressure is positive, the penetration (s − d)⁺ elsewhere.
-pub(crate) fn signorini_violation(
+/// The default gap tolerance for the normal displacements `un` of a first solve.
+pub(crate) fn default_gap_tol(un: &[f64]) -> f64 {
+    GAP_TOL * un.iter().fold(0.0, |m: f64, u| m.max(u.abs()))
+}
+
+/// One Uzawa update from the normal displacements `un` of a solve with the multipliers of
+/// `interface`: the new multipliers (the pressure magnitude p = −σ_n of every `augmented` point,
+/// 0 elsewhere) and the largest violation of the Signorini conditions over those points — the
+/// gap |d − s| where p > 0, the penetration (s − d)⁺ elsewhere.
+pub(crate) fn uzawa_update(
     interface: &Interface,
     un: &[f64],
     augmented: &[bool],
-    pressure: &[f64],
-) -> f64 {
+) -> (Vec<f64>, f64) {
     let mut s = vec![0.0; un.len()];
     interface.sum_normal(un, &mut s);
-    interface
+    let mut violation = 0.0f64;
+    let multipliers = interface
         .points
         .iter()
         .enumerate()
-        .filter(|&(j, _)| augmented[j])
         .map(|(j, p)| {
-            let gap = p.gap - s[j];
-            if pressure[j] > 0.0 {
+            if !augmented[j] {
+                return 0.0;
+            }
+            let (pressure, gap) = (-p.pressure(s[j]), p.gap - s[j]);
+            let v = if pressure > 0.0 {
                 gap.abs()
             } else {
                 (-gap).max(0.0)
-            }
+            };
+            violation = violation.max(v);
+            pressure
         })
-        .fold(0.0, f64::max)
+        .collect();
+    (multipliers, violation)
 }

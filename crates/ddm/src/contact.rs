@@ -57,11 +57,8 @@ impl ContactPoint {
 
     /// The gap the penalty acts on: d − θλ (d itself for the penalty formulation, λ = 0).
     pub fn penalty_gap(&self) -> f64 {
-        if self.multiplier == 0.0 {
-            self.gap
-        } else {
-            self.gap - self.theta * self.multiplier
-        }
+        // d − θ·0 is d to the bit, so the penalty formulation is unchanged.
+        self.gap - self.theta * self.multiplier
     }
 
     /// The penalty overlap (d − θλ − s)⁻ ≤ 0 for the sum `s` of the normal displacements across

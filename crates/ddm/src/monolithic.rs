@@ -25,10 +25,10 @@ use std::time::Instant;
 
 use rayon::prelude::*;
 
-use crate::augmented::{pressures, signorini_violation, GAP_TOL};
+use crate::augmented::{augmented_points, default_gap_tol, uzawa_update};
 use crate::contact::Interface;
 use crate::error::SetupError;
-use crate::model::{Enforcement, Model};
+use crate::model::Model;
 use crate::solution::{body_results, pair_results, BodyResult, PairResult};
 
 use modes::{dot, project_out, Mode};
@@ -147,11 +147,7 @@ pub fn solve_monolithic_with(
         .enumerate()
         .map(|(b, body)| ReducedBody::new(body, interface.of_body(b), par))
         .collect::<Result<Vec<_>, _>>()?;
-    let augmented: Vec<bool> = interface
-        .points
-        .iter()
-        .map(|p| p.has_partner() && model.pairs[p.pair].enforcement == Enforcement::Augmented)
-        .collect();
+    let augmented = augmented_points(model, &interface);
     let mut gap_tol = settings.gap_tol.unwrap_or(f64::NAN);
     let mut updates = 0;
     loop {
@@ -162,10 +158,9 @@ pub fn solve_monolithic_with(
             let run = newton(&system, &modes, settings, on_step);
             let un: Vec<f64> = system.un.iter().map(|a| a.at(&run.x)).collect();
             if gap_tol.is_nan() {
-                gap_tol = GAP_TOL * un.iter().fold(0.0, |m: f64, u| m.max(u.abs()));
+                gap_tol = default_gap_tol(&un);
             }
-            let lambda = pressures(&interface, &un);
-            let violation = signorini_violation(&interface, &un, &augmented, &lambda);
+            let (lambda, violation) = uzawa_update(&interface, &un, &augmented);
             let enforced = !model.is_augmented() || violation <= gap_tol;
             if run.stop.is_some() || enforced || updates >= settings.max_updates {
                 let unenforced = (!enforced).then(|| {

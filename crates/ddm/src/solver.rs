@@ -136,7 +136,12 @@ pub fn solve_from(
     }
     let (outcome, interface, updates, gap_tol) = if model.is_augmented() {
         let a = crate::augmented::solve(model, prepared, settings, hooks, warm);
-        (a.outcome, a.interface, a.updates, Some(a.gap_tol))
+        (
+            a.outcome,
+            Cow::Owned(a.interface),
+            a.updates,
+            Some(a.gap_tol),
+        )
     } else {
         let outcome = iterate_on(prepared, &prepared.interface, warm, settings, hooks);
         (outcome, Cow::Borrowed(&prepared.interface), 0, None)
