@@ -34,6 +34,16 @@ pub fn progress(note: &str) {
     }
 }
 
+/// The live status of an iteration: its number, the largest relative change, the closed points.
+pub fn status_text(r: &Record) -> String {
+    let change = r.rel_change.iter().copied().fold(0.0, f64::max);
+    let closed: usize = r.active.iter().sum();
+    format!(
+        "iteration {}  change {change:.2e}  closed points {closed}",
+        r.k
+    )
+}
+
 /// The per-iteration table: k, γ, then per body the relative change, the number of closed contact
 /// points and the normal force Σ w |σ_n| (the sum of magnitudes, not the resultant).
 pub struct IterationTable {

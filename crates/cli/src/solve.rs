@@ -3,7 +3,8 @@
 //! write the result folder, print the summary.
 
 use std::path::{Path, PathBuf};
-use std::time::Instant;
+use std::sync::Mutex;
+use std::time::{Duration, Instant};
 
 use anyhow::{Context, Result};
 
@@ -18,8 +19,9 @@ use contactdd_io::output::{safe_file_name, write_monolithic_results, write_resul
 use contactdd_io::reactions::reactions;
 
 use crate::args::{Common, MonolithicArgs, SolveArgs};
+use crate::console::Status;
 use crate::report::{
-    applied_loads, pair_report, progress, reaction_report, sig, timing, IterationTable,
+    applied_loads, pair_report, progress, reaction_report, sig, status_text, timing, IterationTable,
 };
 use crate::steps::{run_steps, StepRun};
 use crate::{load, with_threads, Exit};
@@ -50,6 +52,40 @@ fn shown(k: usize) -> bool {
         step *= 10;
     }
     k % step == 0
+}
+
+/// Paces the iteration table: the lines of [`shown`], plus one whenever [`Pacer::QUIET_FOR`] has
+/// passed since the last, so that a slow run in a log file never looks dead.
+struct Pacer {
+    /// When the last line was printed, and its iteration.
+    last: Mutex<(Instant, usize)>,
+}
+
+impl Pacer {
+    const QUIET_FOR: Duration = Duration::from_secs(10);
+
+    fn new() -> Pacer {
+        Pacer {
+            last: Mutex::new((Instant::now(), 0)),
+        }
+    }
+
+    /// Whether iteration `k` gets a line (and remembers it if so).
+    fn take(&self, k: usize) -> bool {
+        let Ok(mut last) = self.last.lock() else {
+            return shown(k);
+        };
+        let due = shown(k) || last.0.elapsed() >= Self::QUIET_FOR;
+        if due {
+            *last = (Instant::now(), k);
+        }
+        due
+    }
+
+    /// The iteration of the last line printed (0: none).
+    fn last(&self) -> usize {
+        self.last.lock().map_or(0, |l| l.1)
+    }
 }
 
 /// `contactdd solve`.
@@ -134,10 +170,12 @@ pub fn solve(args: SolveArgs) -> Result<Exit> {
             );
             say!("{}", table.header());
         }
+        let (pacer, status) = (Pacer::new(), Status::new(!quiet));
         let print_line = |r: &Record| {
-            if shown(r.k) {
+            if pacer.take(r.k) {
                 say!("{}", table.line(r))
             }
+            status.update(&status_text(r));
         };
         let hooks = Hooks {
             on_iteration: if quiet { None } else { Some(&print_line) },
@@ -145,8 +183,9 @@ pub fn solve(args: SolveArgs) -> Result<Exit> {
         };
         let sol =
             dd_solve(model, &prepared, &settings, hooks).map_err(|e| anyhow::anyhow!("{e}"))?;
+        status.finish();
         match sol.history.last() {
-            Some(last) if !quiet && !shown(last.k) => say!("{}", table.line(last)),
+            Some(last) if !quiet && pacer.last() != last.k => say!("{}", table.line(last)),
             _ => {}
         }
         let written = write_results_noted(&out, model, &sol, loaded.problem.units.as_deref())
