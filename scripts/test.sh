@@ -8,6 +8,9 @@ cd "$(dirname "$0")/.."
 echo "== Rust tests"
 cargo test --release --workspace --exclude contactdd-python
 
+echo "== One build for the quick start, the tests and the Python module"
+python3 scripts/shared_build.py
+
 echo "== Python tests"
 venv="target/test-venv"
 if [ ! -x "$venv/bin/python" ]; then
