@@ -52,6 +52,9 @@ def test_ctrl_c_interrupts(call):
         f"""
         import os, signal, threading, time
         import contactdd
+        # A process started in the background inherits SIGINT ignored; the test is about
+        # contactdd's handling, so install Python's own handler whatever the parent did.
+        signal.signal(signal.SIGINT, signal.default_int_handler)
         problem = contactdd.notch_benchmark()
         threading.Timer(0.5, lambda: os.kill(os.getpid(), signal.SIGINT)).start()
         t = time.perf_counter()
