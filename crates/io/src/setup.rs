@@ -815,7 +815,57 @@ pub fn mesh(body: &str, spec: &MeshSpec, base_dir: &Path) -> Result<Mesh, LoadEr
                 _ => Ok(mesh),
             }
         }
+        MeshSpec::Inline {
+            nodes,
+            triangles,
+            boundaries,
+            node_sets,
+        } => Ok(inline_mesh(body, nodes, triangles, boundaries, node_sets)?),
     }
+}
+
+/// An inline mesh table (`kind = "inline"`) → a validated mesh of body `body`: the order follows
+/// from the triangles' length (3 or 6 nodes, the same for all), the rest is [`mesh_from_arrays`].
+fn inline_mesh(
+    body: &str,
+    nodes: &[Point],
+    triangles: &[Vec<usize>],
+    boundaries: &BTreeMap<String, Vec<[usize; 2]>>,
+    node_sets: &BTreeMap<String, Vec<usize>>,
+) -> Result<Mesh, SetupError> {
+    let width = triangles.first().map_or(3, Vec::len);
+    let order = match width {
+        3 => Order::P1,
+        6 => Order::P2,
+        n => {
+            return Err(body_error(
+                body,
+                "mesh.triangles",
+                format!("a triangle has 3 (P1) or 6 (P2) nodes, got {n}"),
+            ))
+        }
+    };
+    if let Some(i) = triangles.iter().position(|t| t.len() != width) {
+        return Err(body_error(
+            body,
+            "mesh.triangles",
+            format!(
+                "triangle {i} has {} nodes, the first has {width}",
+                triangles[i].len()
+            ),
+        ));
+    }
+    let edges = boundaries
+        .iter()
+        .map(|(name, e)| {
+            (
+                name.clone(),
+                e.iter().map(|&[a, b]| Edge::new(a, b)).collect(),
+            )
+        })
+        .collect();
+    let cells = triangles.iter().flatten().copied().collect();
+    mesh_from_arrays(body, nodes.to_vec(), order, cells, edges, node_sets.clone())
 }
 
 /// A mesh given as arrays (nodes, the node indices of each triangle, named boundary edges and
