@@ -8,6 +8,7 @@
 //! every 50 ms to check for signals: Ctrl-C sets the solver's cancel flag, the iteration stops at
 //! the next iteration boundary and `KeyboardInterrupt` is raised.
 
+use std::path::Path;
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::{Arc, Mutex};
 use std::time::Duration;
@@ -17,17 +18,18 @@ use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList};
 
 use contactdd_core::Order;
-use contactdd_ddm::benchmark::Notch;
 use contactdd_ddm::contact::Interface;
 use contactdd_ddm::contact_check;
-use contactdd_ddm::{Enforcement, Gamma, Hooks, Method, Model, Record, Settings, SetupError};
+use contactdd_ddm::{Enforcement, Gamma, Hooks, Method, Model, Record, SetupError};
 use contactdd_io::problem::EnforcementSpec;
-use contactdd_io::setup::{ModelBuilder, MAX_RECTANGLE_CELLS};
+use contactdd_io::setup::MAX_RECTANGLE_CELLS;
 
+mod benchmark;
 mod convert;
 mod error;
 mod problem;
 mod results;
+mod state;
 
 use error::{
     convergence_error, convergence_error_type, io_error_type, panic_error, setup_error,
@@ -512,29 +514,7 @@ fn notch_benchmark(nx: usize, ny: usize, order: &str) -> PyResult<Problem> {
             ),
         }));
     }
-    let notch = Notch {
-        nx,
-        ny,
-        order,
-        ..Notch::default()
-    };
-    let model = notch.model().map_err(setup_error)?;
-    let materials = model
-        .bodies
-        .first()
-        .map(|b| ("steel".to_string(), b.material))
-        .into_iter()
-        .collect();
-    let name = model.name.clone();
-    let mut p = Problem::with_model(&name, ModelBuilder::from_model(model, materials));
-    // The paper's one-level iteration, as in examples/notch.toml.
-    p.settings = Settings {
-        tol: 1e-3,
-        u0: 1e-4,
-        u_prev: 2e-4,
-        ..Settings::paper(Method::NewtonKurchatov, Gamma::Constant(0.5))
-    };
-    Ok(p)
+    Problem::from_spec(benchmark::notch_spec(nx, ny, order), Path::new(""))
 }
 
 /// The contactdd extension module.

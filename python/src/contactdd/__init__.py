@@ -37,7 +37,7 @@ from ._contactdd import (
     solve_steps,
     sweep,
 )
-from . import plot
+from . import _pickle, plot  # noqa: F401  (_pickle: ContactddIOError's pickling)
 
 __all__ = [
     "METHODS",
