@@ -10,10 +10,9 @@ use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList, PyTuple, PyType};
 
 use contactdd_core::DIM;
-use contactdd_ddm::iteration::Stop;
 use contactdd_ddm::solution::{BodyResult, PairResult};
 use contactdd_ddm::{Model, MonolithicSolution, Solution};
-use contactdd_io::output::point_status;
+use contactdd_io::output::{point_status, stop_name};
 
 use crate::convert::{array1, array2, name_of};
 use crate::error::input_error;
@@ -339,18 +338,6 @@ fn json_to_py<'py>(py: Python<'py>, value: &serde_json::Value) -> PyResult<Bound
     let text = serde_json::to_string(value)
         .map_err(|e| input_error(format!("cannot serialize the summary: {e}")))?;
     py.import("json")?.call_method1("loads", (text,))
-}
-
-/// The name of how an iteration ended.
-fn stop_name(stop: &Stop) -> &'static str {
-    match stop {
-        Stop::Converged => "converged",
-        Stop::MaxIterations => "max-iterations",
-        Stop::Diverged { .. } => "diverged",
-        Stop::Interrupted => "interrupted",
-        Stop::Stalled { .. } => "stalled",
-        Stop::Unenforced { .. } => "unenforced",
-    }
 }
 
 /// The result of a domain decomposition solve (also the partial result of a failed one, see

@@ -37,6 +37,7 @@ from ._contactdd import (
     solve_steps,
     sweep,
 )
+from .results_folder import load_results
 from . import _pickle, plot  # noqa: F401  (_pickle: ContactddIOError's pickling)
 
 __all__ = [
@@ -50,6 +51,7 @@ __all__ = [
     "Problem",
     "Result",
     "__version__",
+    "load_results",
     "monolithic",
     "notch_benchmark",
     "plot",
