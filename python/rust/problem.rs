@@ -16,7 +16,8 @@ use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyTuple, PyType};
 use serde::de::DeserializeOwned;
 
-use contactdd_core::{Material, Plane, Vector, DIM};
+use contactdd_core::gmsh::parse_msh_surface;
+use contactdd_core::{Material, Mesh, Order, Plane, Vector, DIM};
 use contactdd_ddm::{Gamma, Method, Model, Settings, SetupError};
 use contactdd_io::problem::{
     AcceleratorSpec, BodySpec, CoarseSpec, ContactSpec, EnforcementSpec, GammaSpec, GapSpec,
@@ -24,7 +25,7 @@ use contactdd_io::problem::{
 };
 use contactdd_io::setup::{self, ModelBuilder};
 use contactdd_io::write_problem;
-use contactdd_io::Loaded;
+use contactdd_io::{LoadError, Loaded};
 
 use crate::convert::{from_name, name_of, to_json, Bad};
 use crate::error::{input_error, setup_error};
@@ -200,6 +201,21 @@ impl Problem {
     /// body held by supports or a contact pair.
     pub fn model(&self) -> PyResult<Model> {
         self.model.model(&self.name).map_err(setup_error)
+    }
+}
+
+/// A built mesh as an inline mesh table, which resolves to the same mesh.
+fn inline_spec(mesh: &Mesh) -> MeshSpec {
+    let npc = mesh.order().nodes_per_cell();
+    MeshSpec::Inline {
+        nodes: mesh.nodes().to_vec(),
+        triangles: mesh.cells().chunks(npc).map(<[usize]>::to_vec).collect(),
+        boundaries: mesh
+            .boundaries()
+            .iter()
+            .map(|(k, edges)| (k.clone(), edges.iter().map(|e| [e.a, e.b]).collect()))
+            .collect(),
+        node_sets: mesh.node_sets().clone(),
     }
 }
 
@@ -492,6 +508,61 @@ impl Problem {
                 boundaries: edge_sets,
                 node_sets: sets,
             },
+            supports: specs(name, "supports", supports)?,
+            loads: specs(name, "loads", loads)?,
+        };
+        self.add_body_spec(spec)
+    }
+
+    /// Adds a body on a mesh given as the text of a Gmsh ``.msh`` file (ASCII 4.1 or 2.2), read
+    /// by the reader of ``kind = "gmsh"`` meshes with its rules: the physical surface
+    /// ``surface`` is the body (default: the text's only one), the physical curves and points
+    /// that touch it are its boundaries and node sets, clockwise triangles are reordered, and
+    /// curved P2 triangles are refused with the ways out. The mesh is kept in the problem (a
+    /// ``kind = "inline"`` mesh for :meth:`to_toml`). :func:`contactdd.add_meshio_body` and
+    /// :func:`contactdd.add_gmsh_body` use it.
+    ///
+    /// Args:
+    ///     name: unique body name.
+    ///     text: the ``.msh`` text.
+    ///     material: name of a material added with :meth:`add_material`.
+    ///     surface: the body's physical surface (name, or tag number of an unnamed group).
+    ///     order: ``"p2"`` promotes P1 triangles to P2; default: as in the text.
+    ///     supports, loads: as for :meth:`add_body`.
+    ///     source: what the text is, in error messages.
+    #[pyo3(signature = (name, text, material, surface = None, order = None, supports = None, loads = None, source = "<msh text>"))]
+    #[allow(clippy::too_many_arguments)]
+    fn add_msh_body(
+        &mut self,
+        py: Python<'_>,
+        name: &str,
+        text: &str,
+        material: &str,
+        surface: Option<&str>,
+        order: Option<&str>,
+        supports: Option<&Bound<'_, PyAny>>,
+        loads: Option<&Bound<'_, PyAny>>,
+        source: &str,
+    ) -> PyResult<()> {
+        self.model.check_body_name(name).map_err(setup_error)?;
+        let order: Option<Order> = order
+            .map(from_name)
+            .transpose()
+            .map_err(|e| setup_error(body_error(name, "mesh.order", e)))?;
+        let mesh = py
+            .detach(|| {
+                let mesh = parse_msh_surface(text, surface).map_err(|e| LoadError::Gmsh {
+                    body: name.to_string(),
+                    path: source.to_string(),
+                    source: e,
+                })?;
+                setup::gmsh_order(name, mesh, order, source)
+            })
+            .map_err(setup_error)?;
+        let spec = BodySpec {
+            name: name.to_string(),
+            material: material.to_string(),
+            mesh: inline_spec(&mesh),
             supports: specs(name, "supports", supports)?,
             loads: specs(name, "loads", loads)?,
         };

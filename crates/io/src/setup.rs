@@ -800,20 +800,7 @@ pub fn mesh(body: &str, spec: &MeshSpec, base_dir: &Path) -> Result<Mesh, LoadEr
                     .map_nodes(|p| std::array::from_fn(|c| scale * p[c] + shift[c]))
                     .map_err(|e| mesh_error(body, "mesh", e))?;
             }
-            match (order, mesh.order()) {
-                (Some(Order::P2), Order::P1) => Ok(mesh.to_p2()),
-                (Some(Order::P1), Order::P2) => Err(body_error(
-                    body,
-                    "mesh.order",
-                    format!(
-                        "'{}' has P2 triangles; they cannot be read as p1 (use order = \"p2\" or \
-                         leave order out)",
-                        path.display()
-                    ),
-                )
-                .into()),
-                _ => Ok(mesh),
-            }
+            gmsh_order(body, mesh, *order, &path.display().to_string())
         }
         MeshSpec::Inline {
             nodes,
@@ -821,6 +808,29 @@ pub fn mesh(body: &str, spec: &MeshSpec, base_dir: &Path) -> Result<Mesh, LoadEr
             boundaries,
             node_sets,
         } => Ok(inline_mesh(body, nodes, triangles, boundaries, node_sets)?),
+    }
+}
+
+/// A mesh read from Gmsh (`source` names it in messages) at the `order` asked for: P1 triangles
+/// are promoted to P2 for `p2`; P2 triangles cannot be read as `p1`.
+pub fn gmsh_order(
+    body: &str,
+    mesh: Mesh,
+    order: Option<Order>,
+    source: &str,
+) -> Result<Mesh, LoadError> {
+    match (order, mesh.order()) {
+        (Some(Order::P2), Order::P1) => Ok(mesh.to_p2()),
+        (Some(Order::P1), Order::P2) => Err(body_error(
+            body,
+            "mesh.order",
+            format!(
+                "'{source}' has P2 triangles; they cannot be read as p1 (use order = \"p2\" or \
+                 leave order out)"
+            ),
+        )
+        .into()),
+        _ => Ok(mesh),
     }
 }
 

@@ -37,6 +37,7 @@ from ._contactdd import (
     solve_steps,
     sweep,
 )
+from .meshes import add_gmsh_body, add_meshio_body
 from .results_folder import load_results
 from . import _pickle, plot  # noqa: F401  (_pickle: ContactddIOError's pickling)
 
@@ -51,6 +52,8 @@ __all__ = [
     "Problem",
     "Result",
     "__version__",
+    "add_gmsh_body",
+    "add_meshio_body",
     "load_results",
     "monolithic",
     "notch_benchmark",
