@@ -21,10 +21,10 @@ use contactdd_core::Order;
 use contactdd_ddm::contact::Interface;
 use contactdd_ddm::contact_check;
 use contactdd_ddm::sweep::SweepRun;
-use rayon::prelude::*;
 use contactdd_ddm::{Enforcement, Gamma, Hooks, Method, Model, Record, SetupError};
 use contactdd_io::problem::EnforcementSpec;
 use contactdd_io::setup::MAX_RECTANGLE_CELLS;
+use rayon::prelude::*;
 
 mod benchmark;
 mod convert;
@@ -445,7 +445,9 @@ fn sweep<'py>(
         };
         with_threads(threads, || {
             let prepared = contactdd_ddm::prepare(&model)?;
-            Ok(sweep_runs(&model, &prepared, &methods, &gammas, &base, cancel, &report))
+            Ok(sweep_runs(
+                &model, &prepared, &methods, &gammas, &base, cancel, &report,
+            ))
         })
     })?;
     if let Some(e) = interrupt {

@@ -485,8 +485,7 @@ impl SolveResult {
     /// The summary of the solve as a dict: the content of the ``summary.json`` file the command
     /// line writes.
     fn summary<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
-        self.origin
-            .summary(py, |m, s| contactdd_io::output::summary_json(m, s))
+        self.origin.summary(py, contactdd_io::output::summary_json)
     }
 
     /// Pickles the result as its attributes and its summary; the unpickled result has the same

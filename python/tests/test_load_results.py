@@ -97,6 +97,10 @@ def test_incomplete_folders_are_refused(notch, tmp_path):
     (tmp_path / "no-vtu" / "upper.vtu").unlink()
     with pytest.raises(contactdd.ContactddError, match="lists 'upper.vtu', which is missing"):
         contactdd.load_results(tmp_path / "no-vtu")
+    shutil.copytree(tmp_path / "run", tmp_path / "bad-vtu")
+    (tmp_path / "bad-vtu" / "lower.vtu").write_text("<VTKFile><Unstructured")
+    with pytest.raises(contactdd.ContactddError, match="lower.vtu: not a VTU file of contactdd"):
+        contactdd.load_results(tmp_path / "bad-vtu")
     with pytest.raises(contactdd.ContactddIOError) as info:
         contactdd.load_results(tmp_path / "nowhere")
     assert isinstance(info.value, OSError) and info.value.errno == errno.ENOENT

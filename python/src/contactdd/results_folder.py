@@ -80,7 +80,7 @@ def load_results(directory: Union[str, "os.PathLike[str]"]) -> Union[Result, Mon
     contact = [_contact(p, folder) for p in _key(summary, "contact", folder)]
     if summary.get("solver") == "monolithic":
         return _monolithic(summary, bodies, contact, folder)
-    return _result(summary, bodies, contact, names, folder)
+    return _result(summary, files, bodies, contact, names, folder)
 
 
 def _io_error(path: Path, e: OSError) -> ContactddIOError:
@@ -132,7 +132,7 @@ def _number(v: Any) -> float:
     return float("nan") if v is None else float(v)
 
 
-def _data_array(element: ET.Element, path: Path) -> np.ndarray:
+def _data_array(element: ET.Element) -> np.ndarray:
     """The values of a VTU ``DataArray`` (ASCII, or base64 binary with a UInt64 byte count)."""
     dtype = np.dtype(_DTYPES[element.get("type", "Float64")]).newbyteorder("<")
     text = element.text or ""
@@ -147,30 +147,32 @@ def _data_array(element: ET.Element, path: Path) -> np.ndarray:
 
 
 def _body(path: Path, info: dict[str, Any]) -> Body:
+    text = _read_text(path)
     try:
-        root = ET.fromstring(_read_text(path))
-    except ET.ParseError as e:
-        raise ContactddError(f"{path}: not a VTU file written by contactdd: {e}") from e
-    arrays = {a.get("Name"): _data_array(a, path) for a in root.iter("DataArray")}
+        return _parse_body(text, info)
+    except (ET.ParseError, KeyError, ValueError, IndexError, TypeError) as e:
+        raise ContactddError(f"{path}: not a VTU file of contactdd ({type(e).__name__}: {e})") from e
+
+
+def _parse_body(text: str, info: dict[str, Any]) -> Body:
+    root = ET.fromstring(text)
+    arrays = {a.get("Name"): _data_array(a) for a in root.iter("DataArray")}
     points = root.find(".//Points/DataArray")
     if points is None:
-        raise ContactddError(f"{path}: no Points")
+        raise ValueError("no Points")
     types = arrays["types"]
     per_cell = _CELL_NODES[int(types[0])] if len(types) else 3
-    try:
-        stress = np.column_stack([arrays[f"sigma_{c}"] for c in ["xx", "yy", "xy", "zz"]])
-        return Body._from_state({
-            "name": info["name"],
-            "order": info["order"],
-            "nodes": np.ascontiguousarray(_data_array(points, path)[:, :2]),
-            "triangles": arrays["connectivity"].reshape(-1, per_cell),
-            "displacement": np.ascontiguousarray(arrays["displacement"][:, :2]),
-            "stress": stress,
-            "von_mises": arrays["von_mises"],
-            "contact_pressure": arrays["contact_pressure"],
-        })
-    except KeyError as e:
-        raise ContactddError(f"{path}: no array {e} (not written by contactdd?)") from e
+    stress = np.column_stack([arrays[f"sigma_{c}"] for c in ["xx", "yy", "xy", "zz"]])
+    return Body._from_state({
+        "name": info["name"],
+        "order": info["order"],
+        "nodes": np.ascontiguousarray(_data_array(points)[:, :2]),
+        "triangles": arrays["connectivity"].reshape(-1, per_cell),
+        "displacement": np.ascontiguousarray(arrays["displacement"][:, :2]),
+        "stress": stress,
+        "von_mises": arrays["von_mises"],
+        "contact_pressure": arrays["contact_pressure"],
+    })
 
 
 def _contact(pair: dict[str, Any], folder: Path) -> Contact:
@@ -197,9 +199,9 @@ def _contact(pair: dict[str, Any], folder: Path) -> Contact:
             "max_penetration": _number(pair["max_penetration"]),
             "complementarity": _number(pair["complementarity"]),
         })
-    except KeyError as e:
-        raise ContactddError(f"{folder}: summary.json: contact pair without {e} (written by "
-                             "another version of contactdd?)") from e
+    except (KeyError, ValueError, TypeError) as e:
+        raise ContactddError(f"{folder}: summary.json: a contact pair not as contactdd writes it "
+                             f"({type(e).__name__}: {e})") from e
 
 
 def _history(path: Path, names: list[str]) -> dict[str, np.ndarray]:
@@ -218,8 +220,10 @@ def _history(path: Path, names: list[str]) -> dict[str, np.ndarray]:
     }
 
 
-def _result(summary: dict[str, Any], bodies: list[Body], contact: list[Contact],
-            names: list[str], folder: Path) -> Result:
+def _result(summary: dict[str, Any], files: list[str], bodies: list[Body],
+            contact: list[Contact], names: list[str], folder: Path) -> Result:
+    if "history.csv" not in files:
+        raise ContactddError(f"{folder}: summary.json lists no history.csv")
     steps = summary.get("steps")
     state = {
         key: _key(summary, key, folder)
