@@ -12,6 +12,8 @@ The bodies share no node: the cylinder touches each plate at one point, where bo
 
 Usage: python3 make_cylinder_plates.py [-o cylinder_plates.msh] [--h-contact 0.004]
 (needs `pip install gmsh`; the committed .msh was written with gmsh 4.15.2 and the defaults).
+`build()` meshes the model in the current Gmsh session without writing it, for Python's
+`contactdd.add_gmsh_body` (python/tests/test_meshes.py).
 """
 
 import argparse
@@ -31,15 +33,8 @@ def plate(occ, y0, y1):
     return surface, lines[0:2], lines[3:5], (p[1], p[4])
 
 
-def main():
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("-o", "--output", default="cylinder_plates.msh")
-    parser.add_argument("--h-contact", type=float, default=0.004, help="element size at the contacts")
-    parser.add_argument("--h-max", type=float, default=0.1, help="largest element size")
-    parser.add_argument("--growth", type=float, default=0.05, help="size growth per unit distance")
-    args = parser.parse_args()
-
-    gmsh.initialize()
+def build(h_contact=0.004, h_max=0.1, growth=0.05):
+    """Meshes the three bodies in the current Gmsh session (gmsh initialised)."""
     gmsh.option.setNumber("General.Terminal", 0)
     gmsh.model.add("cylinder_plates")
     occ = gmsh.model.occ
@@ -69,12 +64,24 @@ def main():
     dist = field.add("Distance")
     field.setNumbers(dist, "PointsList", [bottom, top])
     grow = field.add("MathEval")
-    field.setString(grow, "F", f"min({args.h_max}, {args.h_contact} + {args.growth} * F{dist})")
+    field.setString(grow, "F", f"min({h_max}, {h_contact} + {growth} * F{dist})")
     field.setAsBackgroundMesh(grow)
     for option in ("MeshSizeExtendFromBoundary", "MeshSizeFromPoints", "MeshSizeFromCurvature"):
         gmsh.option.setNumber(f"Mesh.{option}", 0)
-    gmsh.option.setNumber("Mesh.MshFileVersion", 4.1)
     gmsh.model.mesh.generate(2)
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("-o", "--output", default="cylinder_plates.msh")
+    parser.add_argument("--h-contact", type=float, default=0.004, help="element size at the contacts")
+    parser.add_argument("--h-max", type=float, default=0.1, help="largest element size")
+    parser.add_argument("--growth", type=float, default=0.05, help="size growth per unit distance")
+    args = parser.parse_args()
+
+    gmsh.initialize()
+    build(args.h_contact, args.h_max, args.growth)
+    gmsh.option.setNumber("Mesh.MshFileVersion", 4.1)
     gmsh.write(args.output)
     gmsh.finalize()
 

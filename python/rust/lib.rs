@@ -8,6 +8,7 @@
 //! every 50 ms to check for signals: Ctrl-C sets the solver's cancel flag, the iteration stops at
 //! the next iteration boundary and `KeyboardInterrupt` is raised.
 
+use std::path::Path;
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::{Arc, Mutex};
 use std::time::Duration;
@@ -17,17 +18,20 @@ use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList};
 
 use contactdd_core::Order;
-use contactdd_ddm::benchmark::Notch;
 use contactdd_ddm::contact::Interface;
 use contactdd_ddm::contact_check;
-use contactdd_ddm::{Enforcement, Gamma, Hooks, Method, Model, Record, Settings, SetupError};
+use contactdd_ddm::sweep::SweepRun;
+use contactdd_ddm::{Enforcement, Gamma, Hooks, Method, Model, Record, SetupError};
 use contactdd_io::problem::EnforcementSpec;
-use contactdd_io::setup::{ModelBuilder, MAX_RECTANGLE_CELLS};
+use contactdd_io::setup::MAX_RECTANGLE_CELLS;
+use rayon::prelude::*;
 
+mod benchmark;
 mod convert;
 mod error;
 mod problem;
 mod results;
+mod state;
 
 use error::{
     convergence_error, convergence_error_type, io_error_type, panic_error, setup_error,
@@ -375,13 +379,17 @@ fn warn_contact(py: Python<'_>, findings: &[contact_check::Finding]) -> PyResult
 ///         the paper's).
 ///     gammas: γ values (numbers, or ``"auto"``); default 0.02, 0.05, 0.1, 0.15, …, 0.85.
 ///     tol, max_iter, u0, u_prev, threads: as for :func:`solve` (default: the problem's).
+///     progress: a callable called with each run's dict (as returned) as soon as the run ends;
+///         the runs execute in parallel, so they end in any order. An exception it raises stops
+///         the sweep (runs not yet started are skipped, running ones stop) and is raised by
+///         :func:`sweep`.
 ///
 /// Returns:
 ///     One dict per run, γ by γ and method by method: ``{"method": str, "gamma": float or
 ///     "auto", "iterations": int, "converged": bool, "reason": str}`` (``reason`` is empty when
 ///     converged).
 #[pyfunction]
-#[pyo3(signature = (problem, methods = None, gammas = None, tol = None, max_iter = None, u0 = None, u_prev = None, threads = None))]
+#[pyo3(signature = (problem, methods = None, gammas = None, tol = None, max_iter = None, u0 = None, u_prev = None, threads = None, progress = None))]
 #[allow(clippy::too_many_arguments)]
 fn sweep<'py>(
     py: Python<'py>,
@@ -393,6 +401,7 @@ fn sweep<'py>(
     u0: Option<f64>,
     u_prev: Option<f64>,
     threads: Option<usize>,
+    progress: Option<Py<PyAny>>,
 ) -> PyResult<Bound<'py, PyList>> {
     let methods: Vec<Method> = match methods {
         None => SWEEP_METHODS.to_vec(),
@@ -420,35 +429,83 @@ fn sweep<'py>(
         };
         (p.model()?, o.apply(&p.settings)?, threads.or(p.threads))
     };
+    // An exception of the progress callback: it stops the sweep and is raised afterwards.
+    let failed: Mutex<Option<PyErr>> = Mutex::new(None);
     let (out, interrupt) = run_interruptible(py, |cancel| {
+        let report = |r: &SweepRun| {
+            if let Some(callback) = &progress {
+                let called = Python::attach(|py| callback.call1(py, (sweep_record(py, r)?,)));
+                if let Err(e) = called {
+                    if let Ok(mut slot) = failed.lock() {
+                        slot.get_or_insert(e);
+                    }
+                    cancel.store(true, Ordering::Relaxed);
+                }
+            }
+        };
         with_threads(threads, || {
             let prepared = contactdd_ddm::prepare(&model)?;
-            Ok(contactdd_ddm::sweep::sweep_with_cancel(
-                &model,
-                &prepared,
-                &methods,
-                &gammas,
-                &base,
-                Some(cancel),
+            Ok(sweep_runs(
+                &model, &prepared, &methods, &gammas, &base, cancel, &report,
             ))
         })
     })?;
     if let Some(e) = interrupt {
         return Err(e);
     }
+    if let Some(e) = failed.into_inner().ok().flatten() {
+        return Err(e);
+    }
     let runs = out.map_err(setup_error)?;
     let list = PyList::empty(py);
-    for r in runs {
-        let d = PyDict::new(py);
-        d.set_item("method", r.method.name())?;
-        let g = r.gamma.map_or(Gamma::Auto, Gamma::Constant);
-        d.set_item("gamma", gamma_to_py(py, g)?)?;
-        d.set_item("iterations", r.iterations)?;
-        d.set_item("converged", r.converged)?;
-        d.set_item("reason", r.reason)?;
-        list.append(d)?;
+    for r in &runs {
+        list.append(sweep_record(py, r)?)?;
     }
     Ok(list)
+}
+
+/// The runs of a sweep in its order (γ by γ, method by method), each run by the sweep of
+/// contactdd-ddm on its own and reported to `report` as soon as it ends; the runs execute in
+/// parallel, as in one sweep of them all.
+fn sweep_runs(
+    model: &Model,
+    prepared: &contactdd_ddm::Prepared,
+    methods: &[Method],
+    gammas: &[Gamma],
+    base: &contactdd_ddm::Settings,
+    cancel: &AtomicBool,
+    report: &(dyn Fn(&SweepRun) + Sync),
+) -> Vec<SweepRun> {
+    let jobs: Vec<(Method, Gamma)> = gammas
+        .iter()
+        .flat_map(|&g| methods.iter().map(move |&m| (m, g)))
+        .collect();
+    jobs.par_iter()
+        .flat_map_iter(|&(m, g)| {
+            let runs = contactdd_ddm::sweep::sweep_with_cancel(
+                model,
+                prepared,
+                &[m],
+                &[g],
+                base,
+                Some(cancel),
+            );
+            runs.iter().for_each(report);
+            runs
+        })
+        .collect()
+}
+
+/// One run of a sweep as its dict: method, gamma, iterations, converged, reason.
+fn sweep_record<'py>(py: Python<'py>, r: &SweepRun) -> PyResult<Bound<'py, PyDict>> {
+    let d = PyDict::new(py);
+    d.set_item("method", r.method.name())?;
+    let g = r.gamma.map_or(Gamma::Auto, Gamma::Constant);
+    d.set_item("gamma", gamma_to_py(py, g)?)?;
+    d.set_item("iterations", r.iterations)?;
+    d.set_item("converged", r.converged)?;
+    d.set_item("reason", r.reason.clone())?;
+    Ok(d)
 }
 
 /// γ = 0.02, 0.05, 0.1, 0.15, …, 0.85: the grid of the paper's γ study.
@@ -512,29 +569,7 @@ fn notch_benchmark(nx: usize, ny: usize, order: &str) -> PyResult<Problem> {
             ),
         }));
     }
-    let notch = Notch {
-        nx,
-        ny,
-        order,
-        ..Notch::default()
-    };
-    let model = notch.model().map_err(setup_error)?;
-    let materials = model
-        .bodies
-        .first()
-        .map(|b| ("steel".to_string(), b.material))
-        .into_iter()
-        .collect();
-    let name = model.name.clone();
-    let mut p = Problem::with_model(&name, ModelBuilder::from_model(model, materials));
-    // The paper's one-level iteration, as in examples/notch.toml.
-    p.settings = Settings {
-        tol: 1e-3,
-        u0: 1e-4,
-        u_prev: 2e-4,
-        ..Settings::paper(Method::NewtonKurchatov, Gamma::Constant(0.5))
-    };
-    Ok(p)
+    Problem::from_spec(benchmark::notch_spec(nx, ny, order), Path::new(""))
 }
 
 /// The contactdd extension module.

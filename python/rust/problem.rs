@@ -13,17 +13,19 @@ use std::path::{Path, PathBuf};
 use numpy::{AllowTypeChange, PyArrayLike2, PyUntypedArrayMethods};
 use pyo3::exceptions::PyTypeError;
 use pyo3::prelude::*;
-use pyo3::types::PyDict;
+use pyo3::types::{PyDict, PyTuple, PyType};
 use serde::de::DeserializeOwned;
 
-use contactdd_core::{Edge, Material, Order, Plane, Point, DIM};
+use contactdd_core::gmsh::parse_msh_surface;
+use contactdd_core::{Material, Mesh, Order, Plane, Vector, DIM};
 use contactdd_ddm::{Gamma, Method, Model, Settings, SetupError};
 use contactdd_io::problem::{
     AcceleratorSpec, BodySpec, CoarseSpec, ContactSpec, EnforcementSpec, GammaSpec, GapSpec,
-    LoadSpec, MaterialSpec, MeshSpec, PenaltySpec, SolverSpec, SupportSpec,
+    MaterialSpec, MeshSpec, PenaltySpec, Problem as ProblemSpec, SolverSpec,
 };
 use contactdd_io::setup::{self, ModelBuilder};
-use contactdd_io::Loaded;
+use contactdd_io::write_problem;
+use contactdd_io::{LoadError, Loaded};
 
 use crate::convert::{from_name, name_of, to_json, Bad};
 use crate::error::{input_error, setup_error};
@@ -136,21 +138,25 @@ pub struct Problem {
     pub(crate) model: ModelBuilder,
     pub(crate) settings: Settings,
     pub(crate) threads: Option<usize>,
+    /// The problem as a problem file says it, entry by entry as added (Gmsh paths absolute):
+    /// what :meth:`to_toml` writes, with the current settings.
+    pub(crate) spec: ProblemSpec,
 }
 
 impl Problem {
-    /// A problem holding `model` (built and checked), with default settings.
-    pub fn with_model(name: &str, model: ModelBuilder) -> Problem {
-        Problem {
-            name: name.to_string(),
-            model,
-            settings: Settings::default(),
-            threads: None,
-        }
+    /// A problem from its problem-file schema (relative Gmsh paths resolve against `base_dir`).
+    pub fn from_spec(spec: ProblemSpec, base_dir: &Path) -> PyResult<Problem> {
+        let loaded = contactdd_io::resolve(spec, base_dir).map_err(setup_error)?;
+        Problem::from_loaded(loaded, None, base_dir)
     }
 
-    /// A problem from a resolved problem file.
-    fn from_loaded(loaded: Loaded, default_name: Option<&str>) -> PyResult<Problem> {
+    /// A problem from a resolved problem file whose relative Gmsh paths resolved against
+    /// `base_dir`.
+    fn from_loaded(
+        loaded: Loaded,
+        default_name: Option<&str>,
+        base_dir: &Path,
+    ) -> PyResult<Problem> {
         // The file's materials are resolved again only to be listed by `Problem.materials`.
         let mut materials: BTreeMap<String, Material> = BTreeMap::new();
         for (name, m) in &loaded.problem.materials {
@@ -161,12 +167,34 @@ impl Problem {
             (None, Some(d)) => d.to_string(),
             _ => loaded.model.name.clone(),
         };
+        let mut spec = loaded.problem;
+        absolute_mesh_paths(&mut spec, base_dir)?;
         Ok(Problem {
             name,
             model: ModelBuilder::from_model(loaded.model, materials),
             settings: loaded.settings,
             threads: loaded.threads,
+            spec,
         })
+    }
+
+    /// The problem file text of the problem (see :meth:`to_toml`).
+    pub fn toml_text(&self) -> PyResult<String> {
+        let mut spec = self.spec.clone();
+        spec.name = Some(self.name.clone());
+        spec.solver = write_problem::solver_spec(&self.settings, self.threads, &spec.solver);
+        write_problem::to_toml(&spec)
+            .map_err(|e| input_error(format!("cannot write the problem as TOML: {e}")))
+    }
+
+    /// Adds a `[[bodies]]` entry, the step of a problem file (no Gmsh path to resolve), and
+    /// keeps it for `to_toml`.
+    fn add_body_spec(&mut self, spec: BodySpec) -> PyResult<()> {
+        self.model
+            .add_body(&spec, Path::new(""))
+            .map_err(setup_error)?;
+        self.spec.bodies.push(spec);
+        Ok(())
     }
 
     /// The solver input, checked as a whole as a problem file is: at least one body, and every
@@ -174,6 +202,36 @@ impl Problem {
     pub fn model(&self) -> PyResult<Model> {
         self.model.model(&self.name).map_err(setup_error)
     }
+}
+
+/// A built mesh as an inline mesh table, which resolves to the same mesh.
+fn inline_spec(mesh: &Mesh) -> MeshSpec {
+    let npc = mesh.order().nodes_per_cell();
+    MeshSpec::Inline {
+        nodes: mesh.nodes().to_vec(),
+        triangles: mesh.cells().chunks(npc).map(<[usize]>::to_vec).collect(),
+        boundaries: mesh
+            .boundaries()
+            .iter()
+            .map(|(k, edges)| (k.clone(), edges.iter().map(|e| [e.a, e.b]).collect()))
+            .collect(),
+        node_sets: mesh.node_sets().clone(),
+    }
+}
+
+/// Makes every relative Gmsh path of `spec` absolute (against `base_dir`, itself against the
+/// current folder), so that the problem written out reads the same meshes from any folder.
+fn absolute_mesh_paths(spec: &mut ProblemSpec, base_dir: &Path) -> PyResult<()> {
+    for body in &mut spec.bodies {
+        if let MeshSpec::Gmsh { file, .. } = &mut body.mesh {
+            if file.is_relative() {
+                *file = std::path::absolute(base_dir.join(&*file)).map_err(|e| {
+                    input_error(format!("cannot resolve the path '{}': {e}", file.display()))
+                })?;
+            }
+        }
+    }
+    Ok(())
 }
 
 fn body_error(body: &str, key: &str, message: impl std::fmt::Display) -> SetupError {
@@ -258,7 +316,21 @@ impl Problem {
                 message: e,
             })
         })?;
-        Ok(Problem::with_model(name, ModelBuilder::new(plane)))
+        Ok(Problem {
+            name: name.to_string(),
+            model: ModelBuilder::new(plane),
+            settings: Settings::default(),
+            threads: None,
+            spec: ProblemSpec {
+                name: Some(name.to_string()),
+                plane,
+                units: None,
+                materials: BTreeMap::new(),
+                bodies: Vec::new(),
+                contact: Vec::new(),
+                solver: SolverSpec::default(),
+            },
+        })
     }
 
     /// Reads a TOML problem file (the format of the command line tool).
@@ -274,7 +346,8 @@ impl Problem {
         let loaded = py
             .detach(|| contactdd_io::load_file(&path))
             .map_err(setup_error)?;
-        Problem::from_loaded(loaded, None)
+        let base = path.parent().unwrap_or(Path::new(""));
+        Problem::from_loaded(loaded, None, base)
     }
 
     /// Parses the text of a TOML problem file.
@@ -296,7 +369,32 @@ impl Problem {
         let loaded = py
             .detach(|| contactdd_io::load_str(text, source, Path::new(&base)))
             .map_err(setup_error)?;
-        Problem::from_loaded(loaded, Some("problem"))
+        Problem::from_loaded(loaded, Some("problem"), &base)
+    }
+
+    /// The problem as the text of a problem file, which :meth:`from_toml_str` reads back to the
+    /// same problem (the same solve results, bit for bit).
+    ///
+    /// Every solver setting is written explicitly (the current values, see :attr:`settings`). A
+    /// Gmsh mesh path is written absolute (a relative one resolved when the problem was read), so
+    /// the text reads the same meshes whatever ``base_dir`` it is given. A body added from arrays
+    /// (:meth:`add_body`) is written inline, as a ``kind = "inline"`` mesh.
+    fn to_toml(&self) -> PyResult<String> {
+        self.toml_text()
+    }
+
+    /// Pickles the problem as its problem file text (:meth:`to_toml`).
+    fn __reduce__<'py>(slf: &Bound<'py, Self>) -> PyResult<Bound<'py, PyTuple>> {
+        let py = slf.py();
+        let restore = slf.get_type().getattr("_from_toml_text")?;
+        let text = slf.borrow().toml_text()?;
+        PyTuple::new(py, [restore, PyTuple::new(py, [text])?.into_any()])
+    }
+
+    /// Unpickles a problem written by :meth:`to_toml` (used by pickle).
+    #[classmethod]
+    fn _from_toml_text(_cls: &Bound<'_, PyType>, py: Python<'_>, text: &str) -> PyResult<Problem> {
+        Problem::from_toml_str(py, text, None, "<pickle>")
     }
 
     /// Defines a linear elastic isotropic material.
@@ -307,9 +405,10 @@ impl Problem {
     ///     poisson: Poisson's ratio ν in (-1, 0.5).
     #[pyo3(signature = (name, young, poisson))]
     fn add_material(&mut self, name: &str, young: f64, poisson: f64) -> PyResult<()> {
-        self.model
-            .add_material(name, &MaterialSpec { young, poisson })
-            .map_err(setup_error)
+        let spec = MaterialSpec { young, poisson };
+        self.model.add_material(name, &spec).map_err(setup_error)?;
+        self.spec.materials.insert(name.to_string(), spec);
+        Ok(())
     }
 
     /// Adds a body on a triangle mesh given as arrays.
@@ -353,21 +452,18 @@ impl Problem {
                 "nodes must have shape (n, {DIM}), got ({n}, {dim})"
             )));
         }
-        let points: Vec<Point> = nodes
+        let points: Vec<Vector> = nodes
             .as_array()
             .rows()
             .into_iter()
             .map(|r| std::array::from_fn(|c| r[c]))
             .collect();
-        let order = match triangles.shape()[1] {
-            3 => Order::P1,
-            6 => Order::P2,
-            c => {
-                return Err(mesh_error(format!(
-                    "triangles must have 3 (P1) or 6 (P2) columns, got {c}"
-                )))
-            }
-        };
+        let width = triangles.shape()[1];
+        if width != 3 && width != 6 {
+            return Err(mesh_error(format!(
+                "triangles must have 3 (P1) or 6 (P2) columns, got {width}"
+            )));
+        }
         let cells = indices(&triangles, &format!("body '{name}': mesh: triangles"))?;
         let mut edge_sets = BTreeMap::new();
         for (key, value) in boundaries.iter() {
@@ -382,7 +478,7 @@ impl Problem {
                 )));
             }
             let flat = indices(&arr, &what)?;
-            let edges: Vec<Edge> = flat.chunks(cols).map(|e| Edge::new(e[0], e[1])).collect();
+            let edges: Vec<[usize; 2]> = flat.chunks(cols).map(|e| [e[0], e[1]]).collect();
             edge_sets.insert(bname, edges);
         }
         let mut sets = BTreeMap::new();
@@ -401,13 +497,76 @@ impl Problem {
                 sets.insert(sname, ids);
             }
         }
-        let mesh = setup::mesh_from_arrays(name, points, order, cells, edge_sets, sets)
+        // The arrays as given become an inline mesh table, resolved as a problem file's is (and
+        // written back out by `to_toml`).
+        let spec = BodySpec {
+            name: name.to_string(),
+            material: material.to_string(),
+            mesh: MeshSpec::Inline {
+                nodes: points,
+                triangles: cells.chunks(width).map(<[usize]>::to_vec).collect(),
+                boundaries: edge_sets,
+                node_sets: sets,
+            },
+            supports: specs(name, "supports", supports)?,
+            loads: specs(name, "loads", loads)?,
+        };
+        self.add_body_spec(spec)
+    }
+
+    /// Adds a body on a mesh given as the text of a Gmsh ``.msh`` file (ASCII 4.1 or 2.2), read
+    /// by the reader of ``kind = "gmsh"`` meshes with its rules: the physical surface
+    /// ``surface`` is the body (default: the text's only one), the physical curves and points
+    /// that touch it are its boundaries and node sets, clockwise triangles are reordered, and
+    /// curved P2 triangles are refused with the ways out. The mesh is kept in the problem (a
+    /// ``kind = "inline"`` mesh for :meth:`to_toml`). :func:`contactdd.add_meshio_body` and
+    /// :func:`contactdd.add_gmsh_body` use it.
+    ///
+    /// Args:
+    ///     name: unique body name.
+    ///     text: the ``.msh`` text.
+    ///     material: name of a material added with :meth:`add_material`.
+    ///     surface: the body's physical surface (name, or tag number of an unnamed group).
+    ///     order: ``"p2"`` promotes P1 triangles to P2; default: as in the text.
+    ///     supports, loads: as for :meth:`add_body`.
+    ///     source: what the text is, in error messages.
+    #[pyo3(signature = (name, text, material, surface = None, order = None, supports = None, loads = None, source = "<msh text>"))]
+    #[allow(clippy::too_many_arguments)]
+    fn add_msh_body(
+        &mut self,
+        py: Python<'_>,
+        name: &str,
+        text: &str,
+        material: &str,
+        surface: Option<&str>,
+        order: Option<&str>,
+        supports: Option<&Bound<'_, PyAny>>,
+        loads: Option<&Bound<'_, PyAny>>,
+        source: &str,
+    ) -> PyResult<()> {
+        self.model.check_body_name(name).map_err(setup_error)?;
+        let order: Option<Order> = order
+            .map(from_name)
+            .transpose()
+            .map_err(|e| setup_error(body_error(name, "mesh.order", e)))?;
+        let mesh = py
+            .detach(|| {
+                let mesh = parse_msh_surface(text, surface).map_err(|e| LoadError::Gmsh {
+                    body: name.to_string(),
+                    path: source.to_string(),
+                    source: e,
+                })?;
+                setup::gmsh_order(name, mesh, order, source)
+            })
             .map_err(setup_error)?;
-        let supports: Vec<SupportSpec> = specs(name, "supports", supports)?;
-        let loads: Vec<LoadSpec> = specs(name, "loads", loads)?;
-        self.model
-            .add_body_on_mesh(name, material, mesh, &supports, &loads)
-            .map_err(setup_error)
+        let spec = BodySpec {
+            name: name.to_string(),
+            material: material.to_string(),
+            mesh: inline_spec(&mesh),
+            supports: specs(name, "supports", supports)?,
+            loads: specs(name, "loads", loads)?,
+        };
+        self.add_body_spec(spec)
     }
 
     /// Adds a body meshed as a structured rectangle ``x[0] ≤ x ≤ x[1]``, ``y[0] ≤ y ≤ y[1]`` with
@@ -455,10 +614,7 @@ impl Problem {
             supports: specs(name, "supports", supports)?,
             loads: specs(name, "loads", loads)?,
         };
-        // The `[[bodies]]` step of a problem file (no Gmsh path to resolve).
-        self.model
-            .add_body(&spec, Path::new(""))
-            .map_err(setup_error)
+        self.add_body_spec(spec)
     }
 
     /// Adds a contact pair: boundary ``boundaries[0]`` of body ``bodies[0]`` may touch boundary
@@ -513,7 +669,9 @@ impl Problem {
             })?;
             spec.gap = Some(gap);
         }
-        self.model.add_pair(&spec).map_err(setup_error)
+        self.model.add_pair(&spec).map_err(setup_error)?;
+        self.spec.contact.push(spec);
+        Ok(())
     }
 
     /// Sets the default solver settings of the problem (the ``[solver]`` table of a problem

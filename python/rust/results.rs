@@ -1,21 +1,115 @@
 //! Result objects: `contactdd.Result` (a domain decomposition solve), `contactdd.Body`,
 //! `contactdd.Contact` and `contactdd.MonolithicResult`. The arrays are copied into numpy once,
-//! when the result is made; the Rust [`Solution`] is kept for output files and the summary.
+//! when the result is made; the Rust [`Solution`] is kept for output files and the summary. A
+//! result that was unpickled or read from a result folder ([`Origin::Saved`]) holds its summary
+//! instead, and writes no files.
 
 use std::sync::Arc;
 
 use pyo3::prelude::*;
-use pyo3::types::{PyDict, PyList};
+use pyo3::types::{PyDict, PyList, PyTuple, PyType};
 
 use contactdd_core::DIM;
-use contactdd_ddm::iteration::Stop;
 use contactdd_ddm::solution::{BodyResult, PairResult};
 use contactdd_ddm::{Model, MonolithicSolution, Solution};
-use contactdd_io::output::point_status;
+use contactdd_io::output::{point_status, stop_name};
 
 use crate::convert::{array1, array2, name_of};
 use crate::error::input_error;
 use crate::problem::gamma_to_py;
+use crate::state::{attributes, get, reduce};
+
+/// Where a result's summary and files come from.
+enum Origin<S> {
+    /// A solve of this process: the solver's data, from which the files are written.
+    Solved { model: Arc<Model>, solution: Arc<S> },
+    /// Unpickled or read from a result folder: the summary it had.
+    Saved { summary: Py<PyAny> },
+}
+
+impl<S> Origin<S> {
+    /// The solver data, or the error of a saved result asked to write files.
+    fn solved(&self) -> PyResult<(Arc<Model>, Arc<S>)> {
+        match self {
+            Origin::Solved { model, solution } => Ok((model.clone(), solution.clone())),
+            Origin::Saved { .. } => Err(input_error(
+                "this result was unpickled or read from a result folder: it holds the fields and \
+                 the summary but not the solver data that result files are written from (write \
+                 them from the result of the solve itself)",
+            )),
+        }
+    }
+
+    /// The summary: made by `make` from the solver data, or a copy of the saved one.
+    fn summary<'py>(
+        &self,
+        py: Python<'py>,
+        make: impl FnOnce(&Model, &S) -> serde_json::Value,
+    ) -> PyResult<Bound<'py, PyAny>> {
+        match self {
+            Origin::Solved { model, solution } => json_to_py(py, &make(model, solution)),
+            Origin::Saved { summary } => py.import("copy")?.call_method1("deepcopy", (summary,)),
+        }
+    }
+}
+
+/// The attributes of a [`Body`], in its state dict.
+const BODY_STATE: [&str; 8] = [
+    "name",
+    "order",
+    "nodes",
+    "triangles",
+    "displacement",
+    "stress",
+    "von_mises",
+    "contact_pressure",
+];
+
+/// The attributes of a [`Contact`], in its state dict.
+const CONTACT_STATE: [&str; 15] = [
+    "name",
+    "bodies",
+    "side",
+    "node",
+    "x",
+    "y",
+    "gap",
+    "pressure",
+    "closed",
+    "status",
+    "weight",
+    "normal",
+    "forces",
+    "max_penetration",
+    "complementarity",
+];
+
+/// The attributes of a [`SolveResult`] in its state dict (with `summary`).
+const RESULT_STATE: [&str; 14] = [
+    "converged",
+    "stop",
+    "iterations",
+    "message",
+    "method",
+    "gamma",
+    "theta",
+    "history",
+    "bodies",
+    "contact",
+    "timing",
+    "updates",
+    "gap_tol",
+    "load_factor",
+];
+
+/// The attributes of a [`MonolithicResult`] in its state dict (with `summary`).
+const MONOLITHIC_STATE: [&str; 5] = [
+    "newton_steps",
+    "rigid_modes",
+    "bodies",
+    "contact",
+    "seconds",
+];
 
 /// The fields of one body.
 #[pyclass(module = "contactdd", name = "Body", frozen)]
@@ -48,6 +142,26 @@ pub struct Body {
 
 #[pymethods]
 impl Body {
+    /// Pickles the body as its attributes.
+    fn __reduce__<'py>(slf: &Bound<'py, Self>) -> PyResult<Bound<'py, PyTuple>> {
+        reduce(slf.as_any(), attributes(slf.as_any(), &BODY_STATE)?)
+    }
+
+    /// A body from the dict of its attributes (pickle, :func:`contactdd.load_results`).
+    #[classmethod]
+    fn _from_state(_cls: &Bound<'_, PyType>, state: &Bound<'_, PyDict>) -> PyResult<Body> {
+        Ok(Body {
+            name: get(state, "name")?.extract()?,
+            order: get(state, "order")?.extract()?,
+            nodes: get(state, "nodes")?.unbind(),
+            triangles: get(state, "triangles")?.unbind(),
+            displacement: get(state, "displacement")?.unbind(),
+            stress: get(state, "stress")?.unbind(),
+            von_mises: get(state, "von_mises")?.unbind(),
+            contact_pressure: get(state, "contact_pressure")?.unbind(),
+        })
+    }
+
     fn __repr__(&self, py: Python<'_>) -> PyResult<String> {
         let n: usize = self.nodes.bind(py).len()?;
         let m: usize = self.triangles.bind(py).len()?;
@@ -113,7 +227,7 @@ pub struct Contact {
     /// Status of each point as in ``summary.json``: ``"closed"``, ``"open"`` or
     /// ``"no-partner"`` (the normal misses the other body).
     #[pyo3(get)]
-    status: Vec<&'static str>,
+    status: Vec<String>,
     /// Nodal quadrature weight (length) of each point.
     #[pyo3(get)]
     weight: Py<PyAny>,
@@ -135,6 +249,33 @@ pub struct Contact {
 
 #[pymethods]
 impl Contact {
+    /// Pickles the contact table as its attributes.
+    fn __reduce__<'py>(slf: &Bound<'py, Self>) -> PyResult<Bound<'py, PyTuple>> {
+        reduce(slf.as_any(), attributes(slf.as_any(), &CONTACT_STATE)?)
+    }
+
+    /// A contact table from the dict of its attributes (pickle, :func:`contactdd.load_results`).
+    #[classmethod]
+    fn _from_state(_cls: &Bound<'_, PyType>, state: &Bound<'_, PyDict>) -> PyResult<Contact> {
+        Ok(Contact {
+            name: get(state, "name")?.extract()?,
+            bodies: get(state, "bodies")?.extract()?,
+            side: get(state, "side")?.unbind(),
+            node: get(state, "node")?.unbind(),
+            x: get(state, "x")?.unbind(),
+            y: get(state, "y")?.unbind(),
+            gap: get(state, "gap")?.unbind(),
+            pressure: get(state, "pressure")?.unbind(),
+            closed: get(state, "closed")?.unbind(),
+            status: get(state, "status")?.extract()?,
+            weight: get(state, "weight")?.unbind(),
+            normal: get(state, "normal")?.unbind(),
+            forces: get(state, "forces")?.extract()?,
+            max_penetration: get(state, "max_penetration")?.extract()?,
+            complementarity: get(state, "complementarity")?.extract()?,
+        })
+    }
+
     fn __repr__(&self, py: Python<'_>) -> PyResult<String> {
         Ok(format!(
             "<contactdd.Contact '{}' ({} / {}): {} points>",
@@ -164,7 +305,9 @@ impl Contact {
             gap: array1(py, p.gap.clone()).unbind(),
             pressure: array1(py, p.pressure.clone()).unbind(),
             closed: array1(py, p.closed.clone()).unbind(),
-            status: (0..p.x.len()).map(|i| point_status(p, i)).collect(),
+            status: (0..p.x.len())
+                .map(|i| point_status(p, i).to_string())
+                .collect(),
             weight: array1(py, p.weight.clone()).unbind(),
             normal: array2(py, normal, DIM)?.unbind(),
             forces: (force(0), force(1)),
@@ -197,18 +340,6 @@ fn json_to_py<'py>(py: Python<'py>, value: &serde_json::Value) -> PyResult<Bound
     py.import("json")?.call_method1("loads", (text,))
 }
 
-/// The name of how an iteration ended.
-fn stop_name(stop: &Stop) -> &'static str {
-    match stop {
-        Stop::Converged => "converged",
-        Stop::MaxIterations => "max-iterations",
-        Stop::Diverged { .. } => "diverged",
-        Stop::Interrupted => "interrupted",
-        Stop::Stalled { .. } => "stalled",
-        Stop::Unenforced { .. } => "unenforced",
-    }
-}
-
 /// The result of a domain decomposition solve (also the partial result of a failed one, see
 /// :class:`ConvergenceError`).
 #[pyclass(module = "contactdd", name = "Result", frozen)]
@@ -219,7 +350,7 @@ pub struct SolveResult {
     /// How the iteration ended: ``"converged"``, ``"max-iterations"``, ``"diverged"`` or
     /// ``"interrupted"``.
     #[pyo3(get)]
-    stop: &'static str,
+    stop: String,
     /// Iterations taken (m).
     #[pyo3(get)]
     iterations: usize,
@@ -258,8 +389,7 @@ pub struct SolveResult {
     /// The load factor of this solve (1.0 unless it is a step of :func:`solve_steps`).
     #[pyo3(get)]
     load_factor: f64,
-    model: Arc<Model>,
-    solution: Arc<Solution>,
+    origin: Origin<Solution>,
 }
 
 impl SolveResult {
@@ -292,7 +422,7 @@ impl SolveResult {
         }
         Ok(SolveResult {
             converged: sol.converged,
-            stop: stop_name(&sol.stop),
+            stop: stop_name(&sol.stop).to_string(),
             iterations: sol.iterations,
             message: sol.message.clone(),
             method: sol.method.name().to_string(),
@@ -305,8 +435,10 @@ impl SolveResult {
             updates: sol.updates,
             gap_tol: sol.gap_tol,
             load_factor: 1.0,
-            model,
-            solution: Arc::new(sol),
+            origin: Origin::Solved {
+                model,
+                solution: Arc::new(sol),
+            },
         })
     }
 
@@ -338,8 +470,12 @@ impl SolveResult {
     ///
     /// Returns:
     ///     The paths of the files written.
+    ///
+    /// Raises:
+    ///     ContactddError: the result was unpickled or read by :func:`load_results` (it holds no
+    ///         solver data to write from), or a file cannot be written.
     fn write_vtu(&self, py: Python<'_>, directory: std::path::PathBuf) -> PyResult<Vec<String>> {
-        let (model, sol) = (self.model.clone(), self.solution.clone());
+        let (model, sol) = self.origin.solved()?;
         let paths = py
             .detach(move || contactdd_io::output::write_results(&directory, &model, &sol))
             .map_err(|e| input_error(format!("cannot write results: {e}")))?;
@@ -349,10 +485,40 @@ impl SolveResult {
     /// The summary of the solve as a dict: the content of the ``summary.json`` file the command
     /// line writes.
     fn summary<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
-        json_to_py(
-            py,
-            &contactdd_io::output::summary_json(&self.model, &self.solution),
-        )
+        self.origin.summary(py, contactdd_io::output::summary_json)
+    }
+
+    /// Pickles the result as its attributes and its summary; the unpickled result has the same
+    /// attributes and :meth:`summary` but cannot :meth:`write_vtu`.
+    fn __reduce__<'py>(slf: &Bound<'py, Self>) -> PyResult<Bound<'py, PyTuple>> {
+        let state = attributes(slf.as_any(), &RESULT_STATE)?;
+        state.set_item("summary", slf.borrow().summary(slf.py())?)?;
+        reduce(slf.as_any(), state)
+    }
+
+    /// A result from the dict of its attributes and ``summary`` (pickle,
+    /// :func:`contactdd.load_results`).
+    #[classmethod]
+    fn _from_state(_cls: &Bound<'_, PyType>, state: &Bound<'_, PyDict>) -> PyResult<SolveResult> {
+        Ok(SolveResult {
+            converged: get(state, "converged")?.extract()?,
+            stop: get(state, "stop")?.extract()?,
+            iterations: get(state, "iterations")?.extract()?,
+            message: get(state, "message")?.extract()?,
+            method: get(state, "method")?.extract()?,
+            gamma: get(state, "gamma")?.unbind(),
+            theta: get(state, "theta")?.extract()?,
+            history: get(state, "history")?.cast_into::<PyDict>()?.unbind(),
+            bodies: get(state, "bodies")?.cast_into::<PyList>()?.unbind(),
+            contact: get(state, "contact")?.cast_into::<PyList>()?.unbind(),
+            timing: get(state, "timing")?.cast_into::<PyDict>()?.unbind(),
+            updates: get(state, "updates")?.extract()?,
+            gap_tol: get(state, "gap_tol")?.extract()?,
+            load_factor: get(state, "load_factor")?.extract()?,
+            origin: Origin::Saved {
+                summary: get(state, "summary")?.unbind(),
+            },
+        })
     }
 
     fn __repr__(&self, py: Python<'_>) -> PyResult<String> {
@@ -384,8 +550,7 @@ pub struct MonolithicResult {
     /// Wall time in seconds.
     #[pyo3(get)]
     seconds: f64,
-    model: Arc<Model>,
-    solution: Arc<MonolithicSolution>,
+    origin: Origin<MonolithicSolution>,
 }
 
 impl MonolithicResult {
@@ -401,8 +566,10 @@ impl MonolithicResult {
             bodies: bodies_list(py, &sol.bodies)?,
             contact: contact_list(py, &sol.contact)?,
             seconds: sol.seconds,
-            model,
-            solution: Arc::new(sol),
+            origin: Origin::Solved {
+                model,
+                solution: Arc::new(sol),
+            },
         })
     }
 }
@@ -414,8 +581,12 @@ impl MonolithicResult {
     ///
     /// Returns:
     ///     The paths of the files written.
+    ///
+    /// Raises:
+    ///     ContactddError: the result was unpickled or read by :func:`load_results`, or a file
+    ///         cannot be written.
     fn write_vtu(&self, py: Python<'_>, directory: std::path::PathBuf) -> PyResult<Vec<String>> {
-        let (model, sol) = (self.model.clone(), self.solution.clone());
+        let (model, sol) = self.origin.solved()?;
         let paths = py
             .detach(move || {
                 contactdd_io::output::write_monolithic_results(&directory, &model, &sol)
@@ -426,10 +597,35 @@ impl MonolithicResult {
 
     /// The summary as a dict (the ``summary.json`` of a monolithic solve).
     fn summary<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
-        json_to_py(
-            py,
-            &contactdd_io::output::monolithic_summary_json(&self.model, &self.solution),
-        )
+        self.origin.summary(py, |m, s| {
+            contactdd_io::output::monolithic_summary_json(m, s)
+        })
+    }
+
+    /// Pickles the result as its attributes and its summary (see :meth:`Result.__reduce__`).
+    fn __reduce__<'py>(slf: &Bound<'py, Self>) -> PyResult<Bound<'py, PyTuple>> {
+        let state = attributes(slf.as_any(), &MONOLITHIC_STATE)?;
+        state.set_item("summary", slf.borrow().summary(slf.py())?)?;
+        reduce(slf.as_any(), state)
+    }
+
+    /// A result from the dict of its attributes and ``summary`` (pickle,
+    /// :func:`contactdd.load_results`).
+    #[classmethod]
+    fn _from_state(
+        _cls: &Bound<'_, PyType>,
+        state: &Bound<'_, PyDict>,
+    ) -> PyResult<MonolithicResult> {
+        Ok(MonolithicResult {
+            newton_steps: get(state, "newton_steps")?.extract()?,
+            rigid_modes: get(state, "rigid_modes")?.extract()?,
+            bodies: get(state, "bodies")?.cast_into::<PyList>()?.unbind(),
+            contact: get(state, "contact")?.cast_into::<PyList>()?.unbind(),
+            seconds: get(state, "seconds")?.extract()?,
+            origin: Origin::Saved {
+                summary: get(state, "summary")?.unbind(),
+            },
+        })
     }
 
     fn __repr__(&self) -> String {

@@ -1,5 +1,7 @@
 """The γ sweep."""
 
+import pytest
+
 import contactdd
 
 KEYS = {"method", "gamma", "iterations", "converged", "reason"}
@@ -35,3 +37,25 @@ def test_sweep_defaults(notch):
 def test_sweep_auto(notch):
     (rec,) = contactdd.sweep(notch, methods=["robin"], gammas=["auto"])
     assert rec["gamma"] == "auto" and rec["method"] == "robin"
+
+
+def test_progress_reports_every_run_once(notch):
+    seen = []
+    records = contactdd.sweep(notch, methods=["active-set", "robin"], gammas=[0.3, 0.5, "auto"],
+                              progress=seen.append)
+    assert len(seen) == len(records) == 6
+    key = lambda r: (r["method"], str(r["gamma"]))  # noqa: E731
+    assert sorted(seen, key=key) == sorted(records, key=key)
+    assert records == contactdd.sweep(notch, methods=["active-set", "robin"],
+                                      gammas=[0.3, 0.5, "auto"])
+
+
+def test_progress_exception_stops_the_sweep(notch):
+    class Stop(Exception):
+        pass
+
+    def stop(record):
+        raise Stop(record["method"])
+
+    with pytest.raises(Stop):
+        contactdd.sweep(notch, gammas=[0.1, 0.3, 0.5], progress=stop)

@@ -191,5 +191,12 @@ fn mesh_text(mesh: &MeshSpec) -> String {
             if *mirror { ", mirrored" } else { "" }
         ),
         MeshSpec::Gmsh { file, .. } => format!("gmsh file {}", file.display()),
+        MeshSpec::Inline {
+            nodes, triangles, ..
+        } => format!(
+            "inline mesh, {} nodes, {} triangles",
+            nodes.len(),
+            triangles.len()
+        ),
     }
 }

@@ -26,6 +26,7 @@ pub mod result_set;
 pub mod setup;
 pub mod steps;
 pub mod vtu;
+pub mod write_problem;
 
 pub use error::LoadError;
 pub use setup::{load_file, load_str, resolve, Loaded};

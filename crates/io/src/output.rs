@@ -17,6 +17,7 @@
 //! | key         | value                                                                      |
 //! |-------------|----------------------------------------------------------------------------|
 //! | `converged` | true if every body met the tolerance and the result is in equilibrium      |
+//! | `stop`      | how the iteration ended ([`stop_name`]: `converged`, `max-iterations`, …)  |
 //! | `iterations`| iterations taken (m)                                                       |
 //! | `method`    | method name (`newton-kurchatov`, …)                                         |
 //! | `gamma`     | the constant γ, or `"auto"`                                                |
@@ -26,7 +27,7 @@
 //! | `accelerator`, `coarse` | the accelerator and coarse mode used                           |
 //! | `history`   | per iteration `{k, gamma, rel_change, active, normal_force}` (per body)    |
 //! | `bodies`    | per body `{name, nodes, elements, dofs, order, applied_load}`               |
-//! | `contact`   | per pair `{name, bodies, x, y, gap, pressure, status, force}`              |
+//! | `contact`   | per pair `{name, bodies, body, node, x, y, gap, pressure, status, weight, normal, force}` |
 //! | `reactions` | per body `{body, supports: [{boundary, force}], total}` ([`reactions_json`]) |
 //! | `timing_s`  | wall time per phase, seconds                                               |
 //! | `version`   | contactdd version                                                          |
@@ -52,7 +53,7 @@ use serde_json::{json, Value};
 use contactdd_core::{num_dofs, Order, Vector, DIM};
 use contactdd_ddm::solution::{BodyResult, PairResult, Solution};
 use contactdd_ddm::sweep::SweepRun;
-use contactdd_ddm::{Gamma, Model, MonolithicSolution};
+use contactdd_ddm::{Gamma, Model, MonolithicSolution, Stop};
 
 pub use crate::atomic::write_atomic;
 use crate::fields::{contact_point_data, element_von_mises, principal, tensor, ContactPointData};
@@ -109,6 +110,7 @@ pub fn summary_json(model: &Model, sol: &Solution) -> Value {
         .collect();
     json!({
         "converged": sol.converged,
+        "stop": stop_name(&sol.stop),
         "iterations": sol.iterations,
         "tol": json_number(sol.tol),
         "method": sol.method.name(),
@@ -165,6 +167,18 @@ pub fn monolithic_summary_json(model: &Model, sol: &MonolithicSolution) -> Value
         "timing_s": { "total": json_number(sol.seconds) },
         "version": env!("CARGO_PKG_VERSION"),
     })
+}
+
+/// The name of how an iteration ended (`stop` in `summary.json`).
+pub fn stop_name(stop: &Stop) -> &'static str {
+    match stop {
+        Stop::Converged => "converged",
+        Stop::MaxIterations => "max-iterations",
+        Stop::Diverged { .. } => "diverged",
+        Stop::Interrupted => "interrupted",
+        Stop::Stalled { .. } => "stalled",
+        Stop::Unenforced { .. } => "unenforced",
+    }
 }
 
 fn gamma_json(gamma: Gamma) -> Value {
@@ -229,11 +243,14 @@ fn contact_json(pairs: &[PairResult]) -> Value {
                 "name": p.name,
                 "bodies": p.bodies,
                 "body": body,
+                "node": p.node,
                 "x": json_numbers(&p.x),
                 "y": json_numbers(&p.y),
                 "gap": json_numbers(&p.gap),
                 "pressure": json_numbers(&p.pressure),
                 "status": status,
+                "weight": json_numbers(&p.weight),
+                "normal": p.nx.iter().zip(&p.ny).map(|(&x, &y)| json_numbers(&[x, y])).collect::<Vec<_>>(),
                 "force": [json_numbers(&p.force_on(0)), json_numbers(&p.force_on(1))],
                 "max_penetration": json_number(p.max_penetration()),
                 "complementarity": json_number(p.complementarity()),

@@ -153,6 +153,22 @@ pub enum MeshSpec {
         #[serde(default, skip_serializing_if = "Option::is_none")]
         scale: Option<f64>,
     },
+    /// A mesh written out in the file itself: what `Problem.to_toml()` of the Python module writes
+    /// for a body added from arrays, so that such a problem reads back to the same model.
+    #[serde(rename_all = "kebab-case")]
+    Inline {
+        /// Node coordinates `[x, y]`.
+        nodes: Vec<Vector>,
+        /// Node indices per triangle: 3 (P1) or 6 (P2: vertices, then the mid-side nodes of
+        /// edges (0,1), (1,2), (2,0)); clockwise triangles are reordered counter-clockwise.
+        triangles: Vec<Vec<usize>>,
+        /// Named boundaries: the node pairs of their edges.
+        #[serde(default)]
+        boundaries: BTreeMap<String, Vec<[usize; 2]>>,
+        /// Named node sets, usable as a support's `boundary`.
+        #[serde(default, skip_serializing_if = "BTreeMap::is_empty")]
+        node_sets: BTreeMap<String, Vec<usize>>,
+    },
 }
 
 fn default_order() -> Order {

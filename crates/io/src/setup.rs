@@ -800,22 +800,82 @@ pub fn mesh(body: &str, spec: &MeshSpec, base_dir: &Path) -> Result<Mesh, LoadEr
                     .map_nodes(|p| std::array::from_fn(|c| scale * p[c] + shift[c]))
                     .map_err(|e| mesh_error(body, "mesh", e))?;
             }
-            match (order, mesh.order()) {
-                (Some(Order::P2), Order::P1) => Ok(mesh.to_p2()),
-                (Some(Order::P1), Order::P2) => Err(body_error(
-                    body,
-                    "mesh.order",
-                    format!(
-                        "'{}' has P2 triangles; they cannot be read as p1 (use order = \"p2\" or \
-                         leave order out)",
-                        path.display()
-                    ),
-                )
-                .into()),
-                _ => Ok(mesh),
-            }
+            gmsh_order(body, mesh, *order, &path.display().to_string())
         }
+        MeshSpec::Inline {
+            nodes,
+            triangles,
+            boundaries,
+            node_sets,
+        } => Ok(inline_mesh(body, nodes, triangles, boundaries, node_sets)?),
     }
+}
+
+/// A mesh read from Gmsh (`source` names it in messages) at the `order` asked for: P1 triangles
+/// are promoted to P2 for `p2`; P2 triangles cannot be read as `p1`.
+pub fn gmsh_order(
+    body: &str,
+    mesh: Mesh,
+    order: Option<Order>,
+    source: &str,
+) -> Result<Mesh, LoadError> {
+    match (order, mesh.order()) {
+        (Some(Order::P2), Order::P1) => Ok(mesh.to_p2()),
+        (Some(Order::P1), Order::P2) => Err(body_error(
+            body,
+            "mesh.order",
+            format!(
+                "'{source}' has P2 triangles; they cannot be read as p1 (use order = \"p2\" or \
+                 leave order out)"
+            ),
+        )
+        .into()),
+        _ => Ok(mesh),
+    }
+}
+
+/// An inline mesh table (`kind = "inline"`) → a validated mesh of body `body`: the order follows
+/// from the triangles' length (3 or 6 nodes, the same for all), the rest is [`mesh_from_arrays`].
+fn inline_mesh(
+    body: &str,
+    nodes: &[Point],
+    triangles: &[Vec<usize>],
+    boundaries: &BTreeMap<String, Vec<[usize; 2]>>,
+    node_sets: &BTreeMap<String, Vec<usize>>,
+) -> Result<Mesh, SetupError> {
+    let width = triangles.first().map_or(3, Vec::len);
+    let order = match width {
+        3 => Order::P1,
+        6 => Order::P2,
+        n => {
+            return Err(body_error(
+                body,
+                "mesh.triangles",
+                format!("a triangle has 3 (P1) or 6 (P2) nodes, got {n}"),
+            ))
+        }
+    };
+    if let Some(i) = triangles.iter().position(|t| t.len() != width) {
+        return Err(body_error(
+            body,
+            "mesh.triangles",
+            format!(
+                "triangle {i} has {} nodes, the first has {width}",
+                triangles[i].len()
+            ),
+        ));
+    }
+    let edges = boundaries
+        .iter()
+        .map(|(name, e)| {
+            (
+                name.clone(),
+                e.iter().map(|&[a, b]| Edge::new(a, b)).collect(),
+            )
+        })
+        .collect();
+    let cells = triangles.iter().flatten().copied().collect();
+    mesh_from_arrays(body, nodes.to_vec(), order, cells, edges, node_sets.clone())
 }
 
 /// A mesh given as arrays (nodes, the node indices of each triangle, named boundary edges and

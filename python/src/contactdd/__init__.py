@@ -37,7 +37,9 @@ from ._contactdd import (
     solve_steps,
     sweep,
 )
-from . import plot
+from .meshes import add_gmsh_body, add_meshio_body
+from .results_folder import load_results
+from . import _pickle, plot  # noqa: F401  (_pickle: ContactddIOError's pickling)
 
 __all__ = [
     "METHODS",
@@ -50,6 +52,9 @@ __all__ = [
     "Problem",
     "Result",
     "__version__",
+    "add_gmsh_body",
+    "add_meshio_body",
+    "load_results",
     "monolithic",
     "notch_benchmark",
     "plot",

@@ -14,6 +14,7 @@ __all__ = [
     "Contact",
     "MonolithicResult",
     "solve",
+    "solve_steps",
     "sweep",
     "monolithic",
     "notch_benchmark",
@@ -101,6 +102,22 @@ class Problem:
     @staticmethod
     def from_toml_str(text: str, base_dir: Optional[_StrPath] = None, source: str = "<string>") -> Problem:
         """Parses the text of a TOML problem file."""
+    def to_toml(self) -> str:
+        """The problem as the text of a problem file, which from_toml_str reads back to the same
+        problem (every solver setting explicit, Gmsh paths absolute, array bodies inline)."""
+    def add_msh_body(
+        self,
+        name: str,
+        text: str,
+        material: str,
+        surface: Optional[str] = None,
+        order: Optional[Literal["p1", "p2"]] = None,
+        supports: Optional[Sequence[_SupportDict]] = None,
+        loads: Optional[Sequence[_LoadDict]] = None,
+        source: str = "<msh text>",
+    ) -> None:
+        """Adds a body on a mesh given as the text of a Gmsh .msh file (the rules of a
+        kind = "gmsh" mesh); the mesh is kept inline."""
     def add_material(self, name: str, young: float, poisson: float) -> None:
         """Defines a linear elastic isotropic material."""
     def add_body(
@@ -246,7 +263,9 @@ class Result:
     @property
     def converged(self) -> bool: ...
     @property
-    def stop(self) -> Literal["converged", "max-iterations", "diverged", "interrupted"]: ...
+    def stop(
+        self,
+    ) -> Literal["converged", "max-iterations", "diverged", "interrupted", "stalled", "unenforced"]: ...
     @property
     def iterations(self) -> int: ...
     @property
@@ -276,7 +295,8 @@ class Result:
     def load_factor(self) -> float:
         """The load factor (1.0 unless a step of solve_steps)."""
     def write_vtu(self, directory: _StrPath) -> list[str]:
-        """Writes summary.json, contact.csv, history.csv and one VTU file per body."""
+        """Writes summary.json, contact.csv, history.csv and one VTU file per body (not for a
+        result unpickled or read by load_results: ContactddError)."""
     def summary(self) -> dict[str, Any]:
         """The content of the summary.json file the command line writes."""
 
@@ -340,9 +360,10 @@ def sweep(
     u0: Optional[float] = None,
     u_prev: Optional[float] = None,
     threads: Optional[int] = None,
+    progress: Optional[Callable[[_SweepRecord], object]] = None,
 ) -> list[_SweepRecord]:
     """Runs every method with every γ on one preparation of the problem, in parallel (GIL
-    released; Ctrl-C raises KeyboardInterrupt)."""
+    released; Ctrl-C raises KeyboardInterrupt); progress(record) is called as each run ends."""
 
 def monolithic(problem: Problem) -> MonolithicResult:
     """Solves the same penalty problem monolithically (semismooth Newton)."""

@@ -1,0 +1,256 @@
+"""Reading a result folder back: :func:`load_results`.
+
+A result folder is what ``contactdd solve --out DIR``, ``contactdd monolithic --out DIR``,
+:meth:`Result.write_vtu` or :meth:`MonolithicResult.write_vtu` write (``docs/outputs.md``). It
+holds a complete result exactly when ``summary.json`` exists, and then only the files its
+manifest (the ``files`` key) lists belong to it. This module reads such a folder into the result
+objects :func:`contactdd.solve` and :func:`contactdd.monolithic` return: the fields of every body
+from its VTU file, the contact tables and everything else from ``summary.json``, the iteration
+history from ``history.csv``. Only the standard library and numpy are used.
+"""
+
+from __future__ import annotations
+
+import base64
+import csv
+import errno as errno_codes
+import json
+import os
+import xml.etree.ElementTree as ET
+from pathlib import Path
+from typing import Any, Union
+
+import numpy as np
+
+from ._contactdd import (
+    Body,
+    Contact,
+    ContactddError,
+    ContactddIOError,
+    MonolithicResult,
+    Result,
+)
+
+__all__ = ["load_results"]
+
+#: VTK cell types of the meshes contactdd writes: nodes per cell.
+_CELL_NODES = {5: 3, 22: 6}
+_DTYPES = {"Float64": np.float64, "Float32": np.float32, "Int64": np.int64, "UInt8": np.uint8}
+
+
+def load_results(directory: Union[str, "os.PathLike[str]"]) -> Union[Result, MonolithicResult]:
+    """Reads a result folder back into the result object of the solve that wrote it.
+
+    A folder of a domain decomposition solve gives a :class:`Result`, one of a monolithic solve a
+    :class:`MonolithicResult`, with the attributes the solve's result had (for a folder of load
+    steps: the last step, with its ``load_factor``), so plots and analysis work on saved runs.
+    Its :meth:`~Result.summary` is the folder's ``summary.json`` without the manifest; it cannot
+    :meth:`~Result.write_vtu` again.
+
+    Args:
+        directory: the result folder.
+
+    Returns:
+        A :class:`Result` or :class:`MonolithicResult`.
+
+    Raises:
+        ContactddIOError: the folder or one of its files cannot be read (an ``OSError``).
+        ContactddError: the folder holds no complete result (no ``summary.json``: the write was
+            interrupted or this is not a result folder; a file of the manifest is missing), or a
+            file is not what contactdd writes.
+    """
+    folder = Path(directory)
+    summary = _read_summary(folder)
+    files = summary.pop("files")
+    for name in files:
+        if not (folder / name).is_file():
+            raise ContactddError(
+                f"{folder}: incomplete result folder: summary.json lists '{name}', which is "
+                "missing (write the results again)"
+            )
+    vtus = [name for name in files if name.endswith(".vtu")]
+    names = [b["name"] for b in _key(summary, "bodies", folder)]
+    if len(vtus) < len(names):
+        raise ContactddError(f"{folder}: summary.json lists {len(vtus)} VTU files for "
+                             f"{len(names)} bodies")
+    # The manifest lists the VTU files in body order, step after step: the last ones are the
+    # bodies of the last step, the one summary.json describes.
+    last = vtus[len(vtus) - len(names):]
+    bodies = [_body(folder / f, b) for f, b in zip(last, _key(summary, "bodies", folder))]
+    contact = [_contact(p, folder) for p in _key(summary, "contact", folder)]
+    if summary.get("solver") == "monolithic":
+        return _monolithic(summary, bodies, contact, folder)
+    return _result(summary, files, bodies, contact, names, folder)
+
+
+def _io_error(path: Path, e: OSError) -> ContactddIOError:
+    error = ContactddIOError(f"cannot read '{path}': {e.strerror or e}")
+    error.errno = e.errno
+    return error
+
+
+def _read_text(path: Path) -> str:
+    try:
+        return path.read_text(encoding="utf-8")
+    except OSError as e:
+        raise _io_error(path, e) from e
+
+
+def _read_summary(folder: Path) -> dict[str, Any]:
+    if not folder.is_dir():
+        e = OSError(errno_codes.ENOENT, os.strerror(errno_codes.ENOENT))
+        raise _io_error(folder, e)
+    path = folder / "summary.json"
+    if not path.is_file():
+        raise ContactddError(
+            f"{folder}: no complete result: summary.json is missing (it is written last, so "
+            "the write was interrupted, or this is not a result folder)"
+        )
+    try:
+        summary = json.loads(_read_text(path))
+    except json.JSONDecodeError as e:
+        raise ContactddError(f"{path}: not a summary written by contactdd: {e}") from e
+    if not isinstance(summary, dict) or not isinstance(summary.get("files"), list):
+        raise ContactddError(f"{path}: no manifest ('files'): not a result folder of contactdd")
+    return summary
+
+
+def _key(d: dict[str, Any], key: str, where: Path) -> Any:
+    if key not in d:
+        raise ContactddError(
+            f"{where}: summary.json has no '{key}' (written by another version of contactdd?)"
+        )
+    return d[key]
+
+
+def _floats(values: Any) -> np.ndarray:
+    """A JSON list of numbers as floats, ``null`` (a non-finite value) as NaN."""
+    return np.array([np.nan if v is None else v for v in values], dtype=np.float64)
+
+
+def _number(v: Any) -> float:
+    return float("nan") if v is None else float(v)
+
+
+def _data_array(element: ET.Element) -> np.ndarray:
+    """The values of a VTU ``DataArray`` (ASCII, or base64 binary with a UInt64 byte count)."""
+    dtype = np.dtype(_DTYPES[element.get("type", "Float64")]).newbyteorder("<")
+    text = element.text or ""
+    if element.get("format") == "binary":
+        raw = base64.b64decode("".join(text.split()))
+        count = int(np.frombuffer(raw[:8], dtype="<u8")[0])
+        values = np.frombuffer(raw[8:8 + count], dtype=dtype).astype(dtype.newbyteorder("="))
+    else:
+        values = np.array([float(v) for v in text.split()]).astype(dtype.newbyteorder("="))
+    components = int(element.get("NumberOfComponents", "1"))
+    return values.reshape(-1, components) if components > 1 else values
+
+
+def _body(path: Path, info: dict[str, Any]) -> Body:
+    text = _read_text(path)
+    try:
+        return _parse_body(text, info)
+    except (ET.ParseError, KeyError, ValueError, IndexError, TypeError) as e:
+        raise ContactddError(f"{path}: not a VTU file of contactdd ({type(e).__name__}: {e})") from e
+
+
+def _parse_body(text: str, info: dict[str, Any]) -> Body:
+    root = ET.fromstring(text)
+    arrays = {a.get("Name"): _data_array(a) for a in root.iter("DataArray")}
+    points = root.find(".//Points/DataArray")
+    if points is None:
+        raise ValueError("no Points")
+    types = arrays["types"]
+    per_cell = _CELL_NODES[int(types[0])] if len(types) else 3
+    stress = np.column_stack([arrays[f"sigma_{c}"] for c in ["xx", "yy", "xy", "zz"]])
+    return Body._from_state({
+        "name": info["name"],
+        "order": info["order"],
+        "nodes": np.ascontiguousarray(_data_array(points)[:, :2]),
+        "triangles": arrays["connectivity"].reshape(-1, per_cell),
+        "displacement": np.ascontiguousarray(arrays["displacement"][:, :2]),
+        "stress": stress,
+        "von_mises": arrays["von_mises"],
+        "contact_pressure": arrays["contact_pressure"],
+    })
+
+
+def _contact(pair: dict[str, Any], folder: Path) -> Contact:
+    status = pair["status"]
+    gap = _floats(pair["gap"])
+    # JSON has no infinity: the gap of a point without a partner is written as null.
+    gap[np.array([s == "no-partner" for s in status], dtype=bool)] = np.inf
+    bodies = tuple(pair["bodies"])
+    try:
+        return Contact._from_state({
+            "name": pair["name"],
+            "bodies": bodies,
+            "side": np.array([bodies.index(b) for b in pair["body"]], dtype=np.int64),
+            "node": np.array(pair["node"], dtype=np.int64),
+            "x": _floats(pair["x"]),
+            "y": _floats(pair["y"]),
+            "gap": gap,
+            "pressure": _floats(pair["pressure"]),
+            "closed": np.array([s == "closed" for s in status], dtype=bool),
+            "status": list(status),
+            "weight": _floats(pair["weight"]),
+            "normal": _floats([c for n in pair["normal"] for c in n]).reshape(-1, 2),
+            "forces": tuple(tuple(_number(c) for c in f) for f in pair["force"]),
+            "max_penetration": _number(pair["max_penetration"]),
+            "complementarity": _number(pair["complementarity"]),
+        })
+    except (KeyError, ValueError, TypeError) as e:
+        raise ContactddError(f"{folder}: summary.json: a contact pair not as contactdd writes it "
+                             f"({type(e).__name__}: {e})") from e
+
+
+def _history(path: Path, names: list[str]) -> dict[str, np.ndarray]:
+    """``history.csv``: k, gamma, then rel_change, active and normal_force per body."""
+    rows = list(csv.reader(_read_text(path).splitlines()))[1:]
+    nb = len(names)
+    if any(len(r) != 2 + 3 * nb for r in rows):
+        raise ContactddError(f"{path}: expected {2 + 3 * nb} columns for {nb} bodies")
+    table = np.array([[float(v) for v in r] for r in rows], dtype=np.float64).reshape(-1, 2 + 3 * nb)
+    return {
+        "k": table[:, 0].astype(np.int64),
+        "gamma": np.ascontiguousarray(table[:, 1]),
+        "rel_change": np.ascontiguousarray(table[:, 2:2 + nb]),
+        "active": table[:, 2 + nb:2 + 2 * nb].astype(np.int64),
+        "normal_force": np.ascontiguousarray(table[:, 2 + 2 * nb:]),
+    }
+
+
+def _result(summary: dict[str, Any], files: list[str], bodies: list[Body],
+            contact: list[Contact], names: list[str], folder: Path) -> Result:
+    if "history.csv" not in files:
+        raise ContactddError(f"{folder}: summary.json lists no history.csv")
+    steps = summary.get("steps")
+    state = {
+        key: _key(summary, key, folder)
+        for key in ["converged", "stop", "iterations", "message", "method", "updates"]
+    }
+    gamma = _key(summary, "gamma", folder)
+    state.update({
+        "gamma": gamma if gamma == "auto" else _number(gamma),
+        "theta": [_number(t) for t in _key(summary, "theta", folder)],
+        "gap_tol": summary.get("gap_tol"),
+        "timing": {k: _number(v) for k, v in _key(summary, "timing_s", folder).items()},
+        "history": _history(folder / "history.csv", names),
+        "bodies": bodies,
+        "contact": contact,
+        "load_factor": _number(steps[-1]["factor"]) if steps else 1.0,
+        "summary": summary,
+    })
+    return Result._from_state(state)
+
+
+def _monolithic(summary: dict[str, Any], bodies: list[Body], contact: list[Contact],
+                folder: Path) -> MonolithicResult:
+    return MonolithicResult._from_state({
+        "newton_steps": _key(summary, "newton_steps", folder),
+        "rigid_modes": list(_key(summary, "rigid_modes", folder)),
+        "bodies": bodies,
+        "contact": contact,
+        "seconds": _number(_key(summary, "timing_s", folder).get("total")),
+        "summary": summary,
+    })

@@ -1,0 +1,131 @@
+"""Bodies from a meshio.Mesh and from the live Gmsh model read as the problem file's Gmsh meshes
+are: examples/cylinder_plates.toml built from meshio.read(its .msh) and from its mesh script's
+live model solves to the same result, bit for bit, as the file."""
+
+import importlib.util
+import sys
+
+import numpy as np
+import pytest
+
+import contactdd
+from compare import assert_same_result
+from conftest import REPO
+
+EXAMPLE = REPO / "examples" / "cylinder_plates.toml"
+MSH = REPO / "examples" / "meshes" / "cylinder_plates.msh"
+SCRIPT = REPO / "examples" / "meshes" / "make_cylinder_plates.py"
+
+# The bodies of examples/cylinder_plates.toml: (name, supports, loads).
+BODIES = [
+    ("lower", [{"boundary": "lower-bottom", "component": "both"}], None),
+    ("cylinder", [{"boundary": "cyl-centre", "component": "x"}], None),
+    ("upper", [{"boundary": "upper-mid", "component": "x"}],
+     [{"kind": "pressure", "boundary": "upper-top", "value": 225.0}]),
+]
+
+
+def cylinder_plates(add_body, reference):
+    """The example built in code, each body added by ``add_body(problem, name, supports,
+    loads)``; the starting values u0, u_prev (from the model's size) as the file's."""
+    p = contactdd.Problem(name="cylinder_plates")
+    p.add_material("steel", young=2.1e5, poisson=0.3)
+    for name, supports, loads in BODIES:
+        add_body(p, name, supports, loads)
+    p.add_contact(("lower", "cylinder"), ("lower-top", "cyl-bottom"), theta=8e-9,
+                  name="lower-cylinder")
+    p.add_contact(("cylinder", "upper"), ("cyl-top", "upper-bottom"), theta=8e-9,
+                  name="cylinder-upper")
+    p.solver(u0=reference.settings["u0"], u_prev=reference.settings["u_prev"])
+    return p
+
+
+@pytest.fixture(scope="module")
+def from_file():
+    if not EXAMPLE.is_file():
+        pytest.skip(f"{EXAMPLE} does not exist")
+    problem = contactdd.Problem.from_toml(EXAMPLE)
+    return problem, contactdd.solve(problem)
+
+
+def test_meshio_mesh_solves_as_the_file(from_file):
+    meshio = pytest.importorskip("meshio")
+    mesh = meshio.read(MSH)
+    problem = cylinder_plates(
+        lambda p, name, supports, loads: contactdd.add_meshio_body(
+            p, name, mesh, "steel", surface=name, order="p2", supports=supports, loads=loads),
+        from_file[0])
+    assert_same_result(from_file[1], contactdd.solve(problem), timing=False)
+
+
+def test_live_gmsh_model_solves_as_the_file(from_file):
+    try:
+        import gmsh
+    except (ImportError, OSError) as e:
+        pytest.skip(f"the gmsh package cannot be imported here: {e}")
+    spec = importlib.util.spec_from_file_location("make_cylinder_plates", SCRIPT)
+    script = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(script)
+    gmsh.initialize(interruptible=False)
+    try:
+        script.build()
+        problem = cylinder_plates(
+            lambda p, name, supports, loads: contactdd.add_gmsh_body(
+                p, name, "steel", surface=name, order="p2", supports=supports, loads=loads),
+            from_file[0])
+    finally:
+        gmsh.finalize()
+    assert_same_result(from_file[1], contactdd.solve(problem), timing=False)
+
+
+def square(meshio, points, cells, mid=None):
+    """A unit square of two triangles as a meshio mesh with physical groups: surface "block"
+    (tag 1), curve "bottom" (tag 2)."""
+    cell_type, line_type = ("triangle6", "line3") if mid is not None else ("triangle", "line")
+    bottom = [0, 1] + ([mid] if mid is not None else [])
+    return meshio.Mesh(
+        points, [(cell_type, np.array(cells)), (line_type, np.array([bottom]))],
+        cell_data={"gmsh:physical": [np.array([1, 1]), np.array([2])],
+                   "gmsh:geometrical": [np.array([1, 1]), np.array([1])]},
+        field_data={"block": np.array([1, 2]), "bottom": np.array([2, 1])},
+    )
+
+
+def block(add):
+    p = contactdd.Problem()
+    p.add_material("steel", 1.0, 0.3)
+    add(p)
+    return p
+
+
+def test_meshio_rules_clockwise_and_curved_p2():
+    meshio = pytest.importorskip("meshio")
+    corners = [[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]]
+    ccw, cw = [[0, 1, 2], [0, 2, 3]], [[0, 2, 1], [0, 3, 2]]
+    held = [{"boundary": "bottom", "component": "both"}]
+    texts = []
+    for cells in [ccw, cw]:
+        p = block(lambda p: contactdd.add_meshio_body(p, "b", square(meshio, corners, cells),
+                                                      "steel", supports=held))
+        assert p.boundaries("b") == ["bottom"]
+        texts.append(p.to_toml())
+    # The clockwise triangles were reordered into the counter-clockwise ones.
+    assert texts[0] == texts[1]
+    assert "triangles = [[0, 1, 2], [0, 2, 3]]" in texts[0]
+    # P2 with the mid-side node of edge (0, 1) off the edge: a curved triangle.
+    mids = [[0.5, -0.1], [1.0, 0.5], [0.5, 0.5], [0.5, 1.0], [0.0, 0.5]]
+    p2 = [[0, 1, 2, 4, 5, 6], [0, 2, 3, 6, 7, 8]]
+    mesh = square(meshio, corners + mids, p2, mid=4)
+    with pytest.raises(contactdd.ContactddError, match="SecondOrderLinear") as info:
+        block(lambda p: contactdd.add_meshio_body(p, "b", mesh, "steel", supports=held))
+    assert "the meshio mesh" in str(info.value)
+
+
+def test_clear_import_errors(monkeypatch):
+    monkeypatch.setitem(sys.modules, "gmsh", None)
+    monkeypatch.setitem(sys.modules, "meshio", None)
+    p = contactdd.Problem()
+    with pytest.raises(ImportError, match="pip install gmsh"):
+        contactdd.add_gmsh_body(p, "b", "steel")
+    with pytest.raises(ImportError, match="pip install meshio"):
+        contactdd.add_meshio_body(p, "b", object(), "steel")
