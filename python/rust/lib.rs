@@ -20,11 +20,10 @@ use pyo3::types::{PyDict, PyList};
 use contactdd_core::Order;
 use contactdd_ddm::contact::Interface;
 use contactdd_ddm::contact_check;
-use contactdd_ddm::sweep::SweepRun;
+use contactdd_ddm::sweep::{SweepHooks, SweepRun};
 use contactdd_ddm::{Enforcement, Gamma, Hooks, Method, Model, Record, SetupError};
 use contactdd_io::problem::EnforcementSpec;
 use contactdd_io::setup::MAX_RECTANGLE_CELLS;
-use rayon::prelude::*;
 
 mod benchmark;
 mod convert;
@@ -445,8 +444,12 @@ fn sweep<'py>(
         };
         with_threads(threads, || {
             let prepared = contactdd_ddm::prepare(&model)?;
-            Ok(sweep_runs(
-                &model, &prepared, &methods, &gammas, &base, cancel, &report,
+            let hooks = SweepHooks {
+                cancel: Some(cancel),
+                on_run: Some(&report),
+            };
+            Ok(contactdd_ddm::sweep_with(
+                &model, &prepared, &methods, &gammas, &base, hooks,
             ))
         })
     })?;
@@ -462,38 +465,6 @@ fn sweep<'py>(
         list.append(sweep_record(py, r)?)?;
     }
     Ok(list)
-}
-
-/// The runs of a sweep in its order (γ by γ, method by method), each run by the sweep of
-/// contactdd-ddm on its own and reported to `report` as soon as it ends; the runs execute in
-/// parallel, as in one sweep of them all.
-fn sweep_runs(
-    model: &Model,
-    prepared: &contactdd_ddm::Prepared,
-    methods: &[Method],
-    gammas: &[Gamma],
-    base: &contactdd_ddm::Settings,
-    cancel: &AtomicBool,
-    report: &(dyn Fn(&SweepRun) + Sync),
-) -> Vec<SweepRun> {
-    let jobs: Vec<(Method, Gamma)> = gammas
-        .iter()
-        .flat_map(|&g| methods.iter().map(move |&m| (m, g)))
-        .collect();
-    jobs.par_iter()
-        .flat_map_iter(|&(m, g)| {
-            let runs = contactdd_ddm::sweep::sweep_with_cancel(
-                model,
-                prepared,
-                &[m],
-                &[g],
-                base,
-                Some(cancel),
-            );
-            runs.iter().for_each(report);
-            runs
-        })
-        .collect()
 }
 
 /// One run of a sweep as its dict: method, gamma, iterations, converged, reason.

@@ -5,15 +5,29 @@ use std::path::PathBuf;
 
 use anyhow::{Context, Result};
 
-use contactdd_ddm::sweep::SweepRun;
-use contactdd_ddm::{prepare, sweep as dd_sweep, Gamma, Method, Stop};
+use std::sync::atomic::{AtomicUsize, Ordering};
+
+use contactdd_ddm::sweep::{SweepHooks, SweepRun};
+use contactdd_ddm::{prepare, sweep_with, Gamma, Method, Stop};
 use contactdd_io::atomic::check_output_path;
 use contactdd_io::output::{safe_file_name, sweep_csv, write_atomic};
 
 use crate::args::SweepArgs;
+use crate::console::Status;
 use crate::report::progress;
 use crate::solve::{apply_common, count};
 use crate::{load, with_threads, Exit};
+
+/// One run for the status line: method, γ and its outcome.
+fn run_text(r: &SweepRun) -> String {
+    let gamma = r.gamma.map_or("auto".to_string(), |g| g.to_string());
+    let outcome = if r.converged {
+        format!("{} iterations", r.iterations)
+    } else {
+        r.reason.clone()
+    };
+    format!("{} γ {gamma}: {outcome}", r.method.name())
+}
 
 /// `contactdd sweep`.
 pub fn sweep(args: SweepArgs) -> Result<Exit> {
@@ -45,7 +59,19 @@ pub fn sweep(args: SweepArgs) -> Result<Exit> {
                 methods.len() * gammas.len()
             ));
         }
-        Ok(dd_sweep(model, &prepared, methods, gammas, &settings))
+        let (status, done) = (Status::new(!quiet), AtomicUsize::new(0));
+        let total = methods.len() * gammas.len();
+        let on_run = |r: &SweepRun| {
+            let k = done.fetch_add(1, Ordering::Relaxed) + 1;
+            status.update(&format!("{k} of {total} runs done; last: {}", run_text(r)));
+        };
+        let hooks = SweepHooks {
+            cancel: None,
+            on_run: Some(&on_run),
+        };
+        let runs = sweep_with(model, &prepared, methods, gammas, &settings, hooks);
+        status.finish();
+        Ok(runs)
     })?;
     write_atomic(&out, sweep_csv(&runs).as_bytes())
         .with_context(|| format!("cannot write '{}'", out.display()))?;

@@ -40,4 +40,4 @@ pub use profile::GapProfile;
 pub use relaxation::Gamma;
 pub use solution::Solution;
 pub use solver::{prepare, solve, solve_from, Prepared};
-pub use sweep::{sweep, sweep_with_cancel, SweepRun};
+pub use sweep::{sweep, sweep_with, SweepHooks, SweepRun};

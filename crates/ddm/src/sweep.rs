@@ -1,7 +1,8 @@
 //! The γ sweep: methods × γ values → iterations, converged or why not (the paper's Fig. 3 /
 //! Table 1). Everything that does not depend on γ (assembly, factorisation, condensation) is
 //! prepared once; each run only iterates on the interface, and runs execute in parallel.
-//! [`sweep_with_cancel`] takes a cancel flag (Ctrl-C in the Python module).
+//! [`sweep_with`] takes a cancel flag (Ctrl-C in the Python module) and reports each run as it ends
+//! (progress).
 
 use std::sync::atomic::{AtomicBool, Ordering};
 
@@ -32,9 +33,19 @@ pub struct SweepRun {
     pub stop: Stop,
 }
 
+/// What a sweep reports and obeys while it runs.
+#[derive(Clone, Copy, Default)]
+pub struct SweepHooks<'a> {
+    /// Once set, runs not yet started are skipped and running ones stop at their next iteration.
+    pub cancel: Option<&'a AtomicBool>,
+    /// Called with each run as soon as it ends (from the thread that ran it; runs end in any
+    /// order).
+    pub on_run: Option<&'a (dyn Fn(&SweepRun) + Sync)>,
+}
+
 /// Runs every method with every γ; `base` supplies the tolerance, cap and initial values.
-/// Runs are returned γ by γ, method by method. See [`sweep_with_cancel`] for a sweep that can be
-/// stopped.
+/// Runs are returned γ by γ, method by method. See [`sweep_with`] for a sweep that reports its
+/// progress and can be stopped.
 pub fn sweep(
     model: &Model,
     prepared: &Prepared,
@@ -42,21 +53,28 @@ pub fn sweep(
     gammas: &[Gamma],
     base: &Settings,
 ) -> Vec<SweepRun> {
-    sweep_with_cancel(model, prepared, methods, gammas, base, None)
+    sweep_with(
+        model,
+        prepared,
+        methods,
+        gammas,
+        base,
+        SweepHooks::default(),
+    )
 }
 
-/// [`sweep`] with a cancel flag: once `cancel` is set, runs not yet started are skipped and
-/// running ones stop at their next iteration (the flag is their [`Hooks::cancel`]). Every run is
-/// still reported; those that did not complete have reason `"interrupted"` (`iterations` is 0 for a
-/// skipped run).
-pub fn sweep_with_cancel(
+/// [`sweep`] with hooks: a cancel flag (it is every run's [`Hooks::cancel`]) and a callback per
+/// finished run. Every run is still returned; those that did not complete have reason
+/// `"interrupted"` (`iterations` is 0 for a skipped run).
+pub fn sweep_with(
     model: &Model,
     prepared: &Prepared,
     methods: &[Method],
     gammas: &[Gamma],
     base: &Settings,
-    cancel: Option<&AtomicBool>,
+    hooks: SweepHooks<'_>,
 ) -> Vec<SweepRun> {
+    let cancel = hooks.cancel;
     let jobs: Vec<(Method, Gamma)> = gammas
         .iter()
         .flat_map(|&g| methods.iter().map(move |&m| (m, g)))
@@ -81,7 +99,7 @@ pub fn sweep_with_cancel(
                 let out = iterate(prepared, &settings, hooks);
                 (out.iterations, out.stop)
             };
-            SweepRun {
+            let run = SweepRun {
                 method,
                 gamma: match gamma {
                     Gamma::Constant(g) => Some(g),
@@ -91,7 +109,11 @@ pub fn sweep_with_cancel(
                 converged: stop == Stop::Converged,
                 reason: short_reason(model, &stop),
                 stop,
+            };
+            if let Some(report) = hooks.on_run {
+                report(&run);
             }
+            run
         })
         .collect()
 }
@@ -117,11 +139,25 @@ mod tests {
             tol: 1e-3,
             ..Settings::default()
         };
-        let free = sweep_with_cancel(&model, &prepared, &methods, &gammas, &base, None);
+        let reported = std::sync::Mutex::new(Vec::new());
+        let on_run = |r: &SweepRun| reported.lock().unwrap().push(r.clone());
+        let hooks = SweepHooks {
+            cancel: None,
+            on_run: Some(&on_run),
+        };
+        let free = sweep_with(&model, &prepared, &methods, &gammas, &base, hooks);
         assert_eq!(free, sweep(&model, &prepared, &methods, &gammas, &base));
+        // Every run reported once, in whatever order the runs ended.
+        let mut reported = reported.into_inner().unwrap();
+        reported.sort_by_key(|r| free.iter().position(|f| f == r));
+        assert_eq!(reported, free);
         assert!(free.iter().all(|r| r.converged), "{free:?}");
         let cancel = AtomicBool::new(true);
-        let stopped = sweep_with_cancel(&model, &prepared, &methods, &gammas, &base, Some(&cancel));
+        let hooks = SweepHooks {
+            cancel: Some(&cancel),
+            on_run: None,
+        };
+        let stopped = sweep_with(&model, &prepared, &methods, &gammas, &base, hooks);
         assert_eq!(stopped.len(), methods.len() * gammas.len());
         for (s, f) in stopped.iter().zip(&free) {
             assert_eq!((s.method, s.gamma), (f.method, f.gamma));
