@@ -129,10 +129,12 @@ impl Exchange for MpiExchange {
     }
 
     fn agree(&self, error: Option<String>) -> Option<String> {
-        // A leading 1 marks an error, so that an empty message still counts.
-        let bytes: Vec<u8> = error
-            .map(|e| std::iter::once(1u8).chain(e.into_bytes()).collect())
-            .unwrap_or_default();
+        // A leading 1 marks an error, a lone 0 its absence: never an empty byte buffer, whose
+        // dangling address (1) OpenMPI would take for MPI_IN_PLACE.
+        let bytes: Vec<u8> = match error {
+            Some(e) => std::iter::once(1u8).chain(e.into_bytes()).collect(),
+            None => vec![0],
+        };
         self.timed(|world| {
             let mut counts = vec![0 as Count; self.size];
             world.all_gather_into(&count(bytes.len()), &mut counts[..]);
@@ -140,7 +142,7 @@ impl Exchange for MpiExchange {
             let mut at = 0usize;
             for &n in &counts {
                 let n = n as usize;
-                if n > 0 {
+                if all.get(at) == Some(&1) {
                     return Some(String::from_utf8_lossy(&all[at + 1..at + n]).into_owned());
                 }
                 at += n;
