@@ -8,9 +8,9 @@
 #   in one process and under `mpirun -n 2` and `-n 3`, and compares every output file byte for
 #   byte (summary.json without its timings, contact.csv, history.csv, the VTU files): the numbers
 #   are written to the last bit, so equal files are equal bits;
-# - solves a column whose top block one rank cannot factorise (no support against sliding) and a
-#   run that diverges, and checks that every rank ends with the single process's exit code and
-#   the same one error message, naming the body, without hanging.
+# - solves a column whose top block one rank cannot factorise (no support against sliding) and
+#   runs in which a body's Robin problem turns singular, and checks that every rank ends with the
+#   single process's exit code and the same one message, naming the body, without hanging.
 #
 # Usage: bash scripts/test_mpi.sh
 set -euo pipefail
@@ -106,6 +106,13 @@ done
 # A run that diverges (the paper's neumann rule with γ = 1 on the column): exit 2 everywhere.
 same stack-diverges examples/stack.toml --method neumann --gamma 1 --max-iter 50
 check "diverging run: the single process exits 2" grep -qx 2 "$work/stack-diverges-1.code"
+# A body whose Robin problem turns singular late (it loses all contact): on 3 ranks every body has
+# a rank of its own, so the rank that meets it is not the one that reports.
+same three-lost examples/three_bodies.toml --method active-set --gamma 1
+check "lost contact: the single process exits 2" grep -qx 2 "$work/three-lost-1.code"
+for n in 1 2 3; do
+  check "lost contact: -n $n names the body" grep -q "body 'upper' lost all contact" "$work/three-lost-$n.stdout"
+done
 
 echo "$passed passed, $fail failed"
 [ "$fail" = 0 ]
