@@ -83,6 +83,42 @@ pub fn share_slices(exchange: &dyn Exchange, ranges: &[Range<usize>], values: &m
     }
 }
 
+/// The outputs of a sweep in one exchange: fills the other processes' bodies' slices
+/// `ranges[b]` of every buffer in `values` and returns every body's status.
+pub fn share_outputs(
+    exchange: &dyn Exchange,
+    ranges: &[Range<usize>],
+    values: &mut [&mut [f64]],
+    status: Vec<Result<(), Breakdown>>,
+) -> Vec<Result<(), Breakdown>> {
+    if exchange.is_local() {
+        return status;
+    }
+    // Per body: its slice of each buffer, then its status.
+    let packed = ranges
+        .iter()
+        .zip(&status)
+        .map(|(range, s)| {
+            let mut v: Vec<f64> = values
+                .iter()
+                .flat_map(|buf| buf[range.clone()].iter().copied())
+                .collect();
+            v.push(encode(s));
+            v
+        })
+        .collect();
+    let all = share_vectors(exchange, packed);
+    for (range, v) in ranges.iter().zip(&all) {
+        for (k, buf) in values.iter_mut().enumerate() {
+            let at = k * range.len();
+            buf[range.clone()].copy_from_slice(&v[at..at + range.len()]);
+        }
+    }
+    all.iter()
+        .map(|v| decode(v.last().copied().unwrap_or(f64::NAN)))
+        .collect()
+}
+
 /// Every body's entry of `per_body`, where this process filled its own bodies'.
 pub fn share_vectors(exchange: &dyn Exchange, per_body: Vec<Vec<f64>>) -> Vec<Vec<f64>> {
     if exchange.is_local() {
@@ -95,21 +131,6 @@ pub fn share_vectors(exchange: &dyn Exchange, per_body: Vec<Vec<f64>>) -> Vec<Ve
         .map(|(_, v)| v)
         .collect();
     exchange.gather(own)
-}
-
-/// Every body's solve status, where this process set its own bodies'.
-pub fn share_status(
-    exchange: &dyn Exchange,
-    status: Vec<Result<(), Breakdown>>,
-) -> Vec<Result<(), Breakdown>> {
-    if exchange.is_local() {
-        return status;
-    }
-    let codes = status.iter().map(|s| vec![encode(s)]).collect();
-    share_vectors(exchange, codes)
-        .iter()
-        .map(|c| decode(c.first().copied().unwrap_or(f64::NAN)))
-        .collect()
 }
 
 /// Every body's matrix, where this process filled its own bodies' (the others may be empty).

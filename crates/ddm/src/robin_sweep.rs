@@ -14,7 +14,7 @@ use rayon::prelude::*;
 
 use crate::condensed::{CondensedBody, RobinCache};
 use crate::contact::Interface;
-use crate::exchange::{share_slices, share_status, Exchange};
+use crate::exchange::{share_outputs, Exchange};
 use crate::method::Method;
 
 /// Why a body's Robin solve failed.
@@ -136,9 +136,12 @@ impl<'a> RobinSweep<'a> {
                 })
             })
             .collect();
-        share_slices(self.exchange, &interface.body_range, un_out);
-        share_slices(self.exchange, &interface.body_range, t_out);
-        share_status(self.exchange, status)
+        share_outputs(
+            self.exchange,
+            &interface.body_range,
+            &mut [un_out, t_out],
+            status,
+        )
     }
 }
 
