@@ -59,7 +59,8 @@ pub fn prepare_on(model: &Model, exchange: Arc<dyn Exchange>) -> Result<Prepared
     crate::contact_check::refuse(&crate::contact_check::check(model, &interface))?;
     let t_contact = t.elapsed().as_secs_f64();
     let t = Instant::now();
-    // One level of parallelism: over bodies when there are several, inside faer otherwise.
+    // One level of parallelism: over bodies when there are several, inside faer otherwise. A
+    // process of a distributed solve chooses as one process would, so its factors are the same.
     let par = if model.bodies.len() > 1 {
         faer::Par::Seq
     } else {
