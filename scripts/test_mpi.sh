@@ -10,7 +10,8 @@
 #   are written to the last bit, so equal files are equal bits;
 # - solves a column whose top block one rank cannot factorise (no support against sliding) and
 #   runs in which a body's Robin problem turns singular, and checks that every rank ends with the
-#   single process's exit code and the same one message, naming the body, without hanging.
+#   single process's exit code and the same one message, naming the body, without hanging; and
+#   the same for a results folder that cannot be written.
 #
 # Usage: bash scripts/test_mpi.sh
 set -euo pipefail
@@ -112,6 +113,25 @@ same three-lost examples/three_bodies.toml --method active-set --gamma 1
 check "lost contact: the single process exits 2" grep -qx 2 "$work/three-lost-1.code"
 for n in 1 2 3; do
   check "lost contact: -n $n names the body" grep -q "body 'upper' lost all contact" "$work/three-lost-$n.stdout"
+done
+
+# A results folder nobody can write: every rank ends with exit 1, one message, no hang.
+bad=/proc/contactdd-no-such-dir
+code=0
+"$bin" solve examples/stack.toml --out "$bad" --quiet 2>"$work/unwritable-1.stderr" || code=$?
+echo "$code" >"$work/unwritable-1.code"
+for n in 2 3; do
+  code=0
+  timeout 300 "${mpirun[@]}" -n "$n" "$bin" solve examples/stack.toml --out "$bad" --quiet \
+    2>"$work/unwritable-$n.stderr" || code=$?
+  echo "$code" >"$work/unwritable-$n.code"
+done
+check "unwritable folder: the message says so" grep -q "cannot write the results" "$work/unwritable-1.stderr"
+check "unwritable folder: the single process fails with exit 1" grep -qx 1 "$work/unwritable-1.code"
+for n in 2 3; do
+  check "unwritable folder: -n $n ends with exit 1" grep -qx 1 "$work/unwritable-$n.code"
+  check "unwritable folder: -n $n prints the single process's message once" \
+    test "$(grep '^error: ' "$work/unwritable-$n.stderr")" = "$(cat "$work/unwritable-1.stderr")"
 done
 
 echo "$passed passed, $fail failed"

@@ -2,10 +2,13 @@
 //! `mpirun`) several MPI ranks, each computing the bodies the partition gives it
 //! (`docs/mpi.md`). Rank 0 prints and writes the results; every rank ends with the same exit code.
 
+use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
 use contactdd_ddm::exchange::{Exchange, Local};
-use contactdd_ddm::Model;
+use contactdd_ddm::{Model, Solution};
+use contactdd_io::output::write_results_noted;
+use contactdd_io::shared_results::{write_results_shared, Part};
 
 /// The processes of a solve and how they share the bodies.
 pub struct Ranks {
@@ -58,6 +61,27 @@ impl Ranks {
     /// Whether this process prints and writes the results.
     pub fn is_root(&self) -> bool {
         self.exchange.rank() == 0
+    }
+
+    /// Writes the result folder: in one process all of it; on several ranks each rank its own
+    /// bodies' VTU files and rank 0 the rest (a collective). Returns the paths this rank wrote.
+    pub fn write_results(
+        &self,
+        dir: &Path,
+        model: &Model,
+        sol: &Solution,
+        units: Option<&str>,
+    ) -> std::io::Result<Vec<PathBuf>> {
+        if self.size == 1 {
+            return write_results_noted(dir, model, sol, units);
+        }
+        let exchange = &*self.exchange;
+        let part = Part {
+            root: self.is_root(),
+            owns: &|b| exchange.owns(b),
+            agree: &|error| exchange.agree(error),
+        };
+        write_results_shared(dir, model, sol, units, &part)
     }
 
     /// Per rank, the time it spent communicating and its peak memory (a collective; one entry

@@ -14,7 +14,7 @@ use contactdd_ddm::{
     prepare_on, solve as dd_solve, Accelerator, CoarseMode, Gamma, Hooks, Model,
     MonolithicSolution, Record,
 };
-use contactdd_io::output::{safe_file_name, write_monolithic_results, write_results_noted};
+use contactdd_io::output::{safe_file_name, write_monolithic_results};
 use contactdd_io::reactions::reactions;
 
 use crate::args::{Common, MonolithicArgs, SolveArgs};
@@ -154,14 +154,6 @@ pub fn solve(args: SolveArgs) -> Result<Exit> {
         let mut sol =
             dd_solve(model, &prepared, &settings, hooks).map_err(|e| anyhow::anyhow!("{e}"))?;
         let usage = ranks.usage();
-        if !ranks.is_root() {
-            // Rank 0 writes the results; every rank ends with its exit code.
-            return Ok(if sol.converged {
-                Exit::Success
-            } else {
-                Exit::NotConverged
-            });
-        }
         if ranks.size() > 1 {
             for (r, u) in usage.iter().enumerate() {
                 sol.timing
@@ -172,8 +164,17 @@ pub fn solve(args: SolveArgs) -> Result<Exit> {
             Some(last) if !quiet && !shown(last.k) => say!("{}", table.line(last)),
             _ => {}
         }
-        let written = write_results_noted(&out, model, &sol, loaded.problem.units.as_deref())
+        let written = ranks
+            .write_results(&out, model, &sol, loaded.problem.units.as_deref())
             .with_context(|| format!("cannot write the results to '{}'", out.display()))?;
+        if !ranks.is_root() {
+            // Rank 0 reports; every rank ends with the same exit code.
+            return Ok(if sol.converged {
+                Exit::Success
+            } else {
+                Exit::NotConverged
+            });
+        }
 
         let updates = match sol.gap_tol {
             Some(tol) => format!(
