@@ -84,7 +84,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         "DD prepare: {t_prep:.3} s; iterate + recover + post: {t_solve:.3} s; iterations {}",
         sol.iterations
     );
-    for body in &prepared.bodies {
+    for body in prepared.bodies.iter().flatten() {
         println!("  DD factor: {} values", body.operator().factor_len());
     }
     for (phase, s) in &sol.timing {

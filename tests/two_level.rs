@@ -139,7 +139,7 @@ fn the_coarse_correction_balances_floating_bodies_and_keeps_the_state_consistent
     let m = iface.len();
     let mut un = vec![1e-4; m];
     let mut t: Vec<f64> = Vec::with_capacity(m);
-    for (b, body) in prepared.bodies.iter().enumerate() {
+    for (b, body) in prepared.bodies.iter().flatten().enumerate() {
         t.extend(body.initial_load(&un[iface.body_range[b].clone()]));
     }
     let steps = prepared
@@ -162,7 +162,7 @@ fn the_coarse_correction_balances_floating_bodies_and_keeps_the_state_consistent
             "block {b}: contact force {force}, load {load}"
         );
     }
-    for (b, body) in prepared.bodies.iter().enumerate() {
+    for (b, body) in prepared.bodies.iter().flatten().enumerate() {
         let u = body.recover(&t[iface.body_range[b].clone()]).unwrap();
         for (p, &unj) in iface
             .of_body(b)

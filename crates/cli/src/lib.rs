@@ -41,6 +41,8 @@ macro_rules! say {
 mod args;
 mod check;
 mod console;
+#[cfg(feature = "mpi")]
+pub mod mpi_exchange;
 mod plot;
 mod plot_contact;
 mod plot_data;
@@ -49,6 +51,7 @@ mod plot_history;
 mod plot_mesh;
 mod plot_steps;
 mod plot_sweep;
+pub mod ranks;
 mod report;
 mod solve;
 mod steps;
@@ -108,7 +111,10 @@ where
     let exit = match result {
         Ok(exit) => exit,
         Err(e) => {
-            eprintln!("error: {e:#}");
+            // Every rank of a distributed run meets the same error; one says it.
+            if ranks::is_root() {
+                eprintln!("error: {e:#}");
+            }
             Exit::Error
         }
     };

@@ -18,5 +18,8 @@ fn main() -> ExitCode {
             .unwrap_or_default();
         eprintln!("error: internal error (a bug in contactdd, please report it): {what}{at}");
     }));
+    // Under `mpirun` (built with `--features mpi`), MPI runs until the command has finished.
+    #[cfg(feature = "mpi")]
+    let _universe = contactdd_cli::mpi_exchange::init();
     contactdd_cli::run(std::env::args_os()).into()
 }

@@ -12,14 +12,15 @@ use contactdd_ddm::contact::Interface;
 use contactdd_ddm::contact_check;
 use contactdd_ddm::monolithic::{solve_monolithic_with, MonolithicSettings, MonolithicStep};
 use contactdd_ddm::{
-    prepare, solve as dd_solve, Accelerator, CoarseMode, Gamma, Hooks, Model, MonolithicSolution,
-    Record,
+    prepare_on, solve as dd_solve, Accelerator, CoarseMode, Gamma, Hooks, Model,
+    MonolithicSolution, Record,
 };
-use contactdd_io::output::{safe_file_name, write_monolithic_results, write_results_noted};
+use contactdd_io::output::{safe_file_name, write_monolithic_results};
 use contactdd_io::reactions::reactions;
 
 use crate::args::{Common, MonolithicArgs, SolveArgs};
 use crate::console::Status;
+use crate::ranks::{RankUse, Ranks};
 use crate::report::{
     applied_loads, pair_report, progress, reaction_report, sig, status_text, timing, IterationTable,
 };
@@ -133,7 +134,9 @@ pub fn solve(args: SolveArgs) -> Result<Exit> {
         .out
         .clone()
         .unwrap_or_else(|| default_dir(model, "out"));
-    let quiet = args.quiet;
+    let ranks = Ranks::new(model);
+    // Only rank 0 of a distributed run speaks.
+    let quiet = args.quiet || !ranks.is_root();
 
     with_threads(threads, || {
         if !quiet {
@@ -142,10 +145,15 @@ pub fn solve(args: SolveArgs) -> Result<Exit> {
                 count(model.bodies.len(), "body", "bodies")
             ));
         }
-        let mut prepared =
-            prepare(model).map_err(|e| anyhow::anyhow!("{}: {e}", args.file.display()))?;
-        warn_contact(&args.file, model, &prepared.interface);
+        let mut prepared = prepare_on(model, ranks.exchange())
+            .map_err(|e| anyhow::anyhow!("{}: {e}", args.file.display()))?;
+        if ranks.is_root() {
+            warn_contact(&args.file, model, &prepared.interface);
+        }
         if let Some(factors) = &loaded.steps {
+            if ranks.size() > 1 {
+                anyhow::bail!("{}: load steps do not run on several MPI ranks yet (docs/mpi.md); run them in one process", args.file.display());
+            }
             let run = StepRun {
                 model,
                 settings: &settings,
@@ -181,15 +189,31 @@ pub fn solve(args: SolveArgs) -> Result<Exit> {
             on_iteration: if quiet { None } else { Some(&print_line) },
             cancel: None,
         };
-        let sol =
+        let mut sol =
             dd_solve(model, &prepared, &settings, hooks).map_err(|e| anyhow::anyhow!("{e}"))?;
         status.finish();
+        let usage = ranks.usage();
+        if ranks.size() > 1 {
+            for (r, u) in usage.iter().enumerate() {
+                sol.timing
+                    .insert(format!("communication_rank{r}"), u.communication);
+            }
+        }
         match sol.history.last() {
             Some(last) if !quiet && pacer.last() != last.k => say!("{}", table.line(last)),
             _ => {}
         }
-        let written = write_results_noted(&out, model, &sol, loaded.problem.units.as_deref())
+        let written = ranks
+            .write_results(&out, model, &sol, loaded.problem.units.as_deref())
             .with_context(|| format!("cannot write the results to '{}'", out.display()))?;
+        if !ranks.is_root() {
+            // Rank 0 reports; every rank ends with the same exit code.
+            return Ok(if sol.converged {
+                Exit::Success
+            } else {
+                Exit::NotConverged
+            });
+        }
 
         let updates = match sol.gap_tol {
             Some(tol) => format!(
@@ -231,6 +255,9 @@ pub fn solve(args: SolveArgs) -> Result<Exit> {
             }
             phases.push(("total", start.elapsed().as_secs_f64()));
             say!("{}", timing(phases));
+            if ranks.size() > 1 {
+                say!("{}", rank_report(&usage));
+            }
             say!("results: {}", files(&out, &written));
         }
         Ok(exit(sol.converged, &out))
@@ -244,6 +271,21 @@ fn outcome(converged: bool, done: String, message: Option<&str>) -> String {
     } else {
         format!("NOT converged: {}", message.unwrap_or("unknown reason"))
     }
+}
+
+/// One line on the ranks of a distributed run: communication time and peak memory of each.
+fn rank_report(usage: &[RankUse]) -> String {
+    let ranks: Vec<String> = usage
+        .iter()
+        .enumerate()
+        .map(|(r, u)| {
+            format!(
+                "rank {r} communication {:.3} s, peak memory {:.0} MiB",
+                u.communication, u.peak_mib
+            )
+        })
+        .collect();
+    format!("ranks: {}", ranks.join("; "))
 }
 
 /// The exit code, with a warning where the last iterate of a run that did not converge went.

@@ -63,6 +63,10 @@ pub enum SetupError {
     /// A problem with the solver settings.
     #[error("solver: {0}")]
     Solver(String),
+    /// An error that one process of a distributed solve met, in its words: every process
+    /// reports the same one (`crate::exchange`).
+    #[error("{0}")]
+    Distributed(String),
     /// A body cannot be assembled or factorised.
     #[error(transparent)]
     Factor(#[from] BodyError),

@@ -20,6 +20,7 @@ use std::time::Instant;
 use crate::anderson::Anderson;
 pub use crate::coarse::CoarseMode;
 use crate::contact::Interface;
+use crate::exchange::share_slices;
 use crate::method::Method;
 use crate::relaxation::{Gamma, Relaxation};
 pub use crate::robin_sweep::Breakdown;
@@ -276,9 +277,11 @@ impl State {
         let m = interface.len();
         let mut t = vec![0.0; m];
         for (b, body) in prepared.bodies.iter().enumerate() {
+            let Some(body) = body else { continue };
             let range = interface.body_range[b].clone();
             t[range].copy_from_slice(&body.initial_load(&vec![settings.u0; body.len()]));
         }
+        share_slices(&*prepared.exchange, &interface.body_range, &mut t);
         let mut state = State {
             u_prev: vec![settings.u_prev; m],
             u: vec![settings.u0; m],
@@ -490,7 +493,13 @@ fn sweeps(
     let start = Instant::now();
     let (m, nb) = (interface.len(), prepared.bodies.len());
     let accelerated = settings.accelerator != Accelerator::None;
-    let mut sweep = RobinSweep::new(interface, &prepared.bodies, settings.method, accelerated);
+    let mut sweep = RobinSweep::new(
+        interface,
+        &prepared.bodies,
+        &*prepared.exchange,
+        settings.method,
+        accelerated,
+    );
     let mut update = Update::new(settings);
     let mut state = State::initial(prepared, interface, settings);
     let mut buf = Buffers {

@@ -30,7 +30,9 @@
 //!   moves it towards its partners.
 //!
 //! The bodies' responses B_b τ_b are evaluated in parallel; the factorisation is sequential, so
-//! the result does not depend on the number of threads.
+//! the result does not depend on the number of threads. A process evaluates only the bodies it
+//! owns; the [`Exchange`] shares their blocks B_b and responses, and every process then solves
+//! the same Newton system (`crate::exchange`).
 
 use std::ops::Range;
 use std::sync::atomic::Ordering;
@@ -46,6 +48,7 @@ use rayon::prelude::*;
 
 use crate::condensed::CondensedBody;
 use crate::contact::Interface;
+use crate::exchange::{share_matrices, share_slices, Exchange};
 use crate::iteration::{contact_summary, relative_change, Hooks, Outcome, Record, Settings, Stop};
 use crate::robin_sweep::Breakdown;
 use crate::solver::Prepared;
@@ -89,9 +92,13 @@ pub fn iterate(
 /// The condensed interface problem.
 struct System<'a> {
     interface: &'a Interface,
-    bodies: &'a [CondensedBody],
+    /// The bodies this process owns.
+    bodies: &'a [Option<CondensedBody>],
+    exchange: &'a dyn Exchange,
     /// B_b = C₀D₀ of every body.
     response: Vec<Mat<f64>>,
+    /// The reference springs D₀ of every point.
+    d0: Vec<f64>,
     /// Free rigid modes of the floating bodies: mode range per body, normal values per point.
     mode_range: &'a [Range<usize>],
     modes: &'a [Vec<f64>],
@@ -132,11 +139,20 @@ impl Evaluation {
 impl<'a> System<'a> {
     fn new(prepared: &'a Prepared, interface: &'a Interface) -> System<'a> {
         let (mode_range, modes) = prepared.coarse.floating_modes();
+        let exchange = &*prepared.exchange;
         let response: Vec<Mat<f64>> = prepared
             .bodies
             .par_iter()
-            .map(CondensedBody::load_response)
+            .map(|b| b.as_ref().map_or(Mat::new(), CondensedBody::load_response))
             .collect();
+        let response = share_matrices(exchange, response);
+        let mut d0 = vec![0.0; interface.len()];
+        for (b, body) in prepared.bodies.iter().enumerate() {
+            if let Some(body) = body {
+                d0[interface.body_range[b].clone()].copy_from_slice(body.reference_springs());
+            }
+        }
+        share_slices(exchange, &interface.body_range, &mut d0);
         let rho = response
             .iter()
             .flat_map(|bm| (0..bm.nrows()).map(move |j| (1.0 - bm[(j, j)]).clamp(1e-8, 1.0)))
@@ -144,16 +160,14 @@ impl<'a> System<'a> {
         System {
             interface,
             bodies: &prepared.bodies,
+            exchange,
             response,
             mode_range,
             modes,
             body_of: interface.points.iter().map(|p| p.body).collect(),
             rho,
-            weightless: prepared
-                .bodies
-                .iter()
-                .flat_map(|b| b.reference_springs().iter().map(|&d| d == 0.0))
-                .collect(),
+            weightless: d0.iter().map(|&d| d == 0.0).collect(),
+            d0,
         }
     }
 
@@ -167,22 +181,27 @@ impl<'a> System<'a> {
 
     /// U(τ), s(U) and R(τ); the bodies in parallel.
     fn evaluate(&self, tau: &[f64]) -> Evaluation {
-        let u: Vec<f64> = (0..self.bodies.len())
+        let mut u: Vec<f64> = (0..self.bodies.len())
             .into_par_iter()
             .flat_map_iter(|b| {
                 let range = self.range(b);
-                let (f0, bm) = (self.bodies[b].free_response(), &self.response[b]);
+                let f0 = self.bodies[b].as_ref().map(|body| body.free_response());
+                let bm = &self.response[b];
                 let tau_b = &tau[range.clone()];
                 (0..range.len()).map(move |i| {
-                    f0[i]
-                        + tau_b
-                            .iter()
-                            .enumerate()
-                            .map(|(j, t)| bm[(i, j)] * t)
-                            .sum::<f64>()
+                    // Another process's body: its slot is filled in below.
+                    f0.map_or(0.0, |f0| {
+                        f0[i]
+                            + tau_b
+                                .iter()
+                                .enumerate()
+                                .map(|(j, t)| bm[(i, j)] * t)
+                                .sum::<f64>()
+                    })
                 })
             })
             .collect();
+        share_slices(self.exchange, &self.interface.body_range, &mut u);
         let mut s = vec![0.0; u.len()];
         self.interface.sum_normal(&u, &mut s);
         let points = &self.interface.points;
@@ -212,16 +231,7 @@ impl<'a> System<'a> {
 
     /// The interface loads T = D₀τ.
     fn loads(&self, tau: &[f64]) -> Vec<f64> {
-        (0..self.bodies.len())
-            .flat_map(|b| {
-                let d0 = self.bodies[b].reference_springs();
-                tau[self.range(b)]
-                    .iter()
-                    .zip(d0)
-                    .map(|(t, d)| t * d)
-                    .collect::<Vec<_>>()
-            })
-            .collect()
+        tau.iter().zip(&self.d0).map(|(t, d)| t * d).collect()
     }
 
     /// The points treated as closed in J: the closed points, and every partnered point of a
@@ -455,19 +465,25 @@ impl<'s, 'a> Run<'s, 'a> {
         warm: Option<&[f64]>,
         settings: &Settings,
     ) -> Self {
-        let mut tau = Vec::with_capacity(system.len());
+        let mut t = vec![0.0; system.len()];
         for (b, body) in system.bodies.iter().enumerate() {
-            let t = match warm {
-                Some(t) => t[system.range(b)].to_vec(),
-                None => body.initial_load(&vec![settings.u0; body.len()]),
-            };
-            let springs = body.reference_springs();
-            tau.extend(
-                t.iter()
-                    .zip(springs)
-                    .map(|(t, &d)| if d > 0.0 { t / d } else { 0.0 }),
-            );
+            let range = system.range(b);
+            match (warm, body) {
+                (Some(warm), _) => t[range.clone()].copy_from_slice(&warm[range]),
+                (None, Some(body)) => {
+                    t[range].copy_from_slice(&body.initial_load(&vec![settings.u0; body.len()]))
+                }
+                (None, None) => {}
+            }
         }
+        if warm.is_none() {
+            share_slices(system.exchange, &system.interface.body_range, &mut t);
+        }
+        let tau: Vec<f64> = t
+            .iter()
+            .zip(&system.d0)
+            .map(|(t, &d)| if d > 0.0 { t / d } else { 0.0 })
+            .collect();
         let state = system.evaluate(&tau);
         Run {
             system,

@@ -7,12 +7,14 @@
 //! relaxation and the accelerators of [`crate::iteration`] combine these outputs.
 //!
 //! The bodies run in parallel with rayon; each body's arithmetic is sequential and touches only
-//! its own slices, so the result does not depend on the number of threads.
+//! its own slices, so the result does not depend on the number of threads. A process solves only
+//! the bodies it owns; the [`Exchange`] fills in the others' outputs (`crate::exchange`).
 
 use rayon::prelude::*;
 
 use crate::condensed::{CondensedBody, RobinCache};
 use crate::contact::Interface;
+use crate::exchange::{share_outputs, Exchange};
 use crate::method::Method;
 
 /// Why a body's Robin solve failed.
@@ -41,7 +43,9 @@ struct Scratch {
 /// The Robin sweep of one solve: the bodies, the method and per-body buffers.
 pub struct RobinSweep<'a> {
     interface: &'a Interface,
-    bodies: &'a [CondensedBody],
+    /// The bodies this process owns (`None`: another process solves it).
+    bodies: &'a [Option<CondensedBody>],
+    exchange: &'a dyn Exchange,
     method: Method,
     /// Retry a singular body with φ = 1 on its partnered points (the accelerated default only).
     safeguard: bool,
@@ -54,7 +58,8 @@ impl<'a> RobinSweep<'a> {
     /// it has a partner (the `robin` coefficient), instead of breaking down.
     pub fn new(
         interface: &'a Interface,
-        bodies: &'a [CondensedBody],
+        bodies: &'a [Option<CondensedBody>],
+        exchange: &'a dyn Exchange,
         method: Method,
         safeguard: bool,
     ) -> RobinSweep<'a> {
@@ -70,6 +75,7 @@ impl<'a> RobinSweep<'a> {
         RobinSweep {
             interface,
             bodies,
+            exchange,
             method,
             safeguard,
             scratch,
@@ -89,12 +95,16 @@ impl<'a> RobinSweep<'a> {
     ) -> Vec<Result<(), Breakdown>> {
         let (interface, bodies, method, safeguard) =
             (self.interface, self.bodies, self.method, self.safeguard);
-        let outputs = split(interface, un_out, t_out);
-        self.scratch
+        let outputs = split(interface, &mut *un_out, &mut *t_out);
+        let status = self
+            .scratch
             .par_iter_mut()
             .zip(outputs)
             .enumerate()
             .map(|(b, (scratch, (un_b, t_b)))| {
+                let Some(body) = &bodies[b] else {
+                    return Ok(());
+                };
                 let range = interface.body_range[b].clone();
                 let input = BodyInput {
                     interface,
@@ -105,14 +115,14 @@ impl<'a> RobinSweep<'a> {
                 };
                 input.coefficients(method, scratch);
                 let solved =
-                    bodies[b].robin_solve(&scratch.phi, &scratch.r, &mut scratch.cache, un_b, t_b);
+                    body.robin_solve(&scratch.phi, &scratch.r, &mut scratch.cache, un_b, t_b);
                 if solved.is_ok() {
                     return Ok(());
                 }
                 let lost = scratch.phi.iter().all(|&f| f == 0.0);
                 if safeguard {
                     input.coefficients(Method::Robin, scratch);
-                    if bodies[b]
+                    if body
                         .robin_solve(&scratch.phi, &scratch.r, &mut scratch.cache, un_b, t_b)
                         .is_ok()
                     {
@@ -125,7 +135,13 @@ impl<'a> RobinSweep<'a> {
                     Breakdown::Singular
                 })
             })
-            .collect()
+            .collect();
+        share_outputs(
+            self.exchange,
+            &interface.body_range,
+            &mut [un_out, t_out],
+            status,
+        )
     }
 }
 

@@ -3,14 +3,16 @@
 //! recover the full fields.
 
 use std::borrow::Cow;
+use std::sync::Arc;
 use std::time::Instant;
 
 use rayon::prelude::*;
 
 use crate::coarse::Coarse;
-use crate::condensed::{analyse_all, CondensedBody, SetupTimes};
+use crate::condensed::{analyse_all, Analysed, CondensedBody, SetupTimes};
 use crate::contact::Interface;
 use crate::error::SetupError;
+use crate::exchange::{share_vectors, Exchange, Local};
 use crate::iteration::{iterate_on, Hooks, Settings, Stop};
 use crate::model::Model;
 use crate::solution::{body_results, pair_results, stop_message, Solution};
@@ -20,8 +22,10 @@ use crate::solution::{body_results, pair_results, stop_message, Solution};
 pub struct Prepared {
     /// Contact points.
     pub interface: Interface,
-    /// Condensed bodies.
-    pub bodies: Vec<CondensedBody>,
+    /// Condensed bodies, those this process owns (`None`: another process's body).
+    pub bodies: Vec<Option<CondensedBody>>,
+    /// How the bodies' values reach the other processes ([`Local`]: there are none).
+    pub exchange: Arc<dyn Exchange>,
     /// Per body, the displacement size beyond which an iteration counts as blown up.
     pub scale: Vec<f64>,
     /// The rigid modes of the bodies that only contacts hold.
@@ -34,7 +38,7 @@ impl Prepared {
     /// Scales every body's loads and prescribed displacements by `factor` (1: the problem as
     /// given): the load steps of [`crate::steps`] reuse one factorisation.
     pub fn set_load_factor(&mut self, factor: f64) {
-        for body in &mut self.bodies {
+        for body in self.bodies.iter_mut().flatten() {
             body.set_load_factor(factor);
         }
         self.coarse.set_load_factor(factor);
@@ -43,23 +47,36 @@ impl Prepared {
 
 /// Builds the contact geometry and factorises and condenses every body (in parallel).
 pub fn prepare(model: &Model) -> Result<Prepared, SetupError> {
+    prepare_on(model, Arc::new(Local::new(model.bodies.len())))
+}
+
+/// [`prepare`] for the bodies that `exchange` gives this process; the contact geometry and the
+/// coarse space, cheap and needed by all, are built by every process. An error of any process
+/// is every process's error.
+pub fn prepare_on(model: &Model, exchange: Arc<dyn Exchange>) -> Result<Prepared, SetupError> {
     let t = Instant::now();
     let interface = Interface::new(model)?;
     crate::contact_check::refuse(&crate::contact_check::check(model, &interface))?;
     let t_contact = t.elapsed().as_secs_f64();
     let t = Instant::now();
-    // One level of parallelism: over bodies when there are several, inside faer otherwise.
+    // One level of parallelism: over bodies when there are several, inside faer otherwise. A
+    // process of a distributed solve chooses as one process would, so its factors are the same.
     let par = if model.bodies.len() > 1 {
         faer::Par::Seq
     } else {
         faer::Par::rayon(0)
     };
-    let (bodies, times): (Vec<CondensedBody>, Vec<SetupTimes>) = analyse_all(model, &interface)?
-        .into_par_iter()
-        .map(|a| a.condense(par))
-        .collect::<Result<Vec<_>, _>>()?
-        .into_iter()
-        .unzip();
+    let (bodies, times) = if exchange.is_local() {
+        condense_all(model, &interface, par)?
+    } else {
+        let owned = condense_owned(model, &interface, &*exchange, par);
+        let error = exchange.agree(owned.as_ref().err().map(|e| e.to_string()));
+        match (owned, error) {
+            (Ok(owned), None) => owned,
+            (_, Some(message)) => return Err(SetupError::Distributed(message)),
+            (Err(e), None) => return Err(e),
+        }
+    };
     let t_factor = t.elapsed().as_secs_f64();
     let sum = |f: fn(&SetupTimes) -> f64| times.iter().map(f).sum::<f64>();
     let scale = model
@@ -71,6 +88,7 @@ pub fn prepare(model: &Model) -> Result<Prepared, SetupError> {
     Ok(Prepared {
         interface,
         bodies,
+        exchange,
         scale,
         coarse,
         timing: vec![
@@ -83,6 +101,54 @@ pub fn prepare(model: &Model) -> Result<Prepared, SetupError> {
             ("condensation".into(), sum(|t| t.condensation)),
         ],
     })
+}
+
+/// Every body analysed, factorised and condensed, in parallel.
+fn condense_all(
+    model: &Model,
+    interface: &Interface,
+    par: faer::Par,
+) -> Result<(Vec<Option<CondensedBody>>, Vec<SetupTimes>), SetupError> {
+    Ok(analyse_all(model, interface)?
+        .into_par_iter()
+        .map(|a| a.condense(par).map(|(body, t)| (Some(body), t)))
+        .collect::<Result<Vec<_>, _>>()?
+        .into_iter()
+        .unzip())
+}
+
+/// The bodies that `exchange` gives this process analysed, factorised and condensed, in
+/// parallel, once their factors are known to fit in memory; the others `None`.
+fn condense_owned(
+    model: &Model,
+    interface: &Interface,
+    exchange: &dyn Exchange,
+    par: faer::Par,
+) -> Result<(Vec<Option<CondensedBody>>, Vec<SetupTimes>), SetupError> {
+    let analysed = (0..model.bodies.len())
+        .into_par_iter()
+        .map(|b| {
+            exchange
+                .owns(b)
+                .then(|| Analysed::new(&model.bodies[b], interface.of_body(b)))
+                .transpose()
+        })
+        .collect::<Result<Vec<_>, _>>()?;
+    let bytes = analysed
+        .iter()
+        .flatten()
+        .map(Analysed::memory_estimate)
+        .fold(0u64, u64::saturating_add);
+    contactdd_core::memory::check("factorising and condensing the bodies", bytes)?;
+    Ok(analysed
+        .into_par_iter()
+        .map(|a| match a {
+            Some(a) => a.condense(par).map(|(body, t)| (Some(body), t)),
+            None => Ok((None, SetupTimes::default())),
+        })
+        .collect::<Result<Vec<_>, _>>()?
+        .into_iter()
+        .unzip())
 }
 
 /// Iterates and recovers the full fields. A solve that did not converge still returns its last
@@ -147,12 +213,7 @@ pub fn solve_from(
         (outcome, Cow::Borrowed(&prepared.interface), 0, None)
     };
     let t = Instant::now();
-    let displacements = prepared
-        .bodies
-        .par_iter()
-        .enumerate()
-        .map(|(b, body)| body.recover(&outcome.t_load[interface.body_range[b].clone()]))
-        .collect::<Result<Vec<_>, _>>()?;
+    let displacements = recover(prepared, &interface, &outcome.t_load)?;
     let t_recover = t.elapsed().as_secs_f64();
     let t = Instant::now();
     let bodies = body_results(model, &interface, &outcome.un, displacements);
@@ -200,6 +261,34 @@ pub fn solve_from(
         interface_loads: outcome.t_load,
         timing,
     })
+}
+
+/// Every body's displacement field for the interface loads `t_load`: each process recovers its
+/// own bodies', and the exchange shares them. A failure on any process fails every process.
+fn recover(
+    prepared: &Prepared,
+    interface: &Interface,
+    t_load: &[f64],
+) -> Result<Vec<Vec<f64>>, SetupError> {
+    let exchange = &*prepared.exchange;
+    let own = prepared
+        .bodies
+        .par_iter()
+        .enumerate()
+        .map(|(b, body)| match body {
+            Some(body) => body.recover(&t_load[interface.body_range[b].clone()]),
+            None => Ok(Vec::new()),
+        })
+        .collect::<Result<Vec<_>, _>>();
+    if exchange.is_local() {
+        return Ok(own?);
+    }
+    let error = exchange.agree(own.as_ref().err().map(|e| e.to_string()));
+    match (own, error) {
+        (Ok(own), None) => Ok(share_vectors(exchange, own)),
+        (_, Some(message)) => Err(SetupError::Distributed(message)),
+        (Err(e), None) => Err(e.into()),
+    }
 }
 
 /// Per body, the equilibrium residual of the result: the contact forces that the recovered field

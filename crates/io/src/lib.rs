@@ -24,6 +24,7 @@ pub mod problem;
 pub mod reactions;
 pub mod result_set;
 pub mod setup;
+pub mod shared_results;
 pub mod steps;
 pub mod vtu;
 pub mod write_problem;

@@ -387,7 +387,15 @@ pub fn write_monolithic_results(
 /// made unique. [`write_solution_vtus`] adds the contact point data and the element von Mises.
 pub fn write_body_vtus(dir: &Path, bodies: &[BodyResult]) -> std::io::Result<Vec<PathBuf>> {
     let mut written = Vec::with_capacity(bodies.len());
-    write_vtus(dir, "", bodies, |_, _| Ok(Extra::default()), &mut written)?;
+    let all = |_| true;
+    write_vtus(
+        dir,
+        "",
+        bodies,
+        &all,
+        |_, _| Ok(Extra::default()),
+        &mut written,
+    )?;
     Ok(written)
 }
 
@@ -416,10 +424,36 @@ pub fn write_solution_vtus_as(
 ) -> std::io::Result<()> {
     let mut written = Vec::with_capacity(bodies.len());
     let dir = set.dir().to_path_buf();
-    let result = write_vtus(
+    let result = write_solution_vtus_of(
         &dir,
+        model,
+        bodies,
+        contact,
+        suffix,
+        &|_| true,
+        &mut written,
+    );
+    set.record(written);
+    result
+}
+
+/// [`write_solution_vtus_as`] into `dir` for the bodies `owns` selects only (a process of a
+/// distributed solve writes its own); each path joins `written` once its file is there. The
+/// file names are those of all bodies: the same as when one process writes them all.
+pub(crate) fn write_solution_vtus_of(
+    dir: &Path,
+    model: &Model,
+    bodies: &[BodyResult],
+    contact: &[PairResult],
+    suffix: &str,
+    owns: &dyn Fn(usize) -> bool,
+    written: &mut Vec<PathBuf>,
+) -> std::io::Result<()> {
+    write_vtus(
+        dir,
         suffix,
         bodies,
+        owns,
         |b, body| {
             let elastic = model.bodies.get(b).ok_or_else(|| {
                 Error::new(
@@ -436,10 +470,8 @@ pub fn write_solution_vtus_as(
                 element_von_mises: Some(element_von_mises(elastic, &body.displacement)),
             })
         },
-        &mut written,
-    );
-    set.record(written);
-    result
+        written,
+    )
 }
 
 /// The fields of a body's `.vtu` that need more than its [`BodyResult`].
@@ -449,19 +481,35 @@ struct Extra {
     element_von_mises: Option<Vec<f64>>,
 }
 
-/// Writes the `.vtu` of each body, pushing each path to `written` once the file is there.
+/// The `.vtu` path of each body: `<name><suffix>.vtu`, or `<name>-<b><suffix>.vtu` when an
+/// earlier body's name gives the same file name.
+pub(crate) fn vtu_paths(dir: &Path, suffix: &str, bodies: &[BodyResult]) -> Vec<PathBuf> {
+    let mut paths: Vec<PathBuf> = Vec::with_capacity(bodies.len());
+    for (b, body) in bodies.iter().enumerate() {
+        let name = safe_file_name(&body.name);
+        let mut path = dir.join(format!("{name}{suffix}.vtu"));
+        if paths.contains(&path) {
+            path = dir.join(format!("{name}-{b}{suffix}.vtu"));
+        }
+        paths.push(path);
+    }
+    paths
+}
+
+/// Writes the `.vtu` of each body that `owns` selects, pushing each path to `written` once the
+/// file is there.
 fn write_vtus(
     dir: &Path,
     suffix: &str,
     bodies: &[BodyResult],
+    owns: &dyn Fn(usize) -> bool,
     extra: impl Fn(usize, &BodyResult) -> std::io::Result<Extra>,
     written: &mut Vec<PathBuf>,
 ) -> std::io::Result<()> {
-    for (b, body) in bodies.iter().enumerate() {
-        let name = safe_file_name(&body.name);
-        let mut path = dir.join(format!("{name}{suffix}.vtu"));
-        if written.contains(&path) {
-            path = dir.join(format!("{name}-{b}{suffix}.vtu"));
+    let paths = vtu_paths(dir, suffix, bodies);
+    for ((b, body), path) in bodies.iter().enumerate().zip(paths) {
+        if !owns(b) {
+            continue;
         }
         let extra = extra(b, body)?;
         let component = |k: usize| body.stress.iter().map(|s| s[k]).collect::<Vec<f64>>();

@@ -1,0 +1,119 @@
+//! The processes of one `contactdd solve`: one, or (built with `--features mpi` and started by
+//! `mpirun`) several MPI ranks, each computing the bodies the partition gives it
+//! (`docs/mpi.md`). Rank 0 prints and writes the results; every rank ends with the same exit code.
+
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
+
+use contactdd_ddm::exchange::{Exchange, Local};
+use contactdd_ddm::{Model, Solution};
+use contactdd_io::output::write_results_noted;
+use contactdd_io::shared_results::{write_results_shared, Part};
+
+/// The processes of a solve and how they share the bodies.
+pub struct Ranks {
+    exchange: Arc<dyn Exchange>,
+    size: usize,
+    #[cfg(feature = "mpi")]
+    mpi: Option<Arc<crate::mpi_exchange::MpiExchange>>,
+}
+
+/// What one rank spent, for the report of a distributed run.
+#[derive(Clone, Copy, Debug)]
+pub struct RankUse {
+    /// Seconds in the exchanges (including waiting for the other ranks).
+    pub communication: f64,
+    /// Peak resident memory, MiB (0 where the system does not say).
+    pub peak_mib: f64,
+}
+
+impl Ranks {
+    /// The ranks of this run for `model`: under `mpirun` with more than one rank, the bodies are
+    /// partitioned by their estimated factorisation cost; otherwise one process owns them all.
+    pub fn new(model: &Model) -> Ranks {
+        #[cfg(feature = "mpi")]
+        if let Some(mpi) = crate::mpi_exchange::MpiExchange::for_model(model) {
+            let mpi = Arc::new(mpi);
+            return Ranks {
+                exchange: mpi.clone(),
+                size: mpi.size(),
+                mpi: Some(mpi),
+            };
+        }
+        Ranks {
+            exchange: Arc::new(Local::new(model.bodies.len())),
+            size: 1,
+            #[cfg(feature = "mpi")]
+            mpi: None,
+        }
+    }
+
+    /// The exchange to prepare the model on.
+    pub fn exchange(&self) -> Arc<dyn Exchange> {
+        self.exchange.clone()
+    }
+
+    /// Number of processes.
+    pub fn size(&self) -> usize {
+        self.size
+    }
+
+    /// Whether this process prints and writes the results.
+    pub fn is_root(&self) -> bool {
+        self.exchange.rank() == 0
+    }
+
+    /// Writes the result folder: in one process all of it; on several ranks each rank its own
+    /// bodies' VTU files and rank 0 the rest (a collective). Returns the paths this rank wrote.
+    pub fn write_results(
+        &self,
+        dir: &Path,
+        model: &Model,
+        sol: &Solution,
+        units: Option<&str>,
+    ) -> std::io::Result<Vec<PathBuf>> {
+        if self.size == 1 {
+            return write_results_noted(dir, model, sol, units);
+        }
+        let exchange = &*self.exchange;
+        let part = Part {
+            root: self.is_root(),
+            owns: &|b| exchange.owns(b),
+            agree: &|error| exchange.agree(error),
+        };
+        write_results_shared(dir, model, sol, units, &part)
+    }
+
+    /// Per rank, the time it spent communicating and its peak memory (a collective; one entry
+    /// for a single process).
+    pub fn usage(&self) -> Vec<RankUse> {
+        let own = RankUse {
+            communication: 0.0,
+            peak_mib: peak_mib(),
+        };
+        #[cfg(feature = "mpi")]
+        if let Some(mpi) = &self.mpi {
+            return mpi.usage(own.peak_mib);
+        }
+        vec![own]
+    }
+}
+
+/// Whether this process is the one that reports (rank 0, or the only process).
+pub fn is_root() -> bool {
+    #[cfg(feature = "mpi")]
+    if let Some(rank) = crate::mpi_exchange::world_rank() {
+        return rank == 0;
+    }
+    true
+}
+
+/// The peak resident memory of this process, MiB, from `/proc/self/status` (0 elsewhere).
+fn peak_mib() -> f64 {
+    let status = std::fs::read_to_string("/proc/self/status").unwrap_or_default();
+    status
+        .lines()
+        .find_map(|l| l.strip_prefix("VmHWM:"))
+        .and_then(|v| v.trim().trim_end_matches("kB").trim().parse::<f64>().ok())
+        .map_or(0.0, |kib| kib / 1024.0)
+}

@@ -1,0 +1,258 @@
+//! The communication seam: how the per-body results of one process reach the others.
+//!
+//! Every process keeps the whole interface state (one value per contact point: small) and runs
+//! the same iteration on it. Only the bodies' own computations — the Robin solves, the responses
+//! of the interface Newton method, the initial loads, the recovered fields — are split: each
+//! process computes the bodies it *owns* and an [`Exchange`] fills in the others' values. No
+//! floating-point sum ever crosses processes: every reduction (norms, dot products, the
+//! accelerators' least squares, the coarse problem) runs on the full vectors in the same order
+//! as in one process, so a distributed run reproduces the single-process one bit for bit.
+//!
+//! [`Local`] is the in-process exchange (one process owns every body; rayon parallelises over
+//! them); the command line's MPI exchange (`--features mpi`, `docs/mpi.md`) is the other.
+
+use std::ops::Range;
+
+use faer::Mat;
+
+use crate::robin_sweep::Breakdown;
+
+/// How the bodies' values are shared between the processes of one solve.
+pub trait Exchange: Send + Sync {
+    /// The process that computes each body.
+    fn owner(&self) -> &[usize];
+    /// This process.
+    fn rank(&self) -> usize;
+    /// Every body's values, in body order and the same on every process, given this process's
+    /// own bodies' values in increasing body order. A collective: every process calls it.
+    fn gather(&self, own: Vec<Vec<f64>>) -> Vec<Vec<f64>>;
+    /// The first error of any process (by rank), the same on every process. A collective.
+    fn agree(&self, error: Option<String>) -> Option<String>;
+
+    /// Whether this process computes body `b`.
+    fn owns(&self, b: usize) -> bool {
+        self.owner()[b] == self.rank()
+    }
+    /// Whether this process owns every body (nothing to exchange).
+    fn is_local(&self) -> bool {
+        self.owner().iter().all(|&r| r == self.rank())
+    }
+}
+
+/// One process owns every body: every exchange is a no-op.
+#[derive(Clone, Debug)]
+pub struct Local {
+    owner: Vec<usize>,
+}
+
+impl Local {
+    /// The exchange of a model with `bodies` bodies in one process.
+    pub fn new(bodies: usize) -> Local {
+        Local {
+            owner: vec![0; bodies],
+        }
+    }
+}
+
+impl Exchange for Local {
+    fn owner(&self) -> &[usize] {
+        &self.owner
+    }
+    fn rank(&self) -> usize {
+        0
+    }
+    fn gather(&self, own: Vec<Vec<f64>>) -> Vec<Vec<f64>> {
+        own
+    }
+    fn agree(&self, error: Option<String>) -> Option<String> {
+        error
+    }
+}
+
+/// Fills the slices `ranges[b]` of `values` of the bodies this process does not own with their
+/// owners' values.
+pub fn share_slices(exchange: &dyn Exchange, ranges: &[Range<usize>], values: &mut [f64]) {
+    if exchange.is_local() {
+        return;
+    }
+    let own = owned(exchange, ranges.len())
+        .map(|b| values[ranges[b].clone()].to_vec())
+        .collect();
+    for (range, v) in ranges.iter().zip(exchange.gather(own)) {
+        values[range.clone()].copy_from_slice(&v);
+    }
+}
+
+/// The outputs of a sweep in one exchange: fills the other processes' bodies' slices
+/// `ranges[b]` of every buffer in `values` and returns every body's status.
+pub fn share_outputs(
+    exchange: &dyn Exchange,
+    ranges: &[Range<usize>],
+    values: &mut [&mut [f64]],
+    status: Vec<Result<(), Breakdown>>,
+) -> Vec<Result<(), Breakdown>> {
+    if exchange.is_local() {
+        return status;
+    }
+    // Per body: its slice of each buffer, then its status.
+    let packed = ranges
+        .iter()
+        .zip(&status)
+        .map(|(range, s)| {
+            let mut v: Vec<f64> = values
+                .iter()
+                .flat_map(|buf| buf[range.clone()].iter().copied())
+                .collect();
+            v.push(encode(s));
+            v
+        })
+        .collect();
+    let all = share_vectors(exchange, packed);
+    for (range, v) in ranges.iter().zip(&all) {
+        for (k, buf) in values.iter_mut().enumerate() {
+            let at = k * range.len();
+            buf[range.clone()].copy_from_slice(&v[at..at + range.len()]);
+        }
+    }
+    all.iter()
+        .map(|v| decode(v.last().copied().unwrap_or(f64::NAN)))
+        .collect()
+}
+
+/// Every body's entry of `per_body`, where this process filled its own bodies'.
+pub fn share_vectors(exchange: &dyn Exchange, per_body: Vec<Vec<f64>>) -> Vec<Vec<f64>> {
+    if exchange.is_local() {
+        return per_body;
+    }
+    let own = per_body
+        .into_iter()
+        .enumerate()
+        .filter(|(b, _)| exchange.owns(*b))
+        .map(|(_, v)| v)
+        .collect();
+    exchange.gather(own)
+}
+
+/// Every body's matrix, where this process filled its own bodies' (the others may be empty).
+pub fn share_matrices(exchange: &dyn Exchange, mats: Vec<Mat<f64>>) -> Vec<Mat<f64>> {
+    if exchange.is_local() {
+        return mats;
+    }
+    let flat = mats
+        .iter()
+        .map(|m| {
+            let mut v = vec![m.nrows() as f64, m.ncols() as f64];
+            for j in 0..m.ncols() {
+                v.extend((0..m.nrows()).map(|i| m[(i, j)]));
+            }
+            v
+        })
+        .collect();
+    share_vectors(exchange, flat)
+        .iter()
+        .map(|v| {
+            let (r, c) = (v[0] as usize, v[1] as usize);
+            Mat::from_fn(r, c, |i, j| v[2 + j * r + i])
+        })
+        .collect()
+}
+
+/// The bodies this process owns, in increasing order.
+fn owned(exchange: &dyn Exchange, bodies: usize) -> impl Iterator<Item = usize> + '_ {
+    (0..bodies).filter(move |&b| exchange.owns(b))
+}
+
+/// A status as a number (exact in f64).
+fn encode(status: &Result<(), Breakdown>) -> f64 {
+    match status {
+        Ok(()) => 0.0,
+        Err(Breakdown::LostContact) => 1.0,
+        Err(Breakdown::Singular) => 2.0,
+        Err(Breakdown::NonFinite) => 3.0,
+        Err(Breakdown::Growth) => 4.0,
+        Err(Breakdown::NoDescent) => 5.0,
+    }
+}
+
+fn decode(code: f64) -> Result<(), Breakdown> {
+    match code as i64 {
+        0 => Ok(()),
+        1 => Err(Breakdown::LostContact),
+        2 => Err(Breakdown::Singular),
+        4 => Err(Breakdown::Growth),
+        5 => Err(Breakdown::NoDescent),
+        _ => Err(Breakdown::NonFinite),
+    }
+}
+
+/// Splits `cost` (one estimate per body, in body order) over `ranks` processes: contiguous runs
+/// of bodies (so that neighbours in a chain, numbered in order, stay together) whose costs are as
+/// close to equal as cutting at body boundaries allows. Returns the owner of every body; every
+/// rank gets at least one body when there are enough.
+pub fn partition(cost: &[f64], ranks: usize) -> Vec<usize> {
+    let ranks = ranks.max(1);
+    let total: f64 = cost.iter().sum();
+    let mut owner = Vec::with_capacity(cost.len());
+    let (mut rank, mut done) = (0usize, 0.0);
+    for (b, &c) in cost.iter().enumerate() {
+        let left = cost.len() - b;
+        let ranks_left = ranks - rank;
+        // Move on when this rank has its share (cut at the nearer side of the target) or when
+        // the remaining bodies are just enough for the remaining ranks.
+        let target = total * (rank + 1) as f64 / ranks as f64;
+        let past = done + c / 2.0 > target || left < ranks_left;
+        if rank + 1 < ranks && past && owner.last() == Some(&rank) {
+            rank += 1;
+        }
+        owner.push(rank);
+        done += c;
+    }
+    owner
+}
+
+/// The estimated cost of factorising a body with `dofs` degrees of freedom: a nested-dissection
+/// Cholesky factorisation of a 2D mesh takes about dofs^1.5 flops. (The condensation on the
+/// contact points, dofs × points, is left out: the points are not known before the contact
+/// geometry is built.)
+pub fn factor_cost(dofs: usize) -> f64 {
+    (dofs as f64).powf(1.5)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn equal_bodies_split_evenly_and_contiguously() {
+        let owner = partition(&[1.0; 6], 3);
+        assert_eq!(owner, vec![0, 0, 1, 1, 2, 2]);
+        let owner = partition(&[1.0; 2], 3);
+        assert_eq!(owner, vec![0, 1]);
+    }
+
+    #[test]
+    fn a_heavy_body_gets_a_rank_of_its_own() {
+        let owner = partition(&[10.0, 1.0, 1.0, 1.0], 2);
+        assert_eq!(owner, vec![0, 1, 1, 1]);
+    }
+
+    #[test]
+    fn every_rank_gets_a_body_when_there_are_enough() {
+        let owner = partition(&[100.0, 1.0, 1.0], 3);
+        assert_eq!(owner, vec![0, 1, 2]);
+    }
+
+    #[test]
+    fn statuses_survive_the_encoding() {
+        for s in [
+            Ok(()),
+            Err(Breakdown::LostContact),
+            Err(Breakdown::Singular),
+            Err(Breakdown::NonFinite),
+            Err(Breakdown::Growth),
+            Err(Breakdown::NoDescent),
+        ] {
+            assert_eq!(decode(encode(&s)), s);
+        }
+    }
+}

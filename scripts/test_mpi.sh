@@ -1,0 +1,138 @@
+#!/usr/bin/env bash
+# The distributed solve (docs/mpi.md) against the single process, and its failure handling.
+#
+# Builds `contactdd` with `--features mpi` (installing OpenMPI and libclang with apt-get first if
+# they are missing, and saying so), then:
+# - solves the notch and the column of blocks (examples/notch.toml, examples/stack.toml) with the
+#   interface Newton method, the paper's sweeps, the two-level sweeps and Anderson acceleration,
+#   in one process and under `mpirun -n 2` and `-n 3`, and compares every output file byte for
+#   byte (summary.json without its timings, contact.csv, history.csv, the VTU files): the numbers
+#   are written to the last bit, so equal files are equal bits;
+# - solves a column whose top block one rank cannot factorise (no support against sliding) and
+#   runs in which a body's Robin problem turns singular, and checks that every rank ends with the
+#   single process's exit code and the same one message, naming the body, without hanging; and
+#   the same for a results folder that cannot be written.
+#
+# Usage: bash scripts/test_mpi.sh
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+if ! command -v mpirun >/dev/null || ! command -v mpicc >/dev/null; then
+  echo "== installing OpenMPI and libclang (apt-get): the mpi feature needs them"
+  apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive apt-get install -y -qq openmpi-bin libopenmpi-dev libclang-dev >/dev/null
+fi
+# OpenMPI refuses root without these; CI runs as root.
+export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
+mpirun=(mpirun --oversubscribe)
+
+echo "== building contactdd --features mpi"
+cargo build --release --quiet -p contactdd-cli --features mpi
+# Keep this build's binary apart: a default build uplifts its own to target/release.
+mkdir -p target/mpi
+cp target/release/contactdd target/mpi/contactdd
+bin=$(pwd)/target/mpi/contactdd
+
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+fail=0
+passed=0
+
+# Drops the "timing_s" object of summary.json (timings and per-rank communication differ).
+strip_timing() {
+  awk '/^  "timing_s": \{/ { skip = 1 } !skip { print } skip && /^  \},?$/ { skip = 0 }' "$1" >"$1.cmp"
+  rm "$1"
+}
+
+# Runs `contactdd solve` on `ranks` processes (1: no mpirun); records exit code and stderr.
+run() {
+  local dir=$1 ranks=$2 file=$3
+  shift 3
+  local code=0
+  if [ "$ranks" = 1 ]; then
+    timeout 300 "$bin" solve "$file" --out "$dir" --quiet "$@" >"$dir.stdout" 2>"$dir.stderr" || code=$?
+  else
+    timeout 300 "${mpirun[@]}" -n "$ranks" "$bin" solve "$file" --out "$dir" --quiet "$@" \
+      >"$dir.stdout" 2>"$dir.stderr" || code=$?
+  fi
+  echo "$code" >"$dir.code"
+  if [ -f "$dir/summary.json" ]; then strip_timing "$dir/summary.json"; fi
+}
+
+check() {
+  local what=$1
+  shift
+  if "$@"; then
+    passed=$((passed + 1))
+    echo "ok   $what"
+  else
+    fail=$((fail + 1))
+    echo "FAIL $what"
+  fi
+}
+
+# Same outputs on 1, 2 and 3 ranks for one example and scheme.
+same() {
+  local name=$1 file=$2
+  shift 2
+  run "$work/$name-1" 1 "$file" "$@"
+  for n in 2 3; do
+    run "$work/$name-$n" "$n" "$file" "$@"
+    check "$name: -n $n gives the single process's exit code and files bit for bit" \
+      diff -r "$work/$name-1" "$work/$name-$n"
+    check "$name: -n $n exit code" cmp -s "$work/$name-1.code" "$work/$name-$n.code"
+  done
+}
+
+same notch-newton examples/notch.toml --accelerator newton
+same notch-paper examples/notch.toml --method newton-kurchatov --gamma 0.5
+same stack-newton examples/stack.toml
+same stack-two-level examples/stack.toml --accelerator none
+same stack-anderson examples/stack.toml --accelerator anderson
+
+# A column whose top block slides freely: the rank that owns it cannot factorise it.
+# Drop the last body's (b7's) symmetry support: it is then free to slide sideways.
+awk '/^supports = / { last = NR } { line[NR] = $0 } END { for (i = 1; i <= NR; i++) if (i != last) print line[i] }' \
+  examples/stack.toml >"$work/sliding.toml"
+for n in 1 2 3; do run "$work/sliding-$n" "$n" "$work/sliding.toml"; done
+check "sliding block: the single process fails with exit 1" grep -qx 1 "$work/sliding-1.code"
+check "sliding block: the message names the body" grep -q "body 'b7'" "$work/sliding-1.stderr"
+for n in 2 3; do
+  check "sliding block: -n $n ends with exit 1" grep -qx 1 "$work/sliding-$n.code"
+  # mpirun adds its own note on stderr; contactdd's lines are the single process's, once.
+  check "sliding block: -n $n prints the single process's message once" \
+    test "$(grep '^error: ' "$work/sliding-$n.stderr")" = "$(cat "$work/sliding-1.stderr")"
+done
+
+# A run that diverges (the paper's neumann rule with γ = 1 on the column): exit 2 everywhere.
+same stack-diverges examples/stack.toml --method neumann --gamma 1 --max-iter 50
+check "diverging run: the single process exits 2" grep -qx 2 "$work/stack-diverges-1.code"
+# A body whose Robin problem turns singular late (it loses all contact): on 3 ranks every body has
+# a rank of its own, so the rank that meets it is not the one that reports.
+same three-lost examples/three_bodies.toml --method active-set --gamma 1
+check "lost contact: the single process exits 2" grep -qx 2 "$work/three-lost-1.code"
+for n in 1 2 3; do
+  check "lost contact: -n $n names the body" grep -q "body 'upper' lost all contact" "$work/three-lost-$n.stdout"
+done
+
+# A results folder nobody can write: every rank ends with exit 1, one message, no hang.
+bad=/proc/contactdd-no-such-dir
+code=0
+"$bin" solve examples/stack.toml --out "$bad" --quiet 2>"$work/unwritable-1.stderr" || code=$?
+echo "$code" >"$work/unwritable-1.code"
+for n in 2 3; do
+  code=0
+  timeout 300 "${mpirun[@]}" -n "$n" "$bin" solve examples/stack.toml --out "$bad" --quiet \
+    2>"$work/unwritable-$n.stderr" || code=$?
+  echo "$code" >"$work/unwritable-$n.code"
+done
+check "unwritable folder: the message says so" grep -q "cannot write the results" "$work/unwritable-1.stderr"
+check "unwritable folder: the single process fails with exit 1" grep -qx 1 "$work/unwritable-1.code"
+for n in 2 3; do
+  check "unwritable folder: -n $n ends with exit 1" grep -qx 1 "$work/unwritable-$n.code"
+  check "unwritable folder: -n $n prints the single process's message once" \
+    test "$(grep '^error: ' "$work/unwritable-$n.stderr")" = "$(cat "$work/unwritable-1.stderr")"
+done
+
+echo "$passed passed, $fail failed"
+[ "$fail" = 0 ]

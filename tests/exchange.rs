@@ -1,0 +1,239 @@
+//! The communication seam without MPI: R "ranks" are R threads of this test, each preparing and
+//! solving only the bodies the partition gives it, joined by an in-memory exchange that behaves
+//! like `MPI_Allgatherv` (every rank deposits its bodies' values, waits for the others, reads all).
+//! Every rank must reproduce the single-process solve bit for bit: the iterations, the history,
+//! the interface loads and every displacement, on the notch and on a column of blocks, for the
+//! interface Newton method, the paper's sweeps, the two-level sweeps and Anderson acceleration.
+//! `scripts/test_mpi.sh` checks the same through `mpirun` and the real MPI exchange.
+
+use std::sync::{Arc, Barrier, Mutex};
+
+use contactdd::cases;
+use contactdd::ddm::exchange::{factor_cost, partition, Exchange};
+use contactdd::ddm::{
+    prepare, prepare_on, solve, Accelerator, CoarseMode, Gamma, Hooks, Method, Model, Settings,
+    Solution,
+};
+
+/// What the ranks deposit for one collective: per rank, its bodies' values or its error.
+struct Shared {
+    barrier: Barrier,
+    values: Mutex<Vec<Vec<Vec<f64>>>>,
+    errors: Mutex<Vec<Option<String>>>,
+}
+
+/// One rank's end of the in-memory exchange.
+struct ThreadExchange {
+    owner: Vec<usize>,
+    rank: usize,
+    shared: Arc<Shared>,
+}
+
+impl Exchange for ThreadExchange {
+    fn owner(&self) -> &[usize] {
+        &self.owner
+    }
+    fn rank(&self) -> usize {
+        self.rank
+    }
+    fn gather(&self, own: Vec<Vec<f64>>) -> Vec<Vec<f64>> {
+        self.shared.values.lock().unwrap()[self.rank] = own;
+        self.shared.barrier.wait();
+        let by_rank = self.shared.values.lock().unwrap().clone();
+        // Nobody deposits the next collective's values before everyone has read these.
+        self.shared.barrier.wait();
+        let mut next: Vec<_> = by_rank.into_iter().map(Vec::into_iter).collect();
+        self.owner
+            .iter()
+            .map(|&r| next[r].next().expect("a value per owned body"))
+            .collect()
+    }
+    fn agree(&self, error: Option<String>) -> Option<String> {
+        self.shared.errors.lock().unwrap()[self.rank] = error;
+        self.shared.barrier.wait();
+        let first = self
+            .shared
+            .errors
+            .lock()
+            .unwrap()
+            .iter()
+            .flatten()
+            .next()
+            .cloned();
+        self.shared.barrier.wait();
+        first
+    }
+}
+
+/// Solves `model` on `ranks` threads joined by the in-memory exchange; every rank's solution.
+fn distributed(model: &Model, settings: &Settings, ranks: usize) -> Vec<Solution> {
+    let cost: Vec<f64> = model
+        .bodies
+        .iter()
+        .map(|b| factor_cost(2 * b.mesh.num_nodes()))
+        .collect();
+    let owner = partition(&cost, ranks);
+    let shared = Arc::new(Shared {
+        barrier: Barrier::new(ranks),
+        values: Mutex::new(vec![Vec::new(); ranks]),
+        errors: Mutex::new(vec![None; ranks]),
+    });
+    std::thread::scope(|scope| {
+        let handles: Vec<_> = (0..ranks)
+            .map(|rank| {
+                let exchange = Arc::new(ThreadExchange {
+                    owner: owner.clone(),
+                    rank,
+                    shared: shared.clone(),
+                });
+                scope.spawn(move || {
+                    let prepared = prepare_on(model, exchange).unwrap();
+                    let owned = prepared.bodies.iter().flatten().count();
+                    assert!(owned < model.bodies.len(), "rank {rank} owns every body");
+                    solve(model, &prepared, settings, Hooks::default()).unwrap()
+                })
+            })
+            .collect();
+        handles.into_iter().map(|h| h.join().unwrap()).collect()
+    })
+}
+
+fn bits(v: &[f64]) -> Vec<u64> {
+    v.iter().map(|x| x.to_bits()).collect()
+}
+
+/// Everything the iteration computed, as bits.
+fn assert_same(one: &Solution, other: &Solution, what: &str) {
+    assert_eq!(one.iterations, other.iterations, "{what}: iterations");
+    assert_eq!(one.stop, other.stop, "{what}: stop");
+    assert_eq!(one.history.len(), other.history.len(), "{what}: history");
+    for (a, b) in one.history.iter().zip(&other.history) {
+        assert_eq!(
+            bits(&a.rel_change),
+            bits(&b.rel_change),
+            "{what}: k = {}",
+            a.k
+        );
+        assert_eq!(a.gamma.to_bits(), b.gamma.to_bits(), "{what}: k = {}", a.k);
+        assert_eq!(a.active, b.active, "{what}: k = {}", a.k);
+    }
+    assert_eq!(
+        bits(&one.interface_loads),
+        bits(&other.interface_loads),
+        "{what}: interface loads"
+    );
+    for (a, b) in one.bodies.iter().zip(&other.bodies) {
+        assert_eq!(
+            bits(&a.displacement),
+            bits(&b.displacement),
+            "{what}: {}",
+            a.name
+        );
+    }
+}
+
+fn schemes() -> Vec<(&'static str, Settings)> {
+    let paper = Settings::paper(Method::NewtonKurchatov, Gamma::Constant(0.5));
+    let two_level = Settings::two_level();
+    let anderson = Settings {
+        coarse: CoarseMode::Chains,
+        ..Settings::anderson()
+    };
+    vec![
+        ("interface newton", Settings::default()),
+        ("paper", paper),
+        ("two-level", two_level),
+        ("anderson", anderson),
+    ]
+}
+
+fn check(name: &str, model: &Model) {
+    let prepared = prepare(model).unwrap();
+    for (scheme, settings) in schemes() {
+        // A run that stops without converging (the paper's sweeps on a column, cut at 60
+        // iterations; Anderson without safeguard on the notch) must stop alike everywhere too.
+        let settings = Settings {
+            max_iter: 60,
+            ..settings
+        };
+        let one = solve(model, &prepared, &settings, Hooks::default()).unwrap();
+        if settings.accelerator == Accelerator::Newton {
+            assert!(one.converged, "{name} {scheme}: {:?}", one.message);
+        }
+        for ranks in [2, 3] {
+            for (rank, sol) in distributed(model, &settings, ranks).iter().enumerate() {
+                assert_same(
+                    &one,
+                    sol,
+                    &format!("{name} {scheme}, rank {rank} of {ranks}"),
+                );
+            }
+        }
+    }
+}
+
+#[test]
+fn the_notch_on_two_and_three_ranks_is_the_single_process_solve_bit_for_bit() {
+    let model = contactdd::ddm::benchmark::Notch::default().model().unwrap();
+    // Three ranks for two bodies: one rank owns none and still takes part.
+    check("notch", &model);
+}
+
+#[test]
+fn a_column_on_two_and_three_ranks_is_the_single_process_solve_bit_for_bit() {
+    check("column", &cases::column(6, 0.5));
+}
+
+#[test]
+fn accelerators_are_named_as_the_settings_say() {
+    // Guards the scheme list above: the cases cover every accelerator.
+    let kinds: Vec<Accelerator> = schemes().iter().map(|(_, s)| s.accelerator).collect();
+    assert!(kinds.contains(&Accelerator::Newton));
+    assert!(kinds.contains(&Accelerator::None));
+    assert!(kinds
+        .iter()
+        .any(|a| matches!(a, Accelerator::Anderson { .. })));
+}
+
+/// A block that slides freely (no support) cannot be factorised on the rank that owns it; every
+/// rank gets that rank's error, naming the block, and none waits for the others.
+#[test]
+fn a_body_one_rank_cannot_factorise_fails_every_rank_with_its_message() {
+    let mut model = cases::column(4, 0.5);
+    let last = model.bodies.len() - 1;
+    model.bodies[last].constraints =
+        contactdd::fem::Constraints::new(model.bodies[last].mesh.num_nodes());
+    let single = prepare(&model)
+        .err()
+        .expect("the sliding block is refused")
+        .to_string();
+    assert!(
+        single.contains(&format!("'{}'", model.bodies[last].name)),
+        "{single}"
+    );
+    let owner = partition(&vec![1.0; model.bodies.len()], 2);
+    assert_ne!(owner[last], 0, "the failing body is not on the first rank");
+    let shared = Arc::new(Shared {
+        barrier: Barrier::new(2),
+        values: Mutex::new(vec![Vec::new(); 2]),
+        errors: Mutex::new(vec![None; 2]),
+    });
+    let errors: Vec<String> = std::thread::scope(|scope| {
+        let handles: Vec<_> = (0..2)
+            .map(|rank| {
+                let exchange = Arc::new(ThreadExchange {
+                    owner: owner.clone(),
+                    rank,
+                    shared: shared.clone(),
+                });
+                let model = &model;
+                scope.spawn(move || prepare_on(model, exchange).err().map(|e| e.to_string()))
+            })
+            .collect();
+        handles
+            .into_iter()
+            .map(|h| h.join().unwrap().unwrap())
+            .collect()
+    });
+    assert_eq!(errors, vec![single.clone(), single]);
+}
