@@ -90,8 +90,11 @@ pub fn iterate(
 struct System<'a> {
     interface: &'a Interface,
     bodies: &'a [CondensedBody],
-    /// B_b = C₀D₀ of every body.
-    response: Vec<Mat<f64>>,
+    /// B_b = C₀D₀ of every dense body (`None` on the sparse path).
+    response: Vec<Option<Mat<f64>>>,
+    /// Per body on the sparse path, the first column of its reduced unknowns in the Newton
+    /// system (after the m interface unknowns and the kernel multipliers).
+    sparse_offset: Vec<Option<usize>>,
     /// Free rigid modes of the floating bodies: mode range per body, normal values per point.
     mode_range: &'a [Range<usize>],
     modes: &'a [Vec<f64>],
@@ -132,19 +135,39 @@ impl Evaluation {
 impl<'a> System<'a> {
     fn new(prepared: &'a Prepared, interface: &'a Interface) -> System<'a> {
         let (mode_range, modes) = prepared.coarse.floating_modes();
-        let response: Vec<Mat<f64>> = prepared
+        let response: Vec<Option<Mat<f64>>> = prepared
             .bodies
             .par_iter()
             .map(CondensedBody::load_response)
             .collect();
         let rho = response
             .iter()
-            .flat_map(|bm| (0..bm.nrows()).map(move |j| (1.0 - bm[(j, j)]).clamp(1e-8, 1.0)))
+            .zip(&prepared.bodies)
+            .flat_map(|(bm, body)| match (bm, body.sparse()) {
+                (Some(bm), _) => (0..bm.nrows())
+                    .map(|j| (1.0 - bm[(j, j)]).clamp(1e-8, 1.0))
+                    .collect::<Vec<_>>(),
+                (None, Some(s)) => s.share_estimate(body.operator(), body.reference_springs()),
+                (None, None) => vec![1.0; body.len()],
+            })
+            .collect();
+        let mut next = interface.len() + modes_bound(mode_range);
+        let sparse_offset = prepared
+            .bodies
+            .iter()
+            .map(|body| {
+                body.sparse().map(|_| {
+                    let offset = next;
+                    next += body.operator().num_free();
+                    offset
+                })
+            })
             .collect();
         System {
             interface,
             bodies: &prepared.bodies,
             response,
+            sparse_offset,
             mode_range,
             modes,
             body_of: interface.points.iter().map(|p| p.body).collect(),
@@ -171,16 +194,23 @@ impl<'a> System<'a> {
             .into_par_iter()
             .flat_map_iter(|b| {
                 let range = self.range(b);
-                let (f0, bm) = (self.bodies[b].free_response(), &self.response[b]);
                 let tau_b = &tau[range.clone()];
-                (0..range.len()).map(move |i| {
-                    f0[i]
-                        + tau_b
-                            .iter()
-                            .enumerate()
-                            .map(|(j, t)| bm[(i, j)] * t)
-                            .sum::<f64>()
-                })
+                let Some(bm) = &self.response[b] else {
+                    // A failed solve shows as non-finite values, which the run then reports.
+                    let u = self.bodies[b].respond(tau_b);
+                    return u.unwrap_or_else(|_| vec![f64::NAN; range.len()]);
+                };
+                let f0 = self.bodies[b].free_response();
+                (0..range.len())
+                    .map(move |i| {
+                        f0[i]
+                            + tau_b
+                                .iter()
+                                .enumerate()
+                                .map(|(j, t)| bm[(i, j)] * t)
+                                .sum::<f64>()
+                    })
+                    .collect::<Vec<f64>>()
             })
             .collect();
         let mut s = vec![0.0; u.len()];
@@ -309,8 +339,21 @@ impl<'a> System<'a> {
     /// The Newton step: solves [J Z; Zᵀ 0] [δ; μ] = [−R; 0].
     fn step(&self, chi: &[bool], z: &[Vec<f64>], r: &[f64]) -> Option<Vec<f64>> {
         let m = self.len();
-        let n = m + z.len();
+        let mut n = m + z.len();
         let mut trip = Vec::new();
+        // Sparse bodies: their reduced unknowns δu and the rows K₀δu − N D₀ δτ = 0 stand for δU.
+        for (b, body) in self.bodies.iter().enumerate() {
+            if let (Some(offset), Some(s)) = (self.sparse_offset[b], body.sparse()) {
+                let start = self.range(b).start;
+                s.push_body_rows(
+                    body.operator(),
+                    body.reference_springs(),
+                    (offset, start),
+                    &mut trip,
+                );
+                n = n.max(offset + body.operator().num_free());
+            }
+        }
         for (j, p) in self.interface.points.iter().enumerate() {
             trip.push(Triplet::new(j, j, 1.0));
             if self.weightless[j] {
@@ -324,28 +367,59 @@ impl<'a> System<'a> {
                 self.push_row(&mut trip, j, j, -1.0);
             }
         }
+        let first_sparse = self.sparse_offset.iter().flatten().min().copied();
+        // With sparse bodies a dense row Zᵀδ = 0 would fill the whole sparse LU: pin one point
+        // per kernel vector instead and project the step afterwards (J z = 0, so the projected
+        // step solves the same system).
+        let pins = first_sparse.map(|_| pin_points(z));
         for (q, zq) in z.iter().enumerate() {
             for (j, &v) in zq.iter().enumerate().filter(|(_, v)| **v != 0.0) {
                 trip.push(Triplet::new(j, m + q, v));
-                trip.push(Triplet::new(m + q, j, v));
+                if pins.is_none() {
+                    trip.push(Triplet::new(m + q, j, v));
+                }
+            }
+            if let Some(p) = &pins {
+                trip.push(Triplet::new(m + q, p[q], 1.0));
+            }
+        }
+        // Unused multiplier columns of the sparse bodies' block (fewer kernel vectors than the
+        // bound): identity rows keep the system regular.
+        if let Some(first) = first_sparse {
+            for q in m + z.len()..first {
+                trip.push(Triplet::new(q, q, 1.0));
             }
         }
         let mut rhs = Mat::<f64>::from_fn(n, 1, |i, _| if i < m { -r[i] } else { 0.0 });
         if trip.len() as f64 >= DENSE_FILL * (n as f64) * (n as f64) {
             dense_solve(&trip, n, &mut rhs)?;
         } else {
-            sparse_solve(&trip, n, &mut rhs)?;
+            sparse_solve(&trip, n, &mut rhs, pins.is_some())?;
         }
-        let delta: Vec<f64> = (0..m).map(|i| rhs[(i, 0)]).collect();
+        let mut delta: Vec<f64> = (0..m).map(|i| rhs[(i, 0)]).collect();
+        if pins.is_some() {
+            for e in z {
+                let d = dot(e, &delta);
+                delta.iter_mut().zip(e).for_each(|(x, y)| *x -= d * y);
+            }
+        }
         delta.iter().all(|v| v.is_finite()).then_some(delta)
     }
 
-    /// Pushes c·(row k of B) into row j: the entries B_k· over k's body.
+    /// Pushes c·(row k of B) into row j: the entries B_k· over k's body; on the sparse path
+    /// c·n_kᵀ δu at k's node instead (δU_k, which the body's rows tie to δτ).
     fn push_row(&self, trip: &mut Vec<Triplet<usize, usize, f64>>, j: usize, k: usize, c: f64) {
         let b = self.body_of[k];
         let range = self.range(b);
         let local = k - range.start;
-        let bm = &self.response[b];
+        let Some(bm) = &self.response[b] else {
+            if let (Some(offset), Some(s)) = (self.sparse_offset[b], self.bodies[b].sparse()) {
+                for &(r, n) in s.point_dofs(local) {
+                    trip.push(Triplet::new(j, offset + r, c * n));
+                }
+            }
+            return;
+        };
         for (i, col) in range.enumerate() {
             let v = c * bm[(local, i)];
             if v != 0.0 {
@@ -368,7 +442,16 @@ impl<'a> System<'a> {
 
 /// Solves the Newton system (given by its triplets) in place by sparse LU: the dense blocks per
 /// body go through faer's supernodal kernels. Sequential, so the same on any number of threads.
-fn sparse_solve(trip: &[Triplet<usize, usize, f64>], n: usize, rhs: &mut Mat<f64>) -> Option<()> {
+///
+/// With `refine`, one step of iterative refinement follows: the sparse bodies' stiffness rows
+/// and the interface rows differ in scale, and the step restores the accuracy the dense blocks
+/// have.
+fn sparse_solve(
+    trip: &[Triplet<usize, usize, f64>],
+    n: usize,
+    rhs: &mut Mat<f64>,
+    refine: bool,
+) -> Option<()> {
     let a = SparseColMat::<usize, f64>::try_new_from_triplets(n, n, trip).ok()?;
     // Dense blocks per body: the supernodal factorisation uses dense kernels on them.
     let params = LuSymbolicParams {
@@ -391,7 +474,19 @@ fn sparse_solve(trip: &[Triplet<usize, usize, f64>], n: usize, rhs: &mut Mat<f64
         )
         .ok()?;
     let mut mem = MemBuffer::try_new(symbolic.solve_in_place_scratch::<f64>(1, Par::Seq)).ok()?;
+    let b = rhs.clone();
     lu.solve_in_place_with_conj(Conj::No, rhs.as_mut(), Par::Seq, MemStack::new(&mut mem));
+    if refine {
+        // r = b − A x, then x += A⁻¹ r.
+        let mut r = b;
+        for t in trip {
+            r[(t.row, 0)] -= t.val * rhs[(t.col, 0)];
+        }
+        lu.solve_in_place_with_conj(Conj::No, r.as_mut(), Par::Seq, MemStack::new(&mut mem));
+        for i in 0..n {
+            rhs[(i, 0)] += r[(i, 0)];
+        }
+    }
     Some(())
 }
 
@@ -425,6 +520,42 @@ fn dense_solve(trip: &[Triplet<usize, usize, f64>], n: usize, rhs: &mut Mat<f64>
         MemStack::new(&mut mem),
     );
     Some(())
+}
+
+/// One point per kernel vector where the vectors restricted to these points are regular:
+/// Gaussian elimination with complete pivoting on the columns of `z`.
+fn pin_points(z: &[Vec<f64>]) -> Vec<usize> {
+    let mut cols: Vec<Vec<f64>> = z.to_vec();
+    let mut pins: Vec<usize> = Vec::with_capacity(z.len());
+    for q in 0..cols.len() {
+        let (j, _) = cols[q]
+            .iter()
+            .enumerate()
+            .filter(|(j, _)| !pins.contains(j))
+            .fold((0, -1.0), |best, (j, v)| {
+                if v.abs() > best.1 {
+                    (j, v.abs())
+                } else {
+                    best
+                }
+            });
+        let pivot = cols[q][j];
+        for r in q + 1..cols.len() {
+            let f = cols[r][j] / pivot;
+            let (head, tail) = cols.split_at_mut(r);
+            tail[0]
+                .iter_mut()
+                .zip(&head[q])
+                .for_each(|(x, y)| *x -= f * y);
+        }
+        pins.push(j);
+    }
+    pins
+}
+
+/// The most kernel vectors [`System::kernel`] can return: the number of free rigid modes.
+fn modes_bound(mode_range: &[Range<usize>]) -> usize {
+    mode_range.iter().map(|r| r.end).max().unwrap_or(0)
 }
 
 fn dot(a: &[f64], b: &[f64]) -> f64 {

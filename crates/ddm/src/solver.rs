@@ -8,7 +8,7 @@ use std::time::Instant;
 use rayon::prelude::*;
 
 use crate::coarse::Coarse;
-use crate::condensed::{analyse_all, CondensedBody, SetupTimes};
+use crate::condensed::{analyse_all, Condensation, CondensedBody, SetupTimes};
 use crate::contact::Interface;
 use crate::error::SetupError;
 use crate::iteration::{iterate_on, Hooks, Settings, Stop};
@@ -41,8 +41,14 @@ impl Prepared {
     }
 }
 
-/// Builds the contact geometry and factorises and condenses every body (in parallel).
+/// Builds the contact geometry and factorises and condenses every body (in parallel), each on
+/// the path the cost model chooses ([`Condensation::Auto`]).
 pub fn prepare(model: &Model) -> Result<Prepared, SetupError> {
+    prepare_with(model, Condensation::Auto)
+}
+
+/// [`prepare`] with the condensation path given (`docs/sparse-path.md`).
+pub fn prepare_with(model: &Model, condensation: Condensation) -> Result<Prepared, SetupError> {
     let t = Instant::now();
     let interface = Interface::new(model)?;
     crate::contact_check::refuse(&crate::contact_check::check(model, &interface))?;
@@ -54,12 +60,13 @@ pub fn prepare(model: &Model) -> Result<Prepared, SetupError> {
     } else {
         faer::Par::rayon(0)
     };
-    let (bodies, times): (Vec<CondensedBody>, Vec<SetupTimes>) = analyse_all(model, &interface)?
-        .into_par_iter()
-        .map(|a| a.condense(par))
-        .collect::<Result<Vec<_>, _>>()?
-        .into_iter()
-        .unzip();
+    let (bodies, times): (Vec<CondensedBody>, Vec<SetupTimes>) =
+        analyse_all(model, &interface, condensation)?
+            .into_par_iter()
+            .map(|a| a.condense(par))
+            .collect::<Result<Vec<_>, _>>()?
+            .into_iter()
+            .unzip();
     let t_factor = t.elapsed().as_secs_f64();
     let sum = |f: fn(&SetupTimes) -> f64| times.iter().map(f).sum::<f64>();
     let scale = model
