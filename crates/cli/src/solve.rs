@@ -11,8 +11,8 @@ use contactdd_ddm::contact::Interface;
 use contactdd_ddm::contact_check;
 use contactdd_ddm::monolithic::{solve_monolithic_with, MonolithicSettings, MonolithicStep};
 use contactdd_ddm::{
-    prepare, solve as dd_solve, Accelerator, CoarseMode, Gamma, Hooks, Model, MonolithicSolution,
-    Record,
+    prepare_with, solve as dd_solve, Accelerator, CoarseMode, Gamma, Hooks, Model,
+    MonolithicSolution, Record,
 };
 use contactdd_io::output::{safe_file_name, write_monolithic_results, write_results_noted};
 use contactdd_io::reactions::reactions;
@@ -106,8 +106,8 @@ pub fn solve(args: SolveArgs) -> Result<Exit> {
                 count(model.bodies.len(), "body", "bodies")
             ));
         }
-        let mut prepared =
-            prepare(model).map_err(|e| anyhow::anyhow!("{}: {e}", args.file.display()))?;
+        let mut prepared = prepare_with(model, settings.condensation)
+            .map_err(|e| anyhow::anyhow!("{}: {e}", args.file.display()))?;
         warn_contact(&args.file, model, &prepared.interface);
         if let Some(factors) = &loaded.steps {
             let run = StepRun {

@@ -6,7 +6,7 @@ use std::path::PathBuf;
 use anyhow::{Context, Result};
 
 use contactdd_ddm::sweep::SweepRun;
-use contactdd_ddm::{prepare, sweep as dd_sweep, Gamma, Method, Stop};
+use contactdd_ddm::{prepare_with, sweep as dd_sweep, Gamma, Method, Stop};
 use contactdd_io::atomic::check_output_path;
 use contactdd_io::output::{safe_file_name, sweep_csv, write_atomic};
 
@@ -36,7 +36,8 @@ pub fn sweep(args: SweepArgs) -> Result<Exit> {
                 count(model.bodies.len(), "body", "bodies")
             ));
         }
-        let prepared = prepare(model).map_err(|e| anyhow::anyhow!("{e}"))?;
+        let prepared =
+            prepare_with(model, settings.condensation).map_err(|e| anyhow::anyhow!("{e}"))?;
         if !quiet {
             progress(&format!(
                 "running {} × {} = {} solves…",
