@@ -291,9 +291,11 @@ impl<'a> Analysed<'a> {
     }
 }
 
-/// The symbolic analysis of the path `condensation` asks for; `Auto` analyses the sparse order
-/// first and keeps it unless [`prefers_dense`] says otherwise. Returns the analysis and whether
-/// it is the dense path's.
+/// The symbolic analysis of the path `condensation` asks for. `Auto` keeps the dense path without
+/// a second analysis when [`prefers_dense`] holds already against half the stiffness entries (a
+/// lower bound of the factor's values); otherwise it analyses the sparse order first and analyses
+/// again with the contact DOFs last only if the factor's size then keeps the dense path. Returns
+/// the analysis and whether it is the dense path's.
 fn analyse(
     body: &ElasticBody,
     k: faer::sparse::SparseColMat<usize, f64>,
@@ -301,17 +303,20 @@ fn analyse(
     m: usize,
     condensation: Condensation,
 ) -> Result<(FactoredBody, bool), BodyError> {
-    let contact_last = |k| FactoredBody::new(&body.name, k, &body.constraints, interface);
+    let new =
+        |k, interface: &[usize]| FactoredBody::new(&body.name, k, &body.constraints, interface);
+    let n = interface.len();
     match condensation {
-        Condensation::Dense => Ok((contact_last(k)?, true)),
-        Condensation::Sparse => Ok((
-            FactoredBody::new(&body.name, k, &body.constraints, &[])?,
-            false,
-        )),
+        Condensation::Dense => Ok((new(k, interface)?, true)),
+        Condensation::Sparse => Ok((new(k, &[])?, false)),
+        Condensation::Auto if prefers_dense(m, n, k.val().len() / 2) => {
+            Ok((new(k, interface)?, true))
+        }
         Condensation::Auto => {
-            let sparse = FactoredBody::new(&body.name, k.clone(), &body.constraints, &[])?;
-            if prefers_dense(m, interface.len(), sparse.factor_len()) {
-                Ok((contact_last(k)?, true))
+            let sparse = new(k.clone(), &[])?;
+            if prefers_dense(m, n, sparse.factor_len()) {
+                drop(sparse);
+                Ok((new(k, interface)?, true))
             } else {
                 Ok((sparse, false))
             }
