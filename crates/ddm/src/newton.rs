@@ -34,12 +34,13 @@
 
 use std::ops::Range;
 use std::sync::atomic::Ordering;
+use std::sync::Mutex;
 use std::time::Instant;
 
 use faer::dyn_stack::{MemBuffer, MemStack};
-use faer::sparse::linalg::lu::{factorize_symbolic_lu, LuSymbolicParams, NumericLu};
+use faer::sparse::linalg::lu::{factorize_symbolic_lu, LuSymbolicParams, NumericLu, SymbolicLu};
 use faer::sparse::linalg::SupernodalThreshold;
-use faer::sparse::{SparseColMat, Triplet};
+use faer::sparse::{SparseColMat, SymbolicSparseColMat, Triplet};
 use faer::{Conj, Mat, Par};
 use nalgebra::{DMatrix, SymmetricEigen};
 use rayon::prelude::*;
@@ -105,6 +106,8 @@ struct System<'a> {
     rho: Vec<f64>,
     /// Points with zero quadrature weight (D₀ = 0): they carry no force, and τ_j = 0.
     weightless: Vec<bool>,
+    /// The sparse LU kept between steps (sparse path only).
+    lu: Mutex<LuCache>,
 }
 
 /// U, s and R at one τ.
@@ -177,6 +180,7 @@ impl<'a> System<'a> {
                 .iter()
                 .flat_map(|b| b.reference_springs().iter().map(|&d| d == 0.0))
                 .collect(),
+            lu: Mutex::new(LuCache::default()),
         }
     }
 
@@ -354,12 +358,21 @@ impl<'a> System<'a> {
                 n = n.max(offset + body.operator().num_free());
             }
         }
+        let first_sparse = self.sparse_offset.iter().flatten().min().copied();
         for (j, p) in self.interface.points.iter().enumerate() {
             trip.push(Triplet::new(j, j, 1.0));
             if self.weightless[j] {
                 continue;
             }
-            if chi[j] {
+            if first_sparse.is_some() && p.has_partner() {
+                // Both the closed and the open entries (one set zero): the pattern, and with it
+                // the LU's symbolic analysis, stays the same while the closed set changes.
+                let closed = if chi[j] { 1.0 } else { 0.0 };
+                for &(k, c) in &p.partner {
+                    self.push_row(&mut trip, j, k, closed * c);
+                }
+                self.push_row(&mut trip, j, j, closed - 1.0);
+            } else if chi[j] {
                 for &(k, c) in &p.partner {
                     self.push_row(&mut trip, j, k, c);
                 }
@@ -367,7 +380,6 @@ impl<'a> System<'a> {
                 self.push_row(&mut trip, j, j, -1.0);
             }
         }
-        let first_sparse = self.sparse_offset.iter().flatten().min().copied();
         // With sparse bodies a dense row Zᵀδ = 0 would fill the whole sparse LU: pin one point
         // per kernel vector instead and project the step afterwards (J z = 0, so the projected
         // step solves the same system).
@@ -394,7 +406,8 @@ impl<'a> System<'a> {
         if trip.len() as f64 >= DENSE_FILL * (n as f64) * (n as f64) {
             dense_solve(&trip, n, &mut rhs)?;
         } else {
-            sparse_solve(&trip, n, &mut rhs, pins.is_some())?;
+            let cache = pins.as_ref().map(|_| &self.lu);
+            sparse_solve(&trip, n, &mut rhs, cache)?;
         }
         let mut delta: Vec<f64> = (0..m).map(|i| rhs[(i, 0)]).collect();
         if pins.is_some() {
@@ -450,7 +463,7 @@ fn sparse_solve(
     trip: &[Triplet<usize, usize, f64>],
     n: usize,
     rhs: &mut Mat<f64>,
-    refine: bool,
+    cache: Option<&Mutex<LuCache>>,
 ) -> Option<()> {
     let a = SparseColMat::<usize, f64>::try_new_from_triplets(n, n, trip).ok()?;
     // Dense blocks per body: the supernodal factorisation uses dense kernels on them.
@@ -458,15 +471,31 @@ fn sparse_solve(
         supernodal_flop_ratio_threshold: SupernodalThreshold::FORCE_SUPERNODAL,
         ..Default::default()
     };
-    let symbolic = factorize_symbolic_lu(a.symbolic(), params).ok()?;
-    let mut numeric = NumericLu::new();
+    let refine = cache.is_some();
+    let mut fresh = LuCache::default();
+    let mut guard = match cache {
+        Some(c) => Some(c.lock().ok()?),
+        None => None,
+    };
+    let kept = guard.as_deref_mut().unwrap_or(&mut fresh);
+    let same = kept.pattern.as_ref().is_some_and(|p| {
+        p.col_ptr() == a.symbolic().col_ptr() && p.row_idx() == a.symbolic().row_idx()
+    });
+    if !same || kept.symbolic.is_none() {
+        kept.symbolic = Some(factorize_symbolic_lu(a.symbolic(), params).ok()?);
+        kept.pattern = Some(a.symbolic().to_owned().ok()?);
+    }
+    let LuCache {
+        symbolic, numeric, ..
+    } = kept;
+    let symbolic = symbolic.as_ref()?;
     let mut mem = MemBuffer::try_new(
         symbolic.factorize_numeric_lu_scratch::<f64>(Par::Seq, Default::default()),
     )
     .ok()?;
     let lu = symbolic
         .factorize_numeric_lu(
-            &mut numeric,
+            numeric,
             a.as_ref(),
             Par::Seq,
             MemStack::new(&mut mem),
@@ -520,6 +549,24 @@ fn dense_solve(trip: &[Triplet<usize, usize, f64>], n: usize, rhs: &mut Mat<f64>
         MemStack::new(&mut mem),
     );
     Some(())
+}
+
+/// The sparse LU of the last Newton step on the sparse path: its pattern, symbolic analysis and
+/// numeric buffers, reused while the pattern stays the same.
+struct LuCache {
+    pattern: Option<SymbolicSparseColMat<usize>>,
+    symbolic: Option<SymbolicLu<usize>>,
+    numeric: NumericLu<usize, f64>,
+}
+
+impl Default for LuCache {
+    fn default() -> Self {
+        LuCache {
+            pattern: None,
+            symbolic: None,
+            numeric: NumericLu::new(),
+        }
+    }
 }
 
 /// One point per kernel vector where the vectors restricted to these points are regular:
