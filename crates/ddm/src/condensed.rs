@@ -383,9 +383,14 @@ impl CondensedBody {
     /// U = f₀ + C₀ D₀ τ: the normal displacements under the interface load D₀τ (on the sparse
     /// path one sparse solve).
     pub fn respond(&self, tau: &[f64]) -> Result<Vec<f64>, BodyError> {
-        let t: Vec<f64> = tau.iter().zip(&self.d0).map(|(t, d)| t * d).collect();
-        let c0t = self.apply_c0(&t)?;
+        let c0t = self.apply_response(tau)?;
         Ok(self.f0.iter().zip(&c0t).map(|(f, c)| f + c).collect())
+    }
+
+    /// B τ = C₀ D₀ τ (on the sparse path one sparse solve).
+    pub fn apply_response(&self, tau: &[f64]) -> Result<Vec<f64>, BodyError> {
+        let t: Vec<f64> = tau.iter().zip(&self.d0).map(|(t, d)| t * d).collect();
+        self.apply_c0(&t)
     }
 
     /// The starting state of the sweeps for the normal displacements `un0`: (U⁰, T⁰) with

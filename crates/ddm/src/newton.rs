@@ -62,6 +62,8 @@ const ARMIJO: f64 = 1e-4;
 /// bodies in contact fill half of it or more, and then the sparse LU does about the dense flops
 /// with more overhead; a chain of bodies stays block-sparse, well below.
 const DENSE_FILL: f64 = 1.0 / 3.0;
+/// Iterative refinement steps at most after a sparse-path LU solve.
+const MAX_REFINE: usize = 4;
 
 /// Runs the interface Newton iteration on a prepared model with the contact points `interface`,
 /// from the interface loads `warm` if given, else from the paper's initial value u⁰.
@@ -407,7 +409,12 @@ impl<'a> System<'a> {
             dense_solve(&trip, n, &mut rhs)?;
         } else {
             let cache = pins.as_ref().map(|_| &self.lu);
-            sparse_solve(&trip, n, &mut rhs, cache)?;
+            // Refinement against the true J (B applied by the bodies' own solves): the coupled
+            // matrix's residual is a poor measure of the error in δ.
+            let residual = |x: &Mat<f64>| self.bordered_residual(chi, z, pins.as_deref(), r, x);
+            let refine: Option<&dyn Fn(&Mat<f64>) -> Option<Mat<f64>>> =
+                pins.as_ref().map(|_| &residual as _);
+            sparse_solve(&trip, n, &mut rhs, cache, refine)?;
         }
         let mut delta: Vec<f64> = (0..m).map(|i| rhs[(i, 0)]).collect();
         if pins.is_some() {
@@ -417,6 +424,45 @@ impl<'a> System<'a> {
             }
         }
         delta.iter().all(|v| v.is_finite()).then_some(delta)
+    }
+
+    /// The residual of the sparse path's bordered system at `x` = [δ; μ; …]: −R − Jδ − Zμ on the
+    /// interface rows, −δ_p on the pin rows, zero on the bodies' rows (J applied body by body).
+    fn bordered_residual(
+        &self,
+        chi: &[bool],
+        z: &[Vec<f64>],
+        pins: Option<&[usize]>,
+        r: &[f64],
+        x: &Mat<f64>,
+    ) -> Option<Mat<f64>> {
+        let m = self.len();
+        let delta: Vec<f64> = (0..m).map(|i| x[(i, 0)]).collect();
+        let bd: Vec<f64> = (0..self.bodies.len())
+            .into_par_iter()
+            .map(|b| self.bodies[b].apply_response(&delta[self.range(b)]).ok())
+            .collect::<Option<Vec<Vec<f64>>>>()?
+            .concat();
+        let mut res = Mat::<f64>::zeros(x.nrows(), 1);
+        for (j, p) in self.interface.points.iter().enumerate() {
+            let jd = if self.weightless[j] {
+                delta[j]
+            } else if chi[j] {
+                delta[j] + p.partner.iter().map(|&(k, c)| c * bd[k]).sum::<f64>()
+            } else {
+                delta[j] - bd[j]
+            };
+            let zmu: f64 = z
+                .iter()
+                .enumerate()
+                .map(|(q, zq)| zq[j] * x[(m + q, 0)])
+                .sum();
+            res[(j, 0)] = -r[j] - jd - zmu;
+        }
+        for (q, &p) in pins.unwrap_or(&[]).iter().enumerate() {
+            res[(m + q, 0)] = -delta[p];
+        }
+        Some(res)
     }
 
     /// Pushes c·(row k of B) into row j: the entries B_k· over k's body; on the sparse path
@@ -456,14 +502,15 @@ impl<'a> System<'a> {
 /// Solves the Newton system (given by its triplets) in place by sparse LU: the dense blocks per
 /// body go through faer's supernodal kernels. Sequential, so the same on any number of threads.
 ///
-/// With `refine`, one step of iterative refinement follows: the sparse bodies' stiffness rows
-/// and the interface rows differ in scale, and the step restores the accuracy the dense blocks
-/// have.
+/// With `refine` (the sparse path: the residual of the true system at a solution), iterative
+/// refinement follows, at most [`MAX_REFINE`] steps while each halves the residual. `cache` keeps
+/// the LU's analysis and buffers between calls.
 fn sparse_solve(
     trip: &[Triplet<usize, usize, f64>],
     n: usize,
     rhs: &mut Mat<f64>,
     cache: Option<&Mutex<LuCache>>,
+    refine: Option<&dyn Fn(&Mat<f64>) -> Option<Mat<f64>>>,
 ) -> Option<()> {
     let a = SparseColMat::<usize, f64>::try_new_from_triplets(n, n, trip).ok()?;
     // Dense blocks per body: the supernodal factorisation uses dense kernels on them.
@@ -471,7 +518,6 @@ fn sparse_solve(
         supernodal_flop_ratio_threshold: SupernodalThreshold::FORCE_SUPERNODAL,
         ..Default::default()
     };
-    let refine = cache.is_some();
     let mut fresh = LuCache::default();
     let mut guard = match cache {
         Some(c) => Some(c.lock().ok()?),
@@ -503,14 +549,18 @@ fn sparse_solve(
         )
         .ok()?;
     let mut mem = MemBuffer::try_new(symbolic.solve_in_place_scratch::<f64>(1, Par::Seq)).ok()?;
-    let b = rhs.clone();
     lu.solve_in_place_with_conj(Conj::No, rhs.as_mut(), Par::Seq, MemStack::new(&mut mem));
-    if refine {
-        // r = b − A x, then x += A⁻¹ r.
-        let mut r = b;
-        for t in trip {
-            r[(t.row, 0)] -= t.val * rhs[(t.col, 0)];
+    // r = b − A x, then x += A⁻¹ r, while that halves ‖r‖.
+    let mut last = f64::INFINITY;
+    for _ in 0..refine.map_or(0, |_| MAX_REFINE) {
+        let Some(mut r) = refine.and_then(|f| f(rhs)) else {
+            break;
+        };
+        let size = r.norm_l2();
+        if !(size < 0.5 * last) {
+            break;
         }
+        last = size;
         lu.solve_in_place_with_conj(Conj::No, r.as_mut(), Par::Seq, MemStack::new(&mut mem));
         for i in 0..n {
             rhs[(i, 0)] += r[(i, 0)];
