@@ -1,6 +1,8 @@
 //! The domain decomposition: setup of the notch benchmark, one iteration, a full solve per method,
 //! the 45-run γ sweep, an 8-body stack with 1 and 2 threads, columns of floating blocks, the
-//! Hertz example at two penalties, and the contact search.
+//! Hertz example at two penalties, the contact search, and the two condensation paths
+//! (`docs/sparse-path.md`: the notch on each path; with `CONTACTDD_BENCH_LARGE=1` also long strips
+//! of 1000, 2000 and 4000 contact points and a compact zone of the same DOF count).
 //!
 //! Run: `cargo bench --bench ddm`.
 
@@ -11,8 +13,8 @@ use contactdd_ddm::benchmark::Notch;
 use contactdd_ddm::contact::Interface;
 use contactdd_ddm::iteration::iterate;
 use contactdd_ddm::{
-    prepare, solve, sweep, CoarseMode, ContactPair, Enforcement, Gamma, Hooks, Method, Model,
-    Penalty, Settings,
+    prepare, prepare_with, solve, sweep, CoarseMode, Condensation, ContactPair, Enforcement, Gamma,
+    Hooks, Method, Model, Penalty, Settings,
 };
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion};
 
@@ -233,8 +235,57 @@ fn stiff_penalty(c: &mut Criterion) {
     group.finish();
 }
 
+/// Prepare and solve (the default interface Newton method) on the path `condensation`.
+fn prepare_and_solve(model: &Model, condensation: Condensation) {
+    let prepared = prepare_with(model, condensation).expect("prepare");
+    let sol = solve(model, &prepared, &Settings::default(), Hooks::default()).expect("solve");
+    assert!(sol.converged, "{:?}", sol.message);
+}
+
+/// The notch with nx × ny cells per body (nx + 1 contact points per body).
+fn notch_cells(nx: usize, ny: usize) -> Model {
+    Notch {
+        nx,
+        ny,
+        ..Notch::default()
+    }
+    .model()
+    .expect("model")
+}
+
+fn condensation(c: &mut Criterion) {
+    let mut group = c.benchmark_group("condensation");
+    let model = Notch::default().model().expect("model");
+    for path in [
+        Condensation::Dense,
+        Condensation::Sparse,
+        Condensation::Auto,
+    ] {
+        group.bench_function(BenchmarkId::new("notch", path), |b| {
+            b.iter(|| prepare_and_solve(&model, path))
+        });
+    }
+    if std::env::var("CONTACTDD_BENCH_LARGE").is_ok_and(|v| v == "1") {
+        group.sample_size(10);
+        // Long strips: m = nx + 1 contact points per body, 16 cells deep.
+        for nx in [1000, 2000, 4000] {
+            let model = notch_cells(nx, 16);
+            group.bench_function(BenchmarkId::new("long_strip", nx), |b| {
+                b.iter(|| prepare_and_solve(&model, Condensation::Auto))
+            });
+        }
+        // The same DOF count as the 4000 × 16 strip with a compact contact zone.
+        let model = notch_cells(368, 184);
+        group.bench_function("compact_368x184", |b| {
+            b.iter(|| prepare_and_solve(&model, Condensation::Auto))
+        });
+    }
+    group.finish();
+}
+
 criterion_group!(
     benches,
+    condensation,
     notch,
     threads,
     two_level,

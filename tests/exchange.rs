@@ -11,8 +11,8 @@ use std::sync::{Arc, Barrier, Mutex};
 use contactdd::cases;
 use contactdd::ddm::exchange::{factor_cost, partition, Exchange};
 use contactdd::ddm::{
-    prepare, prepare_on, solve, Accelerator, CoarseMode, Gamma, Hooks, Method, Model, Settings,
-    Solution,
+    prepare, prepare_on, prepare_with, solve, Accelerator, CoarseMode, Condensation, Gamma, Hooks,
+    Method, Model, Settings, Solution,
 };
 
 /// What the ranks deposit for one collective: per rank, its bodies' values or its error.
@@ -87,7 +87,7 @@ fn distributed(model: &Model, settings: &Settings, ranks: usize) -> Vec<Solution
                     shared: shared.clone(),
                 });
                 scope.spawn(move || {
-                    let prepared = prepare_on(model, exchange).unwrap();
+                    let prepared = prepare_on(model, Condensation::Auto, exchange).unwrap();
                     let owned = prepared.bodies.iter().flatten().count();
                     assert!(owned < model.bodies.len(), "rank {rank} owns every body");
                     solve(model, &prepared, settings, Hooks::default()).unwrap()
@@ -148,7 +148,7 @@ fn schemes() -> Vec<(&'static str, Settings)> {
 }
 
 fn check(name: &str, model: &Model) {
-    let prepared = prepare(model).unwrap();
+    let prepared = prepare_with(model, Condensation::Dense).unwrap();
     for (scheme, settings) in schemes() {
         // A run that stops without converging (the paper's sweeps on a column, cut at 60
         // iterations; Anderson without safeguard on the notch) must stop alike everywhere too.
@@ -227,7 +227,11 @@ fn a_body_one_rank_cannot_factorise_fails_every_rank_with_its_message() {
                     shared: shared.clone(),
                 });
                 let model = &model;
-                scope.spawn(move || prepare_on(model, exchange).err().map(|e| e.to_string()))
+                scope.spawn(move || {
+                    prepare_on(model, Condensation::Auto, exchange)
+                        .err()
+                        .map(|e| e.to_string())
+                })
             })
             .collect();
         handles
@@ -236,4 +240,29 @@ fn a_body_one_rank_cannot_factorise_fails_every_rank_with_its_message() {
             .collect()
     });
     assert_eq!(errors, vec![single.clone(), single]);
+}
+
+/// The sparse path couples every body in one sparse LU: forced on several ranks, it is refused
+/// with a message that says what to use instead, on every rank (the check needs no exchange).
+#[test]
+fn the_sparse_path_is_refused_on_several_ranks() {
+    let model = cases::column(4, 0.5);
+    let owner = partition(&vec![1.0; model.bodies.len()], 2);
+    let shared = Arc::new(Shared {
+        barrier: Barrier::new(2),
+        values: Mutex::new(vec![Vec::new(); 2]),
+        errors: Mutex::new(vec![None; 2]),
+    });
+    for rank in 0..2 {
+        let exchange = Arc::new(ThreadExchange {
+            owner: owner.clone(),
+            rank,
+            shared: shared.clone(),
+        });
+        let error = prepare_on(&model, Condensation::Sparse, exchange)
+            .err()
+            .map(|e| e.to_string())
+            .unwrap_or_default();
+        assert!(error.contains("one process only"), "rank {rank}: {error}");
+    }
 }

@@ -42,9 +42,11 @@ def test_a_benchmark_beyond_the_cell_limit_raises_instead_of_aborting():
         contactdd.notch_benchmark(nx=2**40, ny=2**40)  # nx · ny overflows
 
 
-def test_a_problem_too_big_for_memory_raises_with_both_numbers():
+def test_a_contact_zone_too_long_for_the_dense_condensation_solves_on_the_sparse_path():
     # Two strips of 70000 × 1 cells in contact along their length: the dense condensation alone
-    # needs 8 m² bytes per body with m = 70001 contact points, 78 GB for both.
+    # would need 8 m² bytes per body with m = 70001 contact points, 78 GB for both. The cost model
+    # takes the sparse path (docs/sparse-path.md), whose memory follows the bodies; the refusal of
+    # the forced dense path is tested in tests/memory.rs.
     n = 70000
     p = contactdd.Problem()
     p.add_material("steel", 2.1e5, 0.3)
@@ -54,15 +56,11 @@ def test_a_problem_too_big_for_memory_raises_with_both_numbers():
                          supports=[{"boundary": "left", "component": "x"}],
                          loads=[{"kind": "pressure", "boundary": "top", "value": 1.0}])
     p.add_contact(("lower", "upper"), ("top", "bottom"), c=0.5, h=1.0)
-    try:
-        with open("/proc/meminfo") as f:
-            available = next(int(line.split()[1]) * 1024 for line in f
-                             if line.startswith("MemAvailable:"))
-    except OSError:
-        pytest.skip("no /proc/meminfo: memory is not checked")
-    assert 2 * 8 * (n + 1) ** 2 > available
-    with pytest.raises(ContactddError, match="of memory, but only .* is available"):
-        contactdd.solve(p)
+    result = contactdd.solve(p)
+    assert result.converged
+    # Away from the strips' ends the contact carries the applied pressure exactly.
+    side = result.contact[0].pressure[: n + 1]
+    assert all(abs(q + 1.0) < 1e-8 for q in side[100:-100])
 
 
 def blocks(upper_y, boundaries):

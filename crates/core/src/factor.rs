@@ -23,6 +23,15 @@ use crate::supports::Constraints;
 
 const NONE: usize = usize::MAX;
 
+/// The values of a second numeric factorisation sharing a body's symbolic analysis
+/// ([`FactoredBody::refactorize`]).
+#[derive(Default)]
+pub struct FactorValues {
+    values: Vec<f64>,
+    l_values: Vec<f64>,
+    factored: bool,
+}
+
 /// A body's stiffness with supports eliminated, factorised by sparse Cholesky.
 pub struct FactoredBody {
     name: String,
@@ -184,10 +193,50 @@ impl FactoredBody {
     /// entries (full DOF numbering) inside the stiffness pattern, added symmetrically: an entry with
     /// `row ≠ col` is added at both `(row, col)` and `(col, row)`.
     pub fn factorize(&mut self, additions: &[(usize, usize, f64)]) -> Result<(), BodyError> {
-        let kv = self.k.val();
-        for (v, &p) in self.values.iter_mut().zip(&self.gather) {
-            *v = kv[p];
+        self.allocate_factor()?;
+        self.factored = false;
+        let mut values = FactorValues {
+            values: std::mem::take(&mut self.values),
+            l_values: std::mem::take(&mut self.l_values),
+            factored: false,
+        };
+        let result = self.factorize_values(additions, &mut values);
+        (self.values, self.l_values) = (values.values, values.l_values);
+        result?;
+        self.factored = true;
+        Ok(())
+    }
+
+    /// Numeric factorisation of `K + Σ additions` (as in [`FactoredBody::factorize`]) into
+    /// `values`, kept apart from the body's own factor: the same symbolic analysis serves a
+    /// second operator (a Robin operator whose springs change during an iteration).
+    pub fn refactorize(
+        &self,
+        additions: &[(usize, usize, f64)],
+        values: &mut FactorValues,
+    ) -> Result<(), BodyError> {
+        let len = self.symbolic.len_val();
+        if values.l_values.len() != len {
+            values.l_values = try_zeros(len).ok_or_else(|| BodyError::Factorization {
+                body: self.name.clone(),
+                message: format!("out of memory for the {len} values of the factor"),
+            })?;
         }
+        values.factored = false;
+        self.factorize_values(additions, values)?;
+        values.factored = true;
+        Ok(())
+    }
+
+    /// The numeric factorisation of `K + Σ additions` into the buffers of `out`.
+    fn factorize_values(
+        &self,
+        additions: &[(usize, usize, f64)],
+        out: &mut FactorValues,
+    ) -> Result<(), BodyError> {
+        let kv = self.k.val();
+        out.values.clear();
+        out.values.extend(self.gather.iter().map(|&p| kv[p]));
         for &(i, j, a) in additions {
             let (ri, rj) = (self.reduced[i], self.reduced[j]);
             if ri == NONE || rj == NONE {
@@ -202,15 +251,14 @@ impl FactoredBody {
                     message: format!("entry ({i}, {j}) is outside the stiffness pattern"),
                 });
             };
-            self.values[start + p] += a;
+            out.values[start + p] += a;
         }
-        if let Some(i) = self.values.iter().position(|v| !v.is_finite()) {
+        if let Some(i) = out.values.iter().position(|v| !v.is_finite()) {
             return Err(BodyError::NonFinite {
                 body: self.name.clone(),
                 what: format!("stiffness entry {i}"),
             });
         }
-        self.allocate_factor()?;
         let req = self
             .symbolic
             .factorize_numeric_llt_scratch::<f64>(self.par, Default::default());
@@ -218,11 +266,10 @@ impl FactoredBody {
             body: self.name.clone(),
             message: "out of memory".into(),
         })?;
-        self.factored = false;
-        let a = SparseColMatRef::new(self.lower.as_ref(), &self.values);
+        let a = SparseColMatRef::new(self.lower.as_ref(), &out.values);
         self.symbolic
             .factorize_numeric_llt(
-                &mut self.l_values,
+                &mut out.l_values,
                 a,
                 Side::Lower,
                 LltRegularization::default(),
@@ -238,7 +285,6 @@ impl FactoredBody {
                     }
                 }
             })?;
-        self.factored = true;
         Ok(())
     }
 
@@ -247,15 +293,10 @@ impl FactoredBody {
     fn allocate_factor(&mut self) -> Result<(), BodyError> {
         let len = self.symbolic.len_val();
         if self.l_values.len() != len {
-            let mut values = Vec::new();
-            values
-                .try_reserve_exact(len)
-                .map_err(|_| BodyError::Factorization {
-                    body: self.name.clone(),
-                    message: format!("out of memory for the {len} values of the factor"),
-                })?;
-            values.resize(len, 0.0);
-            self.l_values = values;
+            self.l_values = try_zeros(len).ok_or_else(|| BodyError::Factorization {
+                body: self.name.clone(),
+                message: format!("out of memory for the {len} values of the factor"),
+            })?;
         }
         Ok(())
     }
@@ -263,24 +304,7 @@ impl FactoredBody {
     /// Solves `K u = f` with the prescribed values for `u` on supports; `f` has one entry per DOF
     /// (entries on prescribed DOFs are ignored). Returns the full displacement vector.
     pub fn solve(&self, f: &[f64]) -> Result<Vec<f64>, BodyError> {
-        let mut rhs: Vec<f64> = self.free.iter().map(|&d| f[d]).collect();
-        // Move the prescribed values to the right-hand side: f_f − K_fd u_d.
-        let (col_ptr, row_idx, kv) = (
-            self.k.symbolic().col_ptr(),
-            self.k.symbolic().row_idx(),
-            self.k.val(),
-        );
-        for &(d, value) in &self.fixed {
-            if value == 0.0 {
-                continue;
-            }
-            for p in col_ptr[d]..col_ptr[d + 1] {
-                let r = self.reduced[row_idx[p]];
-                if r != NONE {
-                    rhs[r] -= kv[p] * value;
-                }
-            }
-        }
+        let mut rhs = self.reduced_load(f);
         self.solve_reduced_in_place(&mut rhs)?;
         let mut u = vec![0.0; self.num_dofs()];
         for (r, &d) in self.free.iter().enumerate() {
@@ -298,9 +322,58 @@ impl FactoredBody {
         Ok(u)
     }
 
+    /// The right-hand side of the reduced system for the load `f` (one entry per DOF): `f` on the
+    /// free DOFs minus what the prescribed values load them with, `f_f − K_fd u_d`.
+    pub fn reduced_load(&self, f: &[f64]) -> Vec<f64> {
+        let mut rhs: Vec<f64> = self.free.iter().map(|&d| f[d]).collect();
+        let (col_ptr, row_idx, kv) = (
+            self.k.symbolic().col_ptr(),
+            self.k.symbolic().row_idx(),
+            self.k.val(),
+        );
+        for &(d, value) in &self.fixed {
+            if value == 0.0 {
+                continue;
+            }
+            for p in col_ptr[d]..col_ptr[d + 1] {
+                let r = self.reduced[row_idx[p]];
+                if r != NONE {
+                    rhs[r] -= kv[p] * value;
+                }
+            }
+        }
+        rhs
+    }
+
+    /// The prescribed value of a DOF (0 for a free DOF).
+    pub fn prescribed_value(&self, dof: usize) -> f64 {
+        self.fixed
+            .binary_search_by_key(&dof, |&(d, _)| d)
+            .map_or(0.0, |i| self.fixed[i].1)
+    }
+
     /// Solves in place in the reduced (free DOF) numbering.
     pub fn solve_reduced_in_place(&self, rhs: &mut [f64]) -> Result<(), BodyError> {
-        if !self.factored {
+        self.solve_with(self.factored, &self.l_values, rhs)
+    }
+
+    /// Solves in place in the reduced numbering with a factor of
+    /// [`FactoredBody::refactorize`].
+    pub fn solve_reduced_with(
+        &self,
+        values: &FactorValues,
+        rhs: &mut [f64],
+    ) -> Result<(), BodyError> {
+        self.solve_with(values.factored, &values.l_values, rhs)
+    }
+
+    fn solve_with(
+        &self,
+        factored: bool,
+        l_values: &[f64],
+        rhs: &mut [f64],
+    ) -> Result<(), BodyError> {
+        if !factored {
             return Err(BodyError::Factorization {
                 body: self.name.clone(),
                 message: "solve called before a successful factorization".into(),
@@ -312,7 +385,7 @@ impl FactoredBody {
             body: self.name.clone(),
             message: "out of memory".into(),
         })?;
-        let llt = LltRef::new(&self.symbolic, &self.l_values);
+        let llt = LltRef::new(&self.symbolic, l_values);
         llt.solve_in_place_with_conj(
             Conj::No,
             MatMut::from_column_major_slice_mut(rhs, n, 1),
@@ -320,6 +393,23 @@ impl FactoredBody {
             MemStack::new(&mut mem),
         );
         Ok(())
+    }
+
+    /// Number of free (not prescribed) DOFs: the size of the reduced numbering.
+    pub fn num_free(&self) -> usize {
+        self.free.len()
+    }
+
+    /// The reduced index of a DOF, or `None` if it is prescribed.
+    pub fn reduced_index(&self, dof: usize) -> Option<usize> {
+        let r = self.reduced[dof];
+        (r != NONE).then_some(r)
+    }
+
+    /// The lower triangle of the last factorised matrix (`K + Σ additions` of
+    /// [`FactoredBody::factorize`]) in the reduced numbering.
+    pub fn reduced_lower(&self) -> SparseColMatRef<'_, usize, f64> {
+        SparseColMatRef::new(self.lower.as_ref(), &self.values)
     }
 
     /// For each DOF of `interface_dofs` (as given to [`FactoredBody::new`]), its index in the
@@ -422,6 +512,14 @@ fn last_ordering(
     let mut order: Vec<usize> = fwd.into_iter().filter(|&r| !is_interface[r]).collect();
     order.extend_from_slice(interface);
     Ok(order)
+}
+
+/// A vector of `len` zeros, or `None` if the allocation fails (an error rather than an abort).
+fn try_zeros(len: usize) -> Option<Vec<f64>> {
+    let mut values = Vec::new();
+    values.try_reserve_exact(len).ok()?;
+    values.resize(len, 0.0);
+    Some(values)
 }
 
 fn inverse(perm: &[usize]) -> Vec<usize> {

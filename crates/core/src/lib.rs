@@ -31,7 +31,7 @@ pub mod supports;
 
 pub use body::{ElasticBody, LinearSolution};
 pub use error::{BodyError, GmshError, MaterialError, MeshError, SupportError};
-pub use factor::FactoredBody;
+pub use factor::{FactorValues, FactoredBody};
 pub use geometry::{component_of, dof, node_of, node_vector, num_dofs, Point, Vector, DIM};
 pub use loads::Load;
 pub use material::{Material, Plane};

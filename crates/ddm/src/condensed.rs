@@ -14,6 +14,11 @@
 //! Cholesky there *is* the diagnosis "this body is floating". An iteration therefore costs a few
 //! small dense operations per body, never a sparse solve. The full field is K₀⁻¹(f + N T) for the
 //! accumulated interface load T, recovered by one sparse solve at the end.
+//!
+//! That is the *dense* path: C₀ holds m² values and its setup costs about m³ flops. When the
+//! contact zone is long against the body, the *sparse* path ([`crate::sparse_body`]) keeps only
+//! the sparse factor of K₀ and solves with it instead; [`Condensation`] chooses per body
+//! (`docs/sparse-path.md`).
 
 use std::time::Instant;
 
@@ -29,6 +34,49 @@ use rayon::prelude::*;
 use crate::contact::{ContactPoint, Interface};
 use crate::error::SetupError;
 use crate::model::Model;
+use crate::sparse_body::{spring_additions, RobinFactor, SparseContact};
+
+/// How the bodies are condensed on their contact points.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Condensation {
+    /// Per body, the cheaper of the two by the cost model of `docs/sparse-path.md`.
+    #[default]
+    Auto,
+    /// The dense blocks C₀ on the contact points (every body).
+    Dense,
+    /// The sparse factor alone (every body).
+    Sparse,
+}
+
+impl std::fmt::Display for Condensation {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(match self {
+            Condensation::Auto => "auto",
+            Condensation::Dense => "dense",
+            Condensation::Sparse => "sparse",
+        })
+    }
+}
+
+/// The cost model: the dense path while its blocks on the contact points (`m` points, `dofs`
+/// interface DOFs: Y, C₀ and the Robin matrix) hold at most [`DENSE_PER_FACTOR`] times the values
+/// of the body's sparse factor `factor_len` (fill-reducing order, no dense trailing block).
+pub fn prefers_dense(m: usize, dofs: usize, factor_len: usize) -> bool {
+    let dense = (m as f64) * (dofs as f64 + 2.0 * m as f64);
+    dense <= DENSE_PER_FACTOR * factor_len as f64
+}
+
+/// How many times the sparse factor's values the dense blocks may hold (docs/sparse-path.md).
+pub const DENSE_PER_FACTOR: f64 = 1.0;
+
+/// What a body keeps of its condensation.
+enum Reduction {
+    /// C₀ = Nᵀ K₀⁻¹ N.
+    Dense(Mat<f64>),
+    /// The contact points in the sparse factor's numbering.
+    Sparse(SparseContact),
+}
 
 /// A singular Robin problem: the body has lost its hold.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -42,8 +90,8 @@ pub struct CondensedBody {
     normals: Vec<Vector>,
     /// Reference spring stiffness w_j/θ_j (φ = 1).
     d0: Vec<f64>,
-    /// C₀ = Nᵀ K₀⁻¹ N.
-    c0: Mat<f64>,
+    /// C₀, or what the sparse path keeps instead.
+    reduction: Reduction,
     /// f₀ = Nᵀ K₀⁻¹ f (with the prescribed displacements), at the load factor.
     f0: Vec<f64>,
     /// f₀ at load factor 1.
@@ -60,6 +108,8 @@ pub struct RobinCache {
     set: Vec<usize>,
     sqrt_f: Vec<f64>,
     llt: Option<faer::linalg::solvers::Llt<f64>>,
+    /// The Robin factor of the sparse path.
+    sparse: RobinFactor,
 }
 
 /// Analyses every body of `model` (in parallel) once the dense blocks on its contact points are
@@ -67,17 +117,20 @@ pub struct RobinCache {
 pub fn analyse_all<'a>(
     model: &'a Model,
     interface: &Interface,
+    condensation: Condensation,
 ) -> Result<Vec<Analysed<'a>>, SetupError> {
-    // The dense blocks are known before the symbolic analysis, whose cost grows with them.
-    let dense = (0..model.bodies.len())
-        .map(|b| dense_bytes(interface.of_body(b).len(), interface.of_body(b).len()))
-        .fold(0u64, u64::saturating_add);
-    memory::check("condensing the bodies on their contact points", dense)?;
+    // Forced dense blocks are known before the symbolic analysis, whose cost grows with them.
+    if condensation == Condensation::Dense {
+        let dense = (0..model.bodies.len())
+            .map(|b| dense_bytes(interface.of_body(b).len(), interface.of_body(b).len()))
+            .fold(0u64, u64::saturating_add);
+        memory::check("condensing the bodies on their contact points", dense)?;
+    }
     let analysed = model
         .bodies
         .par_iter()
         .enumerate()
-        .map(|(b, body)| Analysed::new(body, interface.of_body(b)))
+        .map(|(b, body)| Analysed::new(body, interface.of_body(b), condensation))
         .collect::<Result<Vec<_>, _>>()?;
     let bytes = analysed
         .iter()
@@ -104,6 +157,8 @@ pub struct Analysed<'a> {
     nodes: Vec<usize>,
     normals: Vec<Vector>,
     d0: Vec<f64>,
+    /// The dense path (else the sparse one).
+    dense: bool,
     /// Seconds spent assembling and in the symbolic analysis.
     assembly: f64,
     symbolic: f64,
@@ -123,8 +178,13 @@ pub struct SetupTimes {
 }
 
 impl<'a> Analysed<'a> {
-    /// Assembles one body and analyses its factorisation with the contact DOFs last.
-    pub fn new(body: &'a ElasticBody, points: &[ContactPoint]) -> Result<Analysed<'a>, BodyError> {
+    /// Assembles one body and analyses its factorisation: with the contact DOFs last on the dense
+    /// path, in a fill-reducing order on the sparse one; `condensation` chooses the path.
+    pub fn new(
+        body: &'a ElasticBody,
+        points: &[ContactPoint],
+        condensation: Condensation,
+    ) -> Result<Analysed<'a>, BodyError> {
         let nodes: Vec<usize> = points.iter().map(|p| p.node).collect();
         let normals: Vec<Vector> = points.iter().map(|p| p.normal).collect();
         let d0: Vec<f64> = points.iter().map(|p| p.weight / p.theta).collect();
@@ -150,7 +210,7 @@ impl<'a> Analysed<'a> {
         let k = body.stiffness();
         let assembly = t.elapsed().as_secs_f64();
         let t = Instant::now();
-        let op = FactoredBody::new(&body.name, k, &body.constraints, &interface)?;
+        let (op, dense) = analyse(body, k, &interface, nodes.len(), condensation)?;
         Ok(Analysed {
             body,
             op,
@@ -158,6 +218,7 @@ impl<'a> Analysed<'a> {
             nodes,
             normals,
             d0,
+            dense,
             assembly,
             symbolic: t.elapsed().as_secs_f64(),
         })
@@ -166,8 +227,17 @@ impl<'a> Analysed<'a> {
     /// Bytes that [`condense`](Analysed::condense) allocates: the sparse factor and the dense
     /// blocks on the contact points.
     pub fn memory_estimate(&self) -> u64 {
+        if !self.dense {
+            // The reference factor and the Robin factor of the iteration.
+            return self.op.memory_estimate().saturating_mul(2);
+        }
         let dense = dense_bytes(self.nodes.len(), self.interface.len());
         self.op.memory_estimate().saturating_add(dense)
+    }
+
+    /// True if the body takes the dense path.
+    pub fn is_dense(&self) -> bool {
+        self.dense
     }
 
     /// Factorises (with the reference springs) and condenses the body; also returns the times
@@ -180,42 +250,20 @@ impl<'a> Analysed<'a> {
             nodes,
             normals,
             d0,
+            dense,
             assembly,
             symbolic,
         } = self;
         let t = Instant::now();
         op.set_parallelism(par);
-        let mut additions = Vec::with_capacity(DIM * DIM * nodes.len());
-        for ((&v, n), &k) in nodes.iter().zip(&normals).zip(&d0) {
-            let (x, y) = (dof(v, 0), dof(v, 1));
-            additions.push((x, x, k * n[0] * n[0]));
-            additions.push((y, y, k * n[1] * n[1]));
-            additions.push((y, x, k * n[0] * n[1]));
-        }
-        op.factorize(&additions)?;
+        op.factorize(&spring_additions(&nodes, &normals, &d0))?;
         let numeric = t.elapsed().as_secs_f64();
         let t = Instant::now();
-
-        // Y = L₂₂⁻¹ N on the free interface DOFs, C₀ = Yᵀ Y.
-        let l22 = op.schur_factor()?;
-        let index = op.interface_index(&interface);
-        let pos: std::collections::HashMap<usize, Option<usize>> =
-            interface.iter().copied().zip(index).collect();
-        let m = nodes.len();
-        let mut y = Mat::<f64>::zeros(l22.nrows(), m);
-        for (j, (&v, n)) in nodes.iter().zip(&normals).enumerate() {
-            for c in 0..DIM {
-                if let Some(Some(i)) = pos.get(&dof(v, c)) {
-                    y[(*i, j)] += n[c];
-                }
-            }
-        }
-        faer::linalg::triangular_solve::solve_lower_triangular_in_place(
-            l22.as_ref(),
-            y.as_mut(),
-            par,
-        );
-        let c0 = y.transpose() * &y;
+        let reduction = if dense {
+            Reduction::Dense(condense_dense(&op, &interface, &nodes, &normals, par)?)
+        } else {
+            Reduction::Sparse(SparseContact::new(&op, &nodes, &normals, &body.load))
+        };
         let x = op.solve(&body.load)?;
         let f0: Vec<f64> = nodes
             .iter()
@@ -233,7 +281,7 @@ impl<'a> Analysed<'a> {
             nodes,
             normals,
             d0,
-            c0,
+            reduction,
             f0_full: f0.clone(),
             f0,
             load: body.load.clone(),
@@ -241,6 +289,64 @@ impl<'a> Analysed<'a> {
         };
         Ok((condensed, times))
     }
+}
+
+/// The symbolic analysis of the path `condensation` asks for. `Auto` keeps the dense path without
+/// a second analysis when [`prefers_dense`] holds already against half the stiffness entries (a
+/// lower bound of the factor's values); otherwise it analyses the sparse order first and analyses
+/// again with the contact DOFs last only if the factor's size then keeps the dense path. Returns
+/// the analysis and whether it is the dense path's.
+fn analyse(
+    body: &ElasticBody,
+    k: faer::sparse::SparseColMat<usize, f64>,
+    interface: &[usize],
+    m: usize,
+    condensation: Condensation,
+) -> Result<(FactoredBody, bool), BodyError> {
+    let new =
+        |k, interface: &[usize]| FactoredBody::new(&body.name, k, &body.constraints, interface);
+    let n = interface.len();
+    match condensation {
+        Condensation::Dense => Ok((new(k, interface)?, true)),
+        Condensation::Sparse => Ok((new(k, &[])?, false)),
+        Condensation::Auto if prefers_dense(m, n, k.val().len() / 2) => {
+            Ok((new(k, interface)?, true))
+        }
+        Condensation::Auto => {
+            let sparse = new(k.clone(), &[])?;
+            if prefers_dense(m, n, sparse.factor_len()) {
+                drop(sparse);
+                Ok((new(k, interface)?, true))
+            } else {
+                Ok((sparse, false))
+            }
+        }
+    }
+}
+
+/// C₀ = YᵀY with Y = L₂₂⁻¹ N on the free interface DOFs: the dense path's condensation.
+fn condense_dense(
+    op: &FactoredBody,
+    interface: &[usize],
+    nodes: &[usize],
+    normals: &[Vector],
+    par: faer::Par,
+) -> Result<Mat<f64>, BodyError> {
+    let l22 = op.schur_factor()?;
+    let index = op.interface_index(interface);
+    let pos: std::collections::HashMap<usize, Option<usize>> =
+        interface.iter().copied().zip(index).collect();
+    let m = nodes.len();
+    let mut y = Mat::<f64>::zeros(l22.nrows(), m);
+    for (j, (&v, n)) in nodes.iter().zip(normals).enumerate() {
+        for c in 0..DIM {
+            if let Some(Some(i)) = pos.get(&dof(v, c)) {
+                y[(*i, j)] += n[c];
+            }
+        }
+    }
+    faer::linalg::triangular_solve::solve_lower_triangular_in_place(l22.as_ref(), y.as_mut(), par);
+    Ok(y.transpose() * &y)
 }
 
 impl CondensedBody {
@@ -256,8 +362,60 @@ impl CondensedBody {
 
     /// B = C₀ D₀: the change of the normal displacements per unit change of τ = D₀⁻¹ T (the
     /// interface load in displacement units). B maps a rigid motion's normal values to themselves.
-    pub fn load_response(&self) -> Mat<f64> {
-        Mat::from_fn(self.len(), self.len(), |i, j| self.c0[(i, j)] * self.d0[j])
+    /// `None` on the sparse path, which never forms it.
+    pub fn load_response(&self) -> Option<Mat<f64>> {
+        match &self.reduction {
+            Reduction::Dense(c0) => Some(Mat::from_fn(self.len(), self.len(), |i, j| {
+                c0[(i, j)] * self.d0[j]
+            })),
+            Reduction::Sparse(_) => None,
+        }
+    }
+
+    /// The sparse path's contact points, or `None` on the dense path.
+    pub fn sparse(&self) -> Option<&SparseContact> {
+        match &self.reduction {
+            Reduction::Dense(_) => None,
+            Reduction::Sparse(s) => Some(s),
+        }
+    }
+
+    /// U = f₀ + C₀ D₀ τ: the normal displacements under the interface load D₀τ (on the sparse
+    /// path one sparse solve).
+    pub fn respond(&self, tau: &[f64]) -> Result<Vec<f64>, BodyError> {
+        let c0t = self.apply_response(tau)?;
+        Ok(self.f0.iter().zip(&c0t).map(|(f, c)| f + c).collect())
+    }
+
+    /// B τ = C₀ D₀ τ (on the sparse path one sparse solve).
+    pub fn apply_response(&self, tau: &[f64]) -> Result<Vec<f64>, BodyError> {
+        let t: Vec<f64> = tau.iter().zip(&self.d0).map(|(t, d)| t * d).collect();
+        self.apply_c0(&t)
+    }
+
+    /// The starting state of the sweeps for the normal displacements `un0`: (U⁰, T⁰) with
+    /// T⁰ = [`initial_load`](CondensedBody::initial_load) and U⁰ = f₀ + C₀T⁰, the displacements
+    /// T⁰ reproduces. On the dense path U⁰ is `un0` itself; on the sparse path T⁰ is approximate
+    /// and U⁰ close to `un0`, so that U⁰ and T⁰ still describe one field.
+    pub fn initial_state(&self, un0: &[f64]) -> (Vec<f64>, Vec<f64>) {
+        let t = self.initial_load(un0);
+        if let Reduction::Sparse(_) = self.reduction {
+            if let Ok(c0t) = self.apply_c0(&t) {
+                let u = self.f0.iter().zip(&c0t).map(|(f, c)| f + c).collect();
+                return (u, t);
+            }
+        }
+        (un0.to_vec(), t)
+    }
+
+    /// C₀ v.
+    fn apply_c0(&self, v: &[f64]) -> Result<Vec<f64>, BodyError> {
+        match &self.reduction {
+            Reduction::Dense(c0) => Ok((0..self.len())
+                .map(|i| (0..self.len()).map(|j| c0[(i, j)] * v[j]).sum())
+                .collect()),
+            Reduction::Sparse(s) => s.apply_c0(&self.op, v),
+        }
     }
 
     /// The reference spring stiffnesses D₀ = w/θ.
@@ -286,8 +444,15 @@ impl CondensedBody {
     /// (least-squares-free: falls back to T⁰ = 0 if C₀ is singular).
     pub fn initial_load(&self, un0: &[f64]) -> Vec<f64> {
         let m = self.len();
+        let c0 = match &self.reduction {
+            Reduction::Dense(c0) => c0,
+            Reduction::Sparse(s) => {
+                let rhs: Vec<f64> = (0..m).map(|i| un0[i] - self.f0[i]).collect();
+                return s.initial_load(&self.op, &rhs);
+            }
+        };
         let rhs = Mat::<f64>::from_fn(m, 1, |i, _| un0[i] - self.f0[i]);
-        match self.c0.llt(Side::Lower) {
+        match c0.llt(Side::Lower) {
             Ok(llt) => {
                 let t = llt.solve(&rhs);
                 let t: Vec<f64> = (0..m).map(|i| t[(i, 0)]).collect();
@@ -313,6 +478,25 @@ impl CondensedBody {
         t: &mut [f64],
     ) -> Result<(), Singular> {
         let m = self.len();
+        let c0 = match &self.reduction {
+            Reduction::Dense(c0) => c0,
+            Reduction::Sparse(s) => {
+                let point = (
+                    self.nodes.as_slice(),
+                    self.normals.as_slice(),
+                    self.d0.as_slice(),
+                );
+                return s.robin_solve(
+                    &self.op,
+                    point,
+                    self.factor,
+                    phi,
+                    r,
+                    &mut cache.sparse,
+                    (un, t),
+                );
+            }
+        };
         if cache.phi.as_slice() != phi || (cache.llt.is_none() && !cache.set.is_empty()) {
             cache.phi = phi.to_vec();
             cache.set = (0..m).filter(|&j| phi[j] < 1.0).collect();
@@ -324,7 +508,7 @@ impl CondensedBody {
             let (set, sf) = (&cache.set, &cache.sqrt_f);
             let g = Mat::<f64>::from_fn(set.len(), set.len(), |a, b| {
                 let id = if a == b { 1.0 } else { 0.0 };
-                id - sf[a] * self.c0[(set[a], set[b])] * sf[b]
+                id - sf[a] * c0[(set[a], set[b])] * sf[b]
             });
             cache.llt = None;
             if !set.is_empty() {
@@ -339,7 +523,7 @@ impl CondensedBody {
         }
         // z = f₀ + C₀ r
         for i in 0..m {
-            un[i] = self.f0[i] + (0..m).map(|j| self.c0[(i, j)] * r[j]).sum::<f64>();
+            un[i] = self.f0[i] + (0..m).map(|j| c0[(i, j)] * r[j]).sum::<f64>();
         }
         let (set, sf) = (&cache.set, &cache.sqrt_f);
         if let Some(llt) = &cache.llt {
@@ -351,7 +535,7 @@ impl CondensedBody {
                 un[i] += set
                     .iter()
                     .zip(&fu)
-                    .map(|(&j, &x)| self.c0[(i, j)] * x)
+                    .map(|(&j, &x)| c0[(i, j)] * x)
                     .sum::<f64>();
             }
         }

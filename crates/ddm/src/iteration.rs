@@ -89,6 +89,9 @@ pub struct Settings {
     pub gap_tol: Option<f64>,
     /// Augmented Lagrangian pairs: the cap on multiplier updates (inner solves).
     pub max_updates: usize,
+    /// How the bodies are condensed on their contact points; read by the callers of
+    /// [`crate::solver::prepare_with`] (the iteration itself works on either path).
+    pub condensation: crate::condensed::Condensation,
 }
 
 impl Settings {
@@ -178,6 +181,7 @@ impl Default for Settings {
             u_prev: 2e-4,
             gap_tol: None,
             max_updates: 100,
+            condensation: crate::condensed::Condensation::Auto,
         }
     }
 }
@@ -275,16 +279,19 @@ impl State {
     /// The initial values u^0, u^{−1} and the loads T^0 that reproduce u^0.
     fn initial(prepared: &Prepared, interface: &Interface, settings: &Settings) -> State {
         let m = interface.len();
-        let mut t = vec![0.0; m];
+        let (mut t, mut u) = (vec![0.0; m], vec![0.0; m]);
         for (b, body) in prepared.bodies.iter().enumerate() {
             let Some(body) = body else { continue };
             let range = interface.body_range[b].clone();
-            t[range].copy_from_slice(&body.initial_load(&vec![settings.u0; body.len()]));
+            let (u_b, t_b) = body.initial_state(&vec![settings.u0; body.len()]);
+            t[range.clone()].copy_from_slice(&t_b);
+            u[range].copy_from_slice(&u_b);
         }
         share_slices(&*prepared.exchange, &interface.body_range, &mut t);
+        share_slices(&*prepared.exchange, &interface.body_range, &mut u);
         let mut state = State {
             u_prev: vec![settings.u_prev; m],
-            u: vec![settings.u0; m],
+            u,
             s_prev: vec![0.0; m],
             s: vec![0.0; m],
             t,

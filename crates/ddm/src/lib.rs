@@ -29,9 +29,11 @@ pub mod relaxation;
 pub mod robin_sweep;
 pub mod solution;
 pub mod solver;
+pub mod sparse_body;
 pub mod steps;
 pub mod sweep;
 
+pub use condensed::Condensation;
 pub use error::SetupError;
 pub use iteration::{Accelerator, CoarseMode, Hooks, Record, Settings, Stop};
 pub use method::Method;
@@ -40,5 +42,5 @@ pub use monolithic::{solve_monolithic, MonolithicSolution};
 pub use profile::GapProfile;
 pub use relaxation::Gamma;
 pub use solution::Solution;
-pub use solver::{prepare, prepare_on, solve, solve_from, Prepared};
+pub use solver::{prepare, prepare_on, prepare_with, solve, solve_from, Prepared};
 pub use sweep::{sweep, sweep_with, SweepHooks, SweepRun};

@@ -36,12 +36,13 @@
 
 use std::ops::Range;
 use std::sync::atomic::Ordering;
+use std::sync::Mutex;
 use std::time::Instant;
 
 use faer::dyn_stack::{MemBuffer, MemStack};
-use faer::sparse::linalg::lu::{factorize_symbolic_lu, LuSymbolicParams, NumericLu};
+use faer::sparse::linalg::lu::{factorize_symbolic_lu, LuSymbolicParams, NumericLu, SymbolicLu};
 use faer::sparse::linalg::SupernodalThreshold;
-use faer::sparse::{SparseColMat, Triplet};
+use faer::sparse::{SparseColMat, SymbolicSparseColMat, Triplet};
 use faer::{Conj, Mat, Par};
 use nalgebra::{DMatrix, SymmetricEigen};
 use rayon::prelude::*;
@@ -64,6 +65,8 @@ const ARMIJO: f64 = 1e-4;
 /// bodies in contact fill half of it or more, and then the sparse LU does about the dense flops
 /// with more overhead; a chain of bodies stays block-sparse, well below.
 const DENSE_FILL: f64 = 1.0 / 3.0;
+/// Iterative refinement steps at most after a sparse-path LU solve.
+const MAX_REFINE: usize = 4;
 
 /// Runs the interface Newton iteration on a prepared model with the contact points `interface`,
 /// from the interface loads `warm` if given, else from the paper's initial value u⁰.
@@ -95,10 +98,13 @@ struct System<'a> {
     /// The bodies this process owns.
     bodies: &'a [Option<CondensedBody>],
     exchange: &'a dyn Exchange,
-    /// B_b = C₀D₀ of every body.
-    response: Vec<Mat<f64>>,
+    /// B_b = C₀D₀ of every dense body (`None` on the sparse path, which runs in one process).
+    response: Vec<Option<Mat<f64>>>,
     /// The reference springs D₀ of every point.
     d0: Vec<f64>,
+    /// Per body on the sparse path, the first column of its reduced unknowns in the Newton
+    /// system (after the m interface unknowns and the kernel multipliers).
+    sparse_offset: Vec<Option<usize>>,
     /// Free rigid modes of the floating bodies: mode range per body, normal values per point.
     mode_range: &'a [Range<usize>],
     modes: &'a [Vec<f64>],
@@ -109,6 +115,8 @@ struct System<'a> {
     rho: Vec<f64>,
     /// Points with zero quadrature weight (D₀ = 0): they carry no force, and τ_j = 0.
     weightless: Vec<bool>,
+    /// The sparse LU kept between steps (sparse path only).
+    lu: Mutex<LuCache>,
 }
 
 /// U, s and R at one τ.
@@ -140,12 +148,22 @@ impl<'a> System<'a> {
     fn new(prepared: &'a Prepared, interface: &'a Interface) -> System<'a> {
         let (mode_range, modes) = prepared.coarse.floating_modes();
         let exchange = &*prepared.exchange;
-        let response: Vec<Mat<f64>> = prepared
+        // The dense bodies' responses B_b, shared between processes; sparse bodies have none
+        // (the sparse path runs in one process).
+        let dense: Vec<Mat<f64>> = prepared
             .bodies
             .par_iter()
-            .map(|b| b.as_ref().map_or(Mat::new(), CondensedBody::load_response))
+            .map(|b| {
+                b.as_ref()
+                    .and_then(CondensedBody::load_response)
+                    .unwrap_or_else(Mat::new)
+            })
             .collect();
-        let response = share_matrices(exchange, response);
+        let response: Vec<Option<Mat<f64>>> = share_matrices(exchange, dense)
+            .into_iter()
+            .zip(&prepared.bodies)
+            .map(|(m, b)| b.as_ref().is_none_or(|b| b.sparse().is_none()).then_some(m))
+            .collect();
         let mut d0 = vec![0.0; interface.len()];
         for (b, body) in prepared.bodies.iter().enumerate() {
             if let Some(body) = body {
@@ -155,19 +173,43 @@ impl<'a> System<'a> {
         share_slices(exchange, &interface.body_range, &mut d0);
         let rho = response
             .iter()
-            .flat_map(|bm| (0..bm.nrows()).map(move |j| (1.0 - bm[(j, j)]).clamp(1e-8, 1.0)))
+            .zip(&prepared.bodies)
+            .enumerate()
+            .flat_map(|(b, (bm, body))| match (bm, body.as_ref()) {
+                (Some(bm), _) => (0..bm.nrows())
+                    .map(|j| (1.0 - bm[(j, j)]).clamp(1e-8, 1.0))
+                    .collect::<Vec<_>>(),
+                (None, Some(body)) => body.sparse().map_or(vec![1.0; body.len()], |s| {
+                    s.share_estimate(body.operator(), body.reference_springs())
+                }),
+                (None, None) => vec![1.0; interface.body_range[b].len()],
+            })
+            .collect();
+        let mut next = interface.len() + modes_bound(mode_range);
+        let sparse_offset = prepared
+            .bodies
+            .iter()
+            .map(|body| {
+                body.as_ref().filter(|b| b.sparse().is_some()).map(|body| {
+                    let offset = next;
+                    next += body.operator().num_free();
+                    offset
+                })
+            })
             .collect();
         System {
             interface,
             bodies: &prepared.bodies,
             exchange,
             response,
+            sparse_offset,
             mode_range,
             modes,
             body_of: interface.points.iter().map(|p| p.body).collect(),
             rho,
             weightless: d0.iter().map(|&d| d == 0.0).collect(),
             d0,
+            lu: Mutex::new(LuCache::default()),
         }
     }
 
@@ -185,20 +227,30 @@ impl<'a> System<'a> {
             .into_par_iter()
             .flat_map_iter(|b| {
                 let range = self.range(b);
-                let f0 = self.bodies[b].as_ref().map(|body| body.free_response());
-                let bm = &self.response[b];
                 let tau_b = &tau[range.clone()];
-                (0..range.len()).map(move |i| {
-                    // Another process's body: its slot is filled in below.
-                    f0.map_or(0.0, |f0| {
-                        f0[i]
-                            + tau_b
-                                .iter()
-                                .enumerate()
-                                .map(|(j, t)| bm[(i, j)] * t)
-                                .sum::<f64>()
+                let Some(bm) = &self.response[b] else {
+                    // A sparse body (one process owns them all). A failed solve shows as
+                    // non-finite values, which the run then reports.
+                    let u = self.bodies[b].as_ref().map(|body| body.respond(tau_b));
+                    return match u {
+                        Some(Ok(u)) => u,
+                        _ => vec![f64::NAN; range.len()],
+                    };
+                };
+                let f0 = self.bodies[b].as_ref().map(|body| body.free_response());
+                (0..range.len())
+                    .map(move |i| {
+                        // Another process's body: its slot is filled in below.
+                        f0.map_or(0.0, |f0| {
+                            f0[i]
+                                + tau_b
+                                    .iter()
+                                    .enumerate()
+                                    .map(|(j, t)| bm[(i, j)] * t)
+                                    .sum::<f64>()
+                        })
                     })
-                })
+                    .collect::<Vec<f64>>()
             })
             .collect();
         share_slices(self.exchange, &self.interface.body_range, &mut u);
@@ -319,14 +371,37 @@ impl<'a> System<'a> {
     /// The Newton step: solves [J Z; Zᵀ 0] [δ; μ] = [−R; 0].
     fn step(&self, chi: &[bool], z: &[Vec<f64>], r: &[f64]) -> Option<Vec<f64>> {
         let m = self.len();
-        let n = m + z.len();
+        let mut n = m + z.len();
         let mut trip = Vec::new();
+        // Sparse bodies: their reduced unknowns δu and the rows K₀δu − N D₀ δτ = 0 stand for δU.
+        for (b, body) in self.bodies.iter().enumerate() {
+            let Some(body) = body else { continue };
+            if let (Some(offset), Some(s)) = (self.sparse_offset[b], body.sparse()) {
+                let start = self.range(b).start;
+                s.push_body_rows(
+                    body.operator(),
+                    body.reference_springs(),
+                    (offset, start),
+                    &mut trip,
+                );
+                n = n.max(offset + body.operator().num_free());
+            }
+        }
+        let first_sparse = self.sparse_offset.iter().flatten().min().copied();
         for (j, p) in self.interface.points.iter().enumerate() {
             trip.push(Triplet::new(j, j, 1.0));
             if self.weightless[j] {
                 continue;
             }
-            if chi[j] {
+            if first_sparse.is_some() && p.has_partner() {
+                // Both the closed and the open entries (one set zero): the pattern, and with it
+                // the LU's symbolic analysis, stays the same while the closed set changes.
+                let closed = if chi[j] { 1.0 } else { 0.0 };
+                for &(k, c) in &p.partner {
+                    self.push_row(&mut trip, j, k, closed * c);
+                }
+                self.push_row(&mut trip, j, j, closed - 1.0);
+            } else if chi[j] {
                 for &(k, c) in &p.partner {
                     self.push_row(&mut trip, j, k, c);
                 }
@@ -334,28 +409,107 @@ impl<'a> System<'a> {
                 self.push_row(&mut trip, j, j, -1.0);
             }
         }
+        // With sparse bodies a dense row Zᵀδ = 0 would fill the whole sparse LU: pin one point
+        // per kernel vector instead and project the step afterwards (J z = 0, so the projected
+        // step solves the same system).
+        let pins = first_sparse.map(|_| pin_points(z));
         for (q, zq) in z.iter().enumerate() {
             for (j, &v) in zq.iter().enumerate().filter(|(_, v)| **v != 0.0) {
                 trip.push(Triplet::new(j, m + q, v));
-                trip.push(Triplet::new(m + q, j, v));
+                if pins.is_none() {
+                    trip.push(Triplet::new(m + q, j, v));
+                }
+            }
+            if let Some(p) = &pins {
+                trip.push(Triplet::new(m + q, p[q], 1.0));
+            }
+        }
+        // Unused multiplier columns of the sparse bodies' block (fewer kernel vectors than the
+        // bound): identity rows keep the system regular.
+        if let Some(first) = first_sparse {
+            for q in m + z.len()..first {
+                trip.push(Triplet::new(q, q, 1.0));
             }
         }
         let mut rhs = Mat::<f64>::from_fn(n, 1, |i, _| if i < m { -r[i] } else { 0.0 });
         if trip.len() as f64 >= DENSE_FILL * (n as f64) * (n as f64) {
             dense_solve(&trip, n, &mut rhs)?;
         } else {
-            sparse_solve(&trip, n, &mut rhs)?;
+            let cache = pins.as_ref().map(|_| &self.lu);
+            // Refinement against the true J (B applied by the bodies' own solves): the coupled
+            // matrix's residual is a poor measure of the error in δ.
+            let residual = |x: &Mat<f64>| self.bordered_residual(chi, z, pins.as_deref(), r, x);
+            let refine: Option<&dyn Fn(&Mat<f64>) -> Option<Mat<f64>>> =
+                pins.as_ref().map(|_| &residual as _);
+            sparse_solve(&trip, n, &mut rhs, cache, refine)?;
         }
-        let delta: Vec<f64> = (0..m).map(|i| rhs[(i, 0)]).collect();
+        let mut delta: Vec<f64> = (0..m).map(|i| rhs[(i, 0)]).collect();
+        if pins.is_some() {
+            for e in z {
+                let d = dot(e, &delta);
+                delta.iter_mut().zip(e).for_each(|(x, y)| *x -= d * y);
+            }
+        }
         delta.iter().all(|v| v.is_finite()).then_some(delta)
     }
 
-    /// Pushes c·(row k of B) into row j: the entries B_k· over k's body.
+    /// The residual of the sparse path's bordered system at `x` = [δ; μ; …]: −R − Jδ − Zμ on the
+    /// interface rows, −δ_p on the pin rows, zero on the bodies' rows (J applied body by body).
+    fn bordered_residual(
+        &self,
+        chi: &[bool],
+        z: &[Vec<f64>],
+        pins: Option<&[usize]>,
+        r: &[f64],
+        x: &Mat<f64>,
+    ) -> Option<Mat<f64>> {
+        let m = self.len();
+        let delta: Vec<f64> = (0..m).map(|i| x[(i, 0)]).collect();
+        let bd: Vec<f64> = (0..self.bodies.len())
+            .into_par_iter()
+            .map(|b| {
+                let body = self.bodies[b].as_ref()?;
+                body.apply_response(&delta[self.range(b)]).ok()
+            })
+            .collect::<Option<Vec<Vec<f64>>>>()?
+            .concat();
+        let mut res = Mat::<f64>::zeros(x.nrows(), 1);
+        for (j, p) in self.interface.points.iter().enumerate() {
+            let jd = if self.weightless[j] {
+                delta[j]
+            } else if chi[j] {
+                delta[j] + p.partner.iter().map(|&(k, c)| c * bd[k]).sum::<f64>()
+            } else {
+                delta[j] - bd[j]
+            };
+            let zmu: f64 = z
+                .iter()
+                .enumerate()
+                .map(|(q, zq)| zq[j] * x[(m + q, 0)])
+                .sum();
+            res[(j, 0)] = -r[j] - jd - zmu;
+        }
+        for (q, &p) in pins.unwrap_or(&[]).iter().enumerate() {
+            res[(m + q, 0)] = -delta[p];
+        }
+        Some(res)
+    }
+
+    /// Pushes c·(row k of B) into row j: the entries B_k· over k's body; on the sparse path
+    /// c·n_kᵀ δu at k's node instead (δU_k, which the body's rows tie to δτ).
     fn push_row(&self, trip: &mut Vec<Triplet<usize, usize, f64>>, j: usize, k: usize, c: f64) {
         let b = self.body_of[k];
         let range = self.range(b);
         let local = k - range.start;
-        let bm = &self.response[b];
+        let Some(bm) = &self.response[b] else {
+            let sparse = self.bodies[b].as_ref().and_then(CondensedBody::sparse);
+            if let (Some(offset), Some(s)) = (self.sparse_offset[b], sparse) {
+                for &(r, n) in s.point_dofs(local) {
+                    trip.push(Triplet::new(j, offset + r, c * n));
+                }
+            }
+            return;
+        };
         for (i, col) in range.enumerate() {
             let v = c * bm[(local, i)];
             if v != 0.0 {
@@ -378,22 +532,47 @@ impl<'a> System<'a> {
 
 /// Solves the Newton system (given by its triplets) in place by sparse LU: the dense blocks per
 /// body go through faer's supernodal kernels. Sequential, so the same on any number of threads.
-fn sparse_solve(trip: &[Triplet<usize, usize, f64>], n: usize, rhs: &mut Mat<f64>) -> Option<()> {
+///
+/// With `refine` (the sparse path: the residual of the true system at a solution), iterative
+/// refinement follows, at most [`MAX_REFINE`] steps while each halves the residual. `cache` keeps
+/// the LU's analysis and buffers between calls.
+fn sparse_solve(
+    trip: &[Triplet<usize, usize, f64>],
+    n: usize,
+    rhs: &mut Mat<f64>,
+    cache: Option<&Mutex<LuCache>>,
+    refine: Option<&dyn Fn(&Mat<f64>) -> Option<Mat<f64>>>,
+) -> Option<()> {
     let a = SparseColMat::<usize, f64>::try_new_from_triplets(n, n, trip).ok()?;
     // Dense blocks per body: the supernodal factorisation uses dense kernels on them.
     let params = LuSymbolicParams {
         supernodal_flop_ratio_threshold: SupernodalThreshold::FORCE_SUPERNODAL,
         ..Default::default()
     };
-    let symbolic = factorize_symbolic_lu(a.symbolic(), params).ok()?;
-    let mut numeric = NumericLu::new();
+    let mut fresh = LuCache::default();
+    let mut guard = match cache {
+        Some(c) => Some(c.lock().ok()?),
+        None => None,
+    };
+    let kept = guard.as_deref_mut().unwrap_or(&mut fresh);
+    let same = kept.pattern.as_ref().is_some_and(|p| {
+        p.col_ptr() == a.symbolic().col_ptr() && p.row_idx() == a.symbolic().row_idx()
+    });
+    if !same || kept.symbolic.is_none() {
+        kept.symbolic = Some(factorize_symbolic_lu(a.symbolic(), params).ok()?);
+        kept.pattern = Some(a.symbolic().to_owned().ok()?);
+    }
+    let LuCache {
+        symbolic, numeric, ..
+    } = kept;
+    let symbolic = symbolic.as_ref()?;
     let mut mem = MemBuffer::try_new(
         symbolic.factorize_numeric_lu_scratch::<f64>(Par::Seq, Default::default()),
     )
     .ok()?;
     let lu = symbolic
         .factorize_numeric_lu(
-            &mut numeric,
+            numeric,
             a.as_ref(),
             Par::Seq,
             MemStack::new(&mut mem),
@@ -402,6 +581,22 @@ fn sparse_solve(trip: &[Triplet<usize, usize, f64>], n: usize, rhs: &mut Mat<f64
         .ok()?;
     let mut mem = MemBuffer::try_new(symbolic.solve_in_place_scratch::<f64>(1, Par::Seq)).ok()?;
     lu.solve_in_place_with_conj(Conj::No, rhs.as_mut(), Par::Seq, MemStack::new(&mut mem));
+    // r = b − A x, then x += A⁻¹ r, while that halves ‖r‖.
+    let mut last = f64::INFINITY;
+    for _ in 0..refine.map_or(0, |_| MAX_REFINE) {
+        let Some(mut r) = refine.and_then(|f| f(rhs)) else {
+            break;
+        };
+        let size = r.norm_l2();
+        if !(size < 0.5 * last) {
+            break;
+        }
+        last = size;
+        lu.solve_in_place_with_conj(Conj::No, r.as_mut(), Par::Seq, MemStack::new(&mut mem));
+        for i in 0..n {
+            rhs[(i, 0)] += r[(i, 0)];
+        }
+    }
     Some(())
 }
 
@@ -435,6 +630,60 @@ fn dense_solve(trip: &[Triplet<usize, usize, f64>], n: usize, rhs: &mut Mat<f64>
         MemStack::new(&mut mem),
     );
     Some(())
+}
+
+/// The sparse LU of the last Newton step on the sparse path: its pattern, symbolic analysis and
+/// numeric buffers, reused while the pattern stays the same.
+struct LuCache {
+    pattern: Option<SymbolicSparseColMat<usize>>,
+    symbolic: Option<SymbolicLu<usize>>,
+    numeric: NumericLu<usize, f64>,
+}
+
+impl Default for LuCache {
+    fn default() -> Self {
+        LuCache {
+            pattern: None,
+            symbolic: None,
+            numeric: NumericLu::new(),
+        }
+    }
+}
+
+/// One point per kernel vector where the vectors restricted to these points are regular:
+/// Gaussian elimination with complete pivoting on the columns of `z`.
+fn pin_points(z: &[Vec<f64>]) -> Vec<usize> {
+    let mut cols: Vec<Vec<f64>> = z.to_vec();
+    let mut pins: Vec<usize> = Vec::with_capacity(z.len());
+    for q in 0..cols.len() {
+        let (j, _) = cols[q]
+            .iter()
+            .enumerate()
+            .filter(|(j, _)| !pins.contains(j))
+            .fold((0, -1.0), |best, (j, v)| {
+                if v.abs() > best.1 {
+                    (j, v.abs())
+                } else {
+                    best
+                }
+            });
+        let pivot = cols[q][j];
+        for r in q + 1..cols.len() {
+            let f = cols[r][j] / pivot;
+            let (head, tail) = cols.split_at_mut(r);
+            tail[0]
+                .iter_mut()
+                .zip(&head[q])
+                .for_each(|(x, y)| *x -= f * y);
+        }
+        pins.push(j);
+    }
+    pins
+}
+
+/// The most kernel vectors [`System::kernel`] can return: the number of free rigid modes.
+fn modes_bound(mode_range: &[Range<usize>]) -> usize {
+    mode_range.iter().map(|r| r.end).max().unwrap_or(0)
 }
 
 fn dot(a: &[f64], b: &[f64]) -> f64 {

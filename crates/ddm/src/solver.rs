@@ -9,7 +9,7 @@ use std::time::Instant;
 use rayon::prelude::*;
 
 use crate::coarse::Coarse;
-use crate::condensed::{analyse_all, Analysed, CondensedBody, SetupTimes};
+use crate::condensed::{analyse_all, Analysed, Condensation, CondensedBody, SetupTimes};
 use crate::contact::Interface;
 use crate::error::SetupError;
 use crate::exchange::{share_vectors, Exchange, Local};
@@ -45,15 +45,41 @@ impl Prepared {
     }
 }
 
-/// Builds the contact geometry and factorises and condenses every body (in parallel).
+/// Builds the contact geometry and factorises and condenses every body (in parallel), each on
+/// the path the cost model chooses ([`Condensation::Auto`]).
 pub fn prepare(model: &Model) -> Result<Prepared, SetupError> {
-    prepare_on(model, Arc::new(Local::new(model.bodies.len())))
+    prepare_with(model, Condensation::Auto)
 }
 
-/// [`prepare`] for the bodies that `exchange` gives this process; the contact geometry and the
-/// coarse space, cheap and needed by all, are built by every process. An error of any process
-/// is every process's error.
-pub fn prepare_on(model: &Model, exchange: Arc<dyn Exchange>) -> Result<Prepared, SetupError> {
+/// [`prepare`] with the condensation path given (`docs/sparse-path.md`).
+pub fn prepare_with(model: &Model, condensation: Condensation) -> Result<Prepared, SetupError> {
+    prepare_on(
+        model,
+        condensation,
+        Arc::new(Local::new(model.bodies.len())),
+    )
+}
+
+/// [`prepare_with`] for the bodies that `exchange` gives this process; the contact geometry and
+/// the coarse space, cheap and needed by all, are built by every process. An error of any
+/// process is every process's error.
+pub fn prepare_on(
+    model: &Model,
+    condensation: Condensation,
+    exchange: Arc<dyn Exchange>,
+) -> Result<Prepared, SetupError> {
+    // The sparse path's Newton step couples every body's rows in one sparse LU, which needs
+    // all bodies in one process (docs/sparse-path.md); distributed bodies are condensed densely.
+    let condensation =
+        match (exchange.is_local(), condensation) {
+            (true, c) => c,
+            (false, Condensation::Sparse) => return Err(SetupError::Solver(
+                "condensation = \"sparse\" runs in one process only; use \"dense\" or \"auto\" \
+                 on several MPI ranks (docs/mpi.md)"
+                    .into(),
+            )),
+            (false, _) => Condensation::Dense,
+        };
     let t = Instant::now();
     let interface = Interface::new(model)?;
     crate::contact_check::refuse(&crate::contact_check::check(model, &interface))?;
@@ -67,9 +93,9 @@ pub fn prepare_on(model: &Model, exchange: Arc<dyn Exchange>) -> Result<Prepared
         faer::Par::rayon(0)
     };
     let (bodies, times) = if exchange.is_local() {
-        condense_all(model, &interface, par)?
+        condense_all(model, &interface, condensation, par)?
     } else {
-        let owned = condense_owned(model, &interface, &*exchange, par);
+        let owned = condense_owned(model, &interface, condensation, &*exchange, par);
         let error = exchange.agree(owned.as_ref().err().map(|e| e.to_string()));
         match (owned, error) {
             (Ok(owned), None) => owned,
@@ -107,9 +133,10 @@ pub fn prepare_on(model: &Model, exchange: Arc<dyn Exchange>) -> Result<Prepared
 fn condense_all(
     model: &Model,
     interface: &Interface,
+    condensation: Condensation,
     par: faer::Par,
 ) -> Result<(Vec<Option<CondensedBody>>, Vec<SetupTimes>), SetupError> {
-    Ok(analyse_all(model, interface)?
+    Ok(analyse_all(model, interface, condensation)?
         .into_par_iter()
         .map(|a| a.condense(par).map(|(body, t)| (Some(body), t)))
         .collect::<Result<Vec<_>, _>>()?
@@ -122,6 +149,7 @@ fn condense_all(
 fn condense_owned(
     model: &Model,
     interface: &Interface,
+    condensation: Condensation,
     exchange: &dyn Exchange,
     par: faer::Par,
 ) -> Result<(Vec<Option<CondensedBody>>, Vec<SetupTimes>), SetupError> {
@@ -130,7 +158,7 @@ fn condense_owned(
         .map(|b| {
             exchange
                 .owns(b)
-                .then(|| Analysed::new(&model.bodies[b], interface.of_body(b)))
+                .then(|| Analysed::new(&model.bodies[b], interface.of_body(b), condensation))
                 .transpose()
         })
         .collect::<Result<Vec<_>, _>>()?;

@@ -381,6 +381,10 @@ pub struct SolverSpec {
     /// Worker threads ≥ 1 (default: the machine's).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub threads: Option<usize>,
+    /// How the bodies are condensed on their contact points: `"auto"` (the default: per body by
+    /// the cost model of `docs/sparse-path.md`), `"dense"` or `"sparse"`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub condensation: Option<contactdd_ddm::Condensation>,
 }
 
 /// `load-steps`: a number of equal steps, or the list of load factors.

@@ -487,6 +487,9 @@ pub fn settings(spec: &SolverSpec, base: &Settings) -> Result<Settings, SetupErr
         }
         s.max_updates = n;
     }
+    if let Some(c) = spec.condensation {
+        s.condensation = c;
+    }
     for (key, v, slot) in [
         ("u0", spec.u0, &mut s.u0),
         ("u-prev", spec.u_prev, &mut s.u_prev),
