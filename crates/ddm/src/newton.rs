@@ -588,7 +588,7 @@ fn sparse_solve(
             break;
         };
         let size = r.norm_l2();
-        if !(size < 0.5 * last) {
+        if size.is_nan() || size >= 0.5 * last {
             break;
         }
         last = size;
