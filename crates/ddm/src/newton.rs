@@ -162,7 +162,7 @@ impl<'a> System<'a> {
         let response: Vec<Option<Mat<f64>>> = share_matrices(exchange, dense)
             .into_iter()
             .zip(&prepared.bodies)
-            .map(|(m, b)| b.as_ref().is_none_or(|b| b.sparse().is_none()).then_some(m))
+            .map(|(m, b)| (!b.as_ref().is_some_and(|b| b.sparse().is_some())).then_some(m))
             .collect();
         let mut d0 = vec![0.0; interface.len()];
         for (b, body) in prepared.bodies.iter().enumerate() {
