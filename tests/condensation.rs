@@ -116,9 +116,10 @@ fn the_cost_model_keeps_the_benchmark_dense_and_a_long_zone_sparse() {
         .iter()
         .flatten()
         .all(|b| b.sparse().is_none()));
-    // Two strips 400 × 2 cells in contact along their whole length: the dense blocks on 401
-    // points would hold far more values than the bodies' sparse factors.
-    let long = long_strips(400);
+    // Two strips 1000 × 2 cells in contact along their whole length: the dense blocks on 1001
+    // points would hold far more values than the bodies' sparse factors, and more than the
+    // floor below which the dense path is always kept.
+    let long = long_strips(1000);
     let prepared = prepare(&long).unwrap();
     assert!(prepared
         .bodies

@@ -70,3 +70,18 @@ def test_inline_mesh_is_read_and_checked():
     bad = INLINE.replace("TRIANGLES", "[[0, 1, 2], [0, 2]]")
     with pytest.raises(contactdd.ContactddError, match="mesh.triangles: triangle 1 has 2 nodes"):
         contactdd.Problem.from_toml_str(bad)
+
+
+def test_condensation_is_kept_and_solves_alike(notch_toml, tmp_path):
+    """[solver] condensation reaches the solve and the written file; both paths agree."""
+    text = notch_toml.read_text()
+    dense = contactdd.Problem.from_toml_str(text, base_dir=notch_toml.parent)
+    forced = text.replace("[solver]", '[solver]\ncondensation = "sparse"', 1)
+    sparse = contactdd.Problem.from_toml_str(forced, base_dir=notch_toml.parent)
+    written = assert_round_trip(sparse, tmp_path)
+    assert written.count('condensation = "sparse"') == 1
+    a, b = contactdd.solve(dense), contactdd.solve(sparse)
+    assert a.iterations == b.iterations
+    for ca, cb in zip(a.contact, b.contact):
+        scale = abs(ca.pressure).max()
+        assert abs(ca.pressure - cb.pressure).max() <= 1e-9 * scale

@@ -62,10 +62,16 @@ impl std::fmt::Display for Condensation {
 /// The cost model: the dense path while its blocks on the contact points (`m` points, `dofs`
 /// interface DOFs: Y, C₀ and the Robin matrix) hold at most [`DENSE_PER_FACTOR`] times the values
 /// of the body's sparse factor `factor_len` (fill-reducing order, no dense trailing block).
+/// Dense blocks of at most [`DENSE_ALWAYS`] values are always kept: their operations take
+/// milliseconds whatever the body, and the dense path is the one a distributed run uses, so small
+/// problems give the same bits on one process and on several.
 pub fn prefers_dense(m: usize, dofs: usize, factor_len: usize) -> bool {
     let dense = (m as f64) * (dofs as f64 + 2.0 * m as f64);
-    dense <= DENSE_PER_FACTOR * factor_len as f64
+    dense <= DENSE_ALWAYS || dense <= DENSE_PER_FACTOR * factor_len as f64
 }
+
+/// Dense blocks this small (8 MiB of values) are cheap in absolute terms.
+pub const DENSE_ALWAYS: f64 = (1u64 << 20) as f64;
 
 /// How many times the sparse factor's values the dense blocks may hold (docs/sparse-path.md).
 pub const DENSE_PER_FACTOR: f64 = 1.0;

@@ -37,6 +37,7 @@ pub fn solver_spec(settings: &Settings, threads: Option<usize>, keep: &SolverSpe
         max_updates: Some(settings.max_updates),
         u0: Some(settings.u0),
         u_prev: Some(settings.u_prev),
+        condensation: Some(settings.condensation),
         threads,
         ..keep.clone()
     }
