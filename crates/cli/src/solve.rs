@@ -13,10 +13,11 @@ use contactdd_ddm::contact_check;
 use contactdd_ddm::monolithic::{solve_monolithic_with, MonolithicSettings, MonolithicStep};
 use contactdd_ddm::{
     prepare_on, solve as dd_solve, Accelerator, CoarseMode, Gamma, Hooks, Model,
-    MonolithicSolution, Record,
+    MonolithicSolution, Prepared, Record,
 };
 use contactdd_io::output::{safe_file_name, write_monolithic_results};
 use contactdd_io::reactions::reactions;
+use contactdd_io::setup::Loaded;
 
 use crate::args::{Common, MonolithicArgs, SolveArgs};
 use crate::console::Status;
@@ -89,11 +90,8 @@ impl Pacer {
     }
 }
 
-/// `contactdd solve`.
-pub fn solve(args: SolveArgs) -> Result<Exit> {
-    let start = Instant::now();
-    let loaded = load(&args.file)?;
-    let t_load = start.elapsed().as_secs_f64();
+/// The file's settings with `solve`'s command-line overrides; returns them and the thread count.
+fn cli_settings(args: &SolveArgs, loaded: &Loaded) -> (contactdd_ddm::Settings, Option<usize>) {
     let mut settings = loaded.settings.clone();
     if args.accelerator.is_none() && (args.method.is_some() || args.gamma.is_some()) {
         settings.use_sweeps();
@@ -121,10 +119,59 @@ pub fn solve(args: SolveArgs) -> Result<Exit> {
     if let Some(c) = args.coarse {
         settings.coarse = c;
     }
-    let threads = apply_common(&args.common, &mut settings, loaded.threads);
     if let Some(g) = args.gap_tol {
         settings.gap_tol = Some(g);
     }
+    let threads = apply_common(&args.common, &mut settings, loaded.threads);
+    (settings, threads)
+}
+
+/// Solves with the iteration table on stdout and a live status on a terminal (unless `quiet`).
+fn iterate_shown(
+    model: &Model,
+    prepared: &Prepared,
+    settings: &contactdd_ddm::Settings,
+    quiet: bool,
+) -> Result<contactdd_ddm::Solution> {
+    let table = IterationTable::new(model);
+    if !quiet {
+        say!(
+            "solving {}: {}, {}, {}, tol {:e}, max-iter {}",
+            model.name,
+            count(model.bodies.len(), "body", "bodies"),
+            count(model.pairs.len(), "contact pair", "contact pairs"),
+            settings.scheme(),
+            settings.tol,
+            settings.max_iter
+        );
+        say!("{}", table.header());
+    }
+    let (pacer, status) = (Pacer::new(), Status::new(!quiet));
+    let print_line = |r: &Record| {
+        if pacer.take(r.k) {
+            say!("{}", table.line(r))
+        }
+        status.update(&status_text(r));
+    };
+    let hooks = Hooks {
+        on_iteration: if quiet { None } else { Some(&print_line) },
+        cancel: None,
+    };
+    let sol = dd_solve(model, prepared, settings, hooks).map_err(|e| anyhow::anyhow!("{e}"))?;
+    status.finish();
+    match sol.history.last() {
+        Some(last) if !quiet && pacer.last() != last.k => say!("{}", table.line(last)),
+        _ => {}
+    }
+    Ok(sol)
+}
+
+/// `contactdd solve`.
+pub fn solve(args: SolveArgs) -> Result<Exit> {
+    let start = Instant::now();
+    let loaded = load(&args.file)?;
+    let t_load = start.elapsed().as_secs_f64();
+    let (settings, threads) = cli_settings(&args, &loaded);
     let mut model = loaded.model;
     if let Some(e) = args.enforcement {
         model.pairs.iter_mut().for_each(|p| p.enforcement = e);
@@ -152,7 +199,11 @@ pub fn solve(args: SolveArgs) -> Result<Exit> {
         }
         if let Some(factors) = &loaded.steps {
             if ranks.size() > 1 {
-                anyhow::bail!("{}: load steps do not run on several MPI ranks yet (docs/mpi.md); run them in one process", args.file.display());
+                anyhow::bail!(
+                    "{}: load steps do not run on several MPI ranks yet (docs/mpi.md); run them \
+                     in one process",
+                    args.file.display()
+                );
             }
             let run = StepRun {
                 model,
@@ -165,43 +216,13 @@ pub fn solve(args: SolveArgs) -> Result<Exit> {
             };
             return run_steps(run, &mut prepared);
         }
-        let table = IterationTable::new(model);
-        if !quiet {
-            say!(
-                "solving {}: {}, {}, {}, tol {:e}, max-iter {}",
-                model.name,
-                count(model.bodies.len(), "body", "bodies"),
-                count(model.pairs.len(), "contact pair", "contact pairs"),
-                settings.scheme(),
-                settings.tol,
-                settings.max_iter
-            );
-            say!("{}", table.header());
-        }
-        let (pacer, status) = (Pacer::new(), Status::new(!quiet));
-        let print_line = |r: &Record| {
-            if pacer.take(r.k) {
-                say!("{}", table.line(r))
-            }
-            status.update(&status_text(r));
-        };
-        let hooks = Hooks {
-            on_iteration: if quiet { None } else { Some(&print_line) },
-            cancel: None,
-        };
-        let mut sol =
-            dd_solve(model, &prepared, &settings, hooks).map_err(|e| anyhow::anyhow!("{e}"))?;
-        status.finish();
+        let mut sol = iterate_shown(model, &prepared, &settings, quiet)?;
         let usage = ranks.usage();
         if ranks.size() > 1 {
             for (r, u) in usage.iter().enumerate() {
                 sol.timing
                     .insert(format!("communication_rank{r}"), u.communication);
             }
-        }
-        match sol.history.last() {
-            Some(last) if !quiet && pacer.last() != last.k => say!("{}", table.line(last)),
-            _ => {}
         }
         let written = ranks
             .write_results(&out, model, &sol, loaded.problem.units.as_deref())
@@ -234,34 +255,49 @@ pub fn solve(args: SolveArgs) -> Result<Exit> {
         } else {
             say!("");
             say!("{outcome}");
-            for line in pair_report(&sol.contact, &sol.theta) {
-                say!("{line}");
-            }
-            say!("{}", applied_loads(model));
-            for line in reaction_report(&reactions(model, &sol.bodies, &sol.contact)) {
-                say!("{line}");
-            }
             let mut phases = vec![("load", t_load)];
-            for key in [
-                "contact_setup",
-                "assemble_factor_condense",
-                "iterate",
-                "recover",
-                "post",
-            ] {
-                if let Some(&s) = sol.timing.get(key) {
-                    phases.push((key, s));
-                }
-            }
+            phases.extend(
+                SOLVE_PHASES
+                    .iter()
+                    .filter_map(|&k| Some((k, *sol.timing.get(k)?))),
+            );
             phases.push(("total", start.elapsed().as_secs_f64()));
-            say!("{}", timing(phases));
-            if ranks.size() > 1 {
-                say!("{}", rank_report(&usage));
-            }
+            let usage = (ranks.size() > 1).then_some(usage.as_slice());
+            print_summary(model, &sol, &phases, usage);
             say!("results: {}", files(&out, &written));
         }
         Ok(exit(sol.converged, &out))
     })
+}
+
+/// The timed phases of a solve, in the order the console reports them.
+const SOLVE_PHASES: [&str; 5] = [
+    "contact_setup",
+    "assemble_factor_condense",
+    "iterate",
+    "recover",
+    "post",
+];
+
+/// The console summary after the outcome line: every pair, the loads, the reactions, the timings
+/// and, on several ranks, each rank's use.
+fn print_summary(
+    model: &Model,
+    sol: &contactdd_ddm::Solution,
+    phases: &[(&str, f64)],
+    usage: Option<&[RankUse]>,
+) {
+    for line in pair_report(&sol.contact, &sol.theta) {
+        say!("{line}");
+    }
+    say!("{}", applied_loads(model));
+    for line in reaction_report(&reactions(model, &sol.bodies, &sol.contact)) {
+        say!("{line}");
+    }
+    say!("{}", timing(phases.to_vec()));
+    if let Some(usage) = usage {
+        say!("{}", rank_report(usage));
+    }
 }
 
 /// The result line: `done`, or why not.
