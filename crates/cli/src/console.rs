@@ -70,8 +70,9 @@ impl Status {
         self.start.elapsed().as_secs_f64()
     }
 
-    /// Redraws the status with `text` (and the elapsed time) unless it was redrawn very recently.
-    pub fn update(&self, text: &str) {
+    /// Redraws the status with `text()` (and the elapsed time) unless it was redrawn very
+    /// recently; `text` is only called when the line is drawn, so an iteration pays nothing else.
+    pub fn update(&self, text: impl FnOnce() -> String) {
         if !self.live {
             return;
         }
@@ -84,7 +85,7 @@ impl Status {
         }
         *last = Some(now);
         if let Ok(mut shown) = SHOWN.lock() {
-            eprint!("\r\x1b[2K{text}  {:.1} s", self.elapsed());
+            eprint!("\r\x1b[2K{}  {:.1} s", text(), self.elapsed());
             let _ = std::io::stderr().flush();
             *shown = true;
         }

@@ -151,7 +151,7 @@ fn iterate_shown(
         if pacer.take(r.k) {
             say!("{}", table.line(r))
         }
-        status.update(&status_text(r));
+        status.update(|| status_text(r));
     };
     let hooks = Hooks {
         on_iteration: if quiet { None } else { Some(&print_line) },

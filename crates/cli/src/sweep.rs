@@ -64,7 +64,7 @@ pub fn sweep(args: SweepArgs) -> Result<Exit> {
         let total = methods.len() * gammas.len();
         let on_run = |r: &SweepRun| {
             let k = done.fetch_add(1, Ordering::Relaxed) + 1;
-            status.update(&format!("{k} of {total} runs done; last: {}", run_text(r)));
+            status.update(|| format!("{k} of {total} runs done; last: {}", run_text(r)));
         };
         let hooks = SweepHooks {
             cancel: None,

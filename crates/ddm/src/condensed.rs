@@ -118,16 +118,19 @@ pub struct RobinCache {
     sparse: RobinFactor,
 }
 
-/// Analyses every body of `model` (in parallel) once the dense blocks on its contact points are
-/// known to fit in memory, then checks the whole estimate: the bodies are factorised together.
+/// Analyses the bodies of `model` that `owns` selects (in parallel; the others `None`) once the
+/// dense blocks on their contact points are known to fit in memory, then checks the whole
+/// estimate: the bodies are factorised together.
 pub fn analyse_all<'a>(
     model: &'a Model,
     interface: &Interface,
     condensation: Condensation,
-) -> Result<Vec<Analysed<'a>>, SetupError> {
+    owns: &(dyn Fn(usize) -> bool + Sync),
+) -> Result<Vec<Option<Analysed<'a>>>, SetupError> {
     // Forced dense blocks are known before the symbolic analysis, whose cost grows with them.
     if condensation == Condensation::Dense {
         let dense = (0..model.bodies.len())
+            .filter(|&b| owns(b))
             .map(|b| dense_bytes(interface.of_body(b).len(), interface.of_body(b).len()))
             .fold(0u64, u64::saturating_add);
         memory::check("condensing the bodies on their contact points", dense)?;
@@ -136,10 +139,15 @@ pub fn analyse_all<'a>(
         .bodies
         .par_iter()
         .enumerate()
-        .map(|(b, body)| Analysed::new(body, interface.of_body(b), condensation))
+        .map(|(b, body)| {
+            owns(b)
+                .then(|| Analysed::new(body, interface.of_body(b), condensation))
+                .transpose()
+        })
         .collect::<Result<Vec<_>, _>>()?;
     let bytes = analysed
         .iter()
+        .flatten()
         .map(Analysed::memory_estimate)
         .fold(0u64, u64::saturating_add);
     memory::check("factorising and condensing the bodies", bytes)?;

@@ -9,7 +9,7 @@ use std::time::Instant;
 use rayon::prelude::*;
 
 use crate::coarse::Coarse;
-use crate::condensed::{analyse_all, Analysed, Condensation, CondensedBody, SetupTimes};
+use crate::condensed::{analyse_all, Condensation, CondensedBody, SetupTimes};
 use crate::contact::Interface;
 use crate::error::SetupError;
 use crate::exchange::{share_vectors, Exchange, Local};
@@ -92,10 +92,10 @@ pub fn prepare_on(
     } else {
         faer::Par::rayon(0)
     };
+    let owned = condense_owned(model, &interface, condensation, &*exchange, par);
     let (bodies, times) = if exchange.is_local() {
-        condense_all(model, &interface, condensation, par)?
+        owned?
     } else {
-        let owned = condense_owned(model, &interface, condensation, &*exchange, par);
         let error = exchange.agree(owned.as_ref().err().map(|e| e.to_string()));
         match (owned, error) {
             (Ok(owned), None) => owned,
@@ -129,21 +129,6 @@ pub fn prepare_on(
     })
 }
 
-/// Every body analysed, factorised and condensed, in parallel.
-fn condense_all(
-    model: &Model,
-    interface: &Interface,
-    condensation: Condensation,
-    par: faer::Par,
-) -> Result<(Vec<Option<CondensedBody>>, Vec<SetupTimes>), SetupError> {
-    Ok(analyse_all(model, interface, condensation)?
-        .into_par_iter()
-        .map(|a| a.condense(par).map(|(body, t)| (Some(body), t)))
-        .collect::<Result<Vec<_>, _>>()?
-        .into_iter()
-        .unzip())
-}
-
 /// The bodies that `exchange` gives this process analysed, factorised and condensed, in
 /// parallel, once their factors are known to fit in memory; the others `None`.
 fn condense_owned(
@@ -153,21 +138,7 @@ fn condense_owned(
     exchange: &dyn Exchange,
     par: faer::Par,
 ) -> Result<(Vec<Option<CondensedBody>>, Vec<SetupTimes>), SetupError> {
-    let analysed = (0..model.bodies.len())
-        .into_par_iter()
-        .map(|b| {
-            exchange
-                .owns(b)
-                .then(|| Analysed::new(&model.bodies[b], interface.of_body(b), condensation))
-                .transpose()
-        })
-        .collect::<Result<Vec<_>, _>>()?;
-    let bytes = analysed
-        .iter()
-        .flatten()
-        .map(Analysed::memory_estimate)
-        .fold(0u64, u64::saturating_add);
-    contactdd_core::memory::check("factorising and condensing the bodies", bytes)?;
+    let analysed = analyse_all(model, interface, condensation, &|b| exchange.owns(b))?;
     Ok(analysed
         .into_par_iter()
         .map(|a| match a {
