@@ -7,7 +7,8 @@
 #   interface Newton method, the paper's sweeps, the two-level sweeps and Anderson acceleration,
 #   in one process and under `mpirun -n 2` and `-n 3`, and compares every output file byte for
 #   byte (summary.json without its timings, contact.csv, history.csv, the VTU files): the numbers
-#   are written to the last bit, so equal files are equal bits;
+#   are written to the last bit, so equal files are equal bits; and the same for load steps (the
+#   recess with exact contact, the column in three steps: steps.csv, every step's VTU files);
 # - solves a column whose top block one rank cannot factorise (no support against sliding) and
 #   runs in which a body's Robin problem turns singular, and checks that every rank ends with the
 #   single process's exit code and the same one message, naming the body, without hanging; and
@@ -89,6 +90,12 @@ same notch-paper examples/notch.toml --method newton-kurchatov --gamma 0.5
 same stack-newton examples/stack.toml
 same stack-two-level examples/stack.toml --accelerator none
 same stack-anderson examples/stack.toml --accelerator anderson
+# Load steps: every step's VTU set, steps.csv and results.pvd, on two bodies with exact contact
+# (the recess) and on the column of eight floating blocks in three steps.
+same recess-steps examples/recess_steps.toml
+sed 's/^max-iter = 10000$/max-iter = 10000\nload-steps = 3/' examples/stack.toml >"$work/stack_steps.toml"
+same stack-steps "$work/stack_steps.toml"
+check "stack steps: the single process wrote three steps" test -f "$work/stack-steps-1/b7-step3.vtu"
 
 # A column whose top block slides freely: the rank that owns it cannot factorise it.
 # Drop the last body's (b7's) symmetry support: it is then free to slide sideways.

@@ -8,7 +8,9 @@ use std::sync::Arc;
 use contactdd_ddm::exchange::{Exchange, Local};
 use contactdd_ddm::{Model, Solution};
 use contactdd_io::output::write_results_noted;
-use contactdd_io::shared_results::{write_results_shared, Part};
+use contactdd_io::setup::Monitor;
+use contactdd_io::shared_results::{write_results_shared, write_step_results_shared, Part};
+use contactdd_io::steps::write_step_results;
 
 /// The processes of a solve and how they share the bodies.
 pub struct Ranks {
@@ -75,13 +77,32 @@ impl Ranks {
         if self.size == 1 {
             return write_results_noted(dir, model, sol, units);
         }
+        write_results_shared(dir, model, sol, units, &self.part())
+    }
+
+    /// [`write_results`](Ranks::write_results) for the steps of a load-step run.
+    pub fn write_step_results(
+        &self,
+        dir: &Path,
+        model: &Model,
+        steps: &[(f64, Solution)],
+        monitor: Option<&Monitor>,
+        units: Option<&str>,
+    ) -> std::io::Result<Vec<PathBuf>> {
+        if self.size == 1 {
+            return write_step_results(dir, model, steps, monitor, units);
+        }
+        write_step_results_shared(dir, model, steps, monitor, units, &self.part())
+    }
+
+    /// This process's part in writing a shared result folder.
+    fn part(&self) -> Part<'_> {
         let exchange = &*self.exchange;
-        let part = Part {
+        Part {
             root: self.is_root(),
-            owns: &|b| exchange.owns(b),
-            agree: &|error| exchange.agree(error),
-        };
-        write_results_shared(dir, model, sol, units, &part)
+            owns: Box::new(move |b| exchange.owns(b)),
+            agree: Box::new(move |error| exchange.agree(error)),
+        }
     }
 
     /// Per rank, the time it spent communicating and its peak memory (a collective; one entry

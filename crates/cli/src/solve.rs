@@ -198,13 +198,6 @@ pub fn solve(args: SolveArgs) -> Result<Exit> {
             warn_contact(&args.file, model, &prepared.interface);
         }
         if let Some(factors) = &loaded.steps {
-            if ranks.size() > 1 {
-                anyhow::bail!(
-                    "{}: load steps do not run on several MPI ranks yet (docs/mpi.md); run them \
-                     in one process",
-                    args.file.display()
-                );
-            }
             let run = StepRun {
                 model,
                 settings: &settings,
@@ -213,6 +206,7 @@ pub fn solve(args: SolveArgs) -> Result<Exit> {
                 units: loaded.problem.units.as_deref(),
                 out: &out,
                 quiet,
+                ranks: &ranks,
             };
             return run_steps(run, &mut prepared);
         }

@@ -8,8 +8,9 @@ use anyhow::{Context, Result};
 use contactdd_ddm::steps::solve_steps;
 use contactdd_ddm::{Hooks, Model, Prepared, Settings, Solution};
 use contactdd_io::setup::Monitor;
-use contactdd_io::steps::{monitored_displacement, write_step_results};
+use contactdd_io::steps::monitored_displacement;
 
+use crate::ranks::Ranks;
 use crate::report::{sig, vec2};
 use crate::Exit;
 
@@ -29,6 +30,8 @@ pub struct StepRun<'a> {
     pub out: &'a Path,
     /// Only the final line.
     pub quiet: bool,
+    /// The processes of the run (rank 0 reports).
+    pub ranks: &'a Ranks,
 }
 
 /// Solves at every load factor, prints a line per step, writes the results; the exit code is
@@ -42,6 +45,7 @@ pub fn run_steps(run: StepRun<'_>, prepared: &mut Prepared) -> Result<Exit> {
         units,
         out,
         quiet,
+        ranks,
     } = run;
     if !quiet {
         say!(
@@ -66,10 +70,19 @@ pub fn run_steps(run: StepRun<'_>, prepared: &mut Prepared) -> Result<Exit> {
         &mut line,
     )
     .map_err(|e| anyhow::anyhow!("{e}"))?;
-    write_step_results(out, model, &steps, monitor, units)
+    ranks
+        .write_step_results(out, model, &steps, monitor, units)
         .with_context(|| format!("cannot write the results to '{}'", out.display()))?;
     let converged = steps.last().is_some_and(|(_, s)| s.converged);
     let done = steps.len() == count && converged;
+    if !ranks.is_root() {
+        // Rank 0 reports; every rank ends with the same exit code.
+        return Ok(if done {
+            Exit::Success
+        } else {
+            Exit::NotConverged
+        });
+    }
     if done {
         say!(
             "all {count} load steps converged; results in {}",

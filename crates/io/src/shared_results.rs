@@ -1,31 +1,34 @@
 //! A solve's result folder written by the processes of a distributed solve together: each writes
 //! the `.vtu` files of its own bodies, the first (the root) everything else — `contact.csv`,
-//! `history.csv`, `results.pvd` over every body's file, and `summary.json` last with the manifest
-//! of all of them. The folder is the one [`crate::output::write_results_noted`] writes in one
+//! `history.csv` (and for load steps `steps.csv`), `results.pvd` over every body's file, and
+//! `summary.json` last with the manifest of all of them. The folder is the one
+//! [`crate::output::write_results_noted`] (or [`crate::steps::write_step_results`]) writes in one
 //! process, file for file.
 //!
 //! The processes take turns through `agree`, a collective that hands every process the first
 //! error of any (the command line's MPI exchange): the root removes the previous set before
 //! anyone writes, and writes the summary only once every process has written its files.
 
-use std::io::Error;
+use std::io::{Error, ErrorKind};
 use std::path::{Path, PathBuf};
 
-use serde_json::json;
+use serde_json::{json, Value};
 
 use contactdd_ddm::{Model, Solution};
 
 use crate::output::{contact_csv, history_csv, summary_json, vtu_paths, write_solution_vtus_of};
 use crate::result_set::ResultSet;
+use crate::setup::Monitor;
+use crate::steps::{steps_csv, steps_json};
 
 /// How this process takes part in writing a shared result folder.
 pub struct Part<'a> {
     /// Whether this process writes the shared files and the summary.
     pub root: bool,
     /// The bodies whose `.vtu` this process writes.
-    pub owns: &'a dyn Fn(usize) -> bool,
+    pub owns: Box<dyn Fn(usize) -> bool + 'a>,
     /// The collective that returns the first error of any process (the same on every process).
-    pub agree: &'a dyn Fn(Option<String>) -> Option<String>,
+    pub agree: Box<dyn Fn(Option<String>) -> Option<String> + 'a>,
 }
 
 /// Writes this process's part of the result folder `dir` of `sol` (every process holds the whole
@@ -38,6 +41,65 @@ pub fn write_results_shared(
     units: Option<&str>,
     part: &Part<'_>,
 ) -> std::io::Result<Vec<PathBuf>> {
+    let contents = Contents {
+        files: vec![
+            ("contact.csv", contact_csv(sol)),
+            ("history.csv", history_csv(sol)),
+        ],
+        vtus: vec![(1.0, String::new(), sol)],
+        summary: summary_json(model, sol),
+    };
+    write_shared(dir, model, contents, units, part)
+}
+
+/// [`write_results_shared`] for a load-step run: the folder of
+/// [`crate::steps::write_step_results`], file for file.
+pub fn write_step_results_shared(
+    dir: &Path,
+    model: &Model,
+    steps: &[(f64, Solution)],
+    monitor: Option<&Monitor>,
+    units: Option<&str>,
+    part: &Part<'_>,
+) -> std::io::Result<Vec<PathBuf>> {
+    let Some((_, last)) = steps.last() else {
+        return Err(Error::new(ErrorKind::InvalidInput, "no load step to write"));
+    };
+    let mut summary = summary_json(model, last);
+    summary["steps"] = steps_json(steps, monitor);
+    let contents = Contents {
+        files: vec![
+            ("contact.csv", contact_csv(last)),
+            ("history.csv", history_csv(last)),
+            ("steps.csv", steps_csv(model, steps, monitor)),
+        ],
+        vtus: steps
+            .iter()
+            .enumerate()
+            .map(|(k, (factor, sol))| (*factor, format!("-step{}", k + 1), sol))
+            .collect(),
+        summary,
+    };
+    write_shared(dir, model, contents, units, part)
+}
+
+/// What a shared folder holds: the root's files, in order; the VTU sets (time, file suffix,
+/// solution), whose bodies every process writes its part of; and the summary.
+struct Contents<'a> {
+    files: Vec<(&'static str, String)>,
+    vtus: Vec<(f64, String, &'a Solution)>,
+    summary: Value,
+}
+
+/// Writes this process's part of `contents` into `dir`: its bodies' VTU files, and on the root
+/// the files, `results.pvd` over every VTU set and the summary, last.
+fn write_shared(
+    dir: &Path,
+    model: &Model,
+    contents: Contents<'_>,
+    units: Option<&str>,
+    part: &Part<'_>,
+) -> std::io::Result<Vec<PathBuf>> {
     let begun = if part.root {
         ResultSet::begin(dir).map(Some)
     } else {
@@ -46,15 +108,17 @@ pub fn write_results_shared(
     agreed(part, begun.as_ref().err())?;
     let set = begun?;
     let mut own = Vec::new();
-    let written = write_solution_vtus_of(
-        dir,
-        model,
-        &sol.bodies,
-        &sol.contact,
-        "",
-        part.owns,
-        &mut own,
-    );
+    let written = contents.vtus.iter().try_for_each(|(_, suffix, sol)| {
+        write_solution_vtus_of(
+            dir,
+            model,
+            &sol.bodies,
+            &sol.contact,
+            suffix,
+            &*part.owns,
+            &mut own,
+        )
+    });
     if let Err(e) = agreed(part, written.as_ref().err()) {
         own.iter().for_each(|p| drop(std::fs::remove_file(p)));
         if let Some(set) = set {
@@ -65,19 +129,20 @@ pub fn write_results_shared(
     let Some(mut set) = set else {
         return Ok(own);
     };
-    let mut summary = summary_json(model, sol);
+    let mut summary = contents.summary;
     summary["units"] = json!(units);
     let shared = (|| {
-        set.write("contact.csv", contact_csv(sol).as_bytes())?;
-        set.write("history.csv", history_csv(sol).as_bytes())?;
-        let before = set.len();
-        set.record(vtu_paths(dir, "", &sol.bodies));
-        let entries: Vec<(f64, usize, String)> = set
-            .names_since(before)
-            .into_iter()
-            .enumerate()
-            .map(|(part, name)| (1.0, part, name))
-            .collect();
+        for (name, text) in &contents.files {
+            set.write(name, text.as_bytes())?;
+        }
+        let mut entries = Vec::new();
+        for (time, suffix, sol) in &contents.vtus {
+            let before = set.len();
+            set.record(vtu_paths(dir, suffix, &sol.bodies));
+            for (part, name) in set.names_since(before).into_iter().enumerate() {
+                entries.push((*time, part, name));
+            }
+        }
         set.write("results.pvd", crate::steps::pvd(&entries).as_bytes())
     })();
     match shared {
