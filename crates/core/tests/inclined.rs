@@ -2,7 +2,7 @@
 //! same body built axis-aligned (the plain elimination) and rotated, and a dense Lagrange
 //! multiplier solve of the constraints u·n = g.
 
-use contactdd_core::post::{reaction_on, residual};
+use contactdd_core::post::reaction_on;
 use contactdd_core::rigid::free_modes;
 use contactdd_core::supports::free_rigid_modes;
 use contactdd_core::{
