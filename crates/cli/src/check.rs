@@ -60,7 +60,7 @@ fn describe(loaded: &Loaded, interface: &Interface) -> String {
 /// A body: sizes and material, mesh, boundaries, supports and loads.
 fn body_text(body: &ElasticBody, spec: &BodySpec) -> String {
     let nodes = body.mesh.num_nodes();
-    let prescribed = body.constraints.fixed().count();
+    let prescribed = body.constraints.num_prescribed();
     let mut out = format!(
         "body {}: {} nodes, {} elements ({}), {} DOFs ({} prescribed), E = {}, ν = {}\n",
         body.name,

@@ -196,11 +196,19 @@ pub enum SupportError {
     /// Unknown boundary.
     #[error(transparent)]
     Mesh(#[from] MeshError),
-    /// `normal` supports need a straight, axis-aligned boundary.
-    #[error("boundary '{boundary}': a 'normal' support needs a straight boundary parallel to the x or y axis")]
-    NotAxisAligned {
+    /// A `normal` support needs a straight boundary.
+    #[error("boundary '{boundary}': a 'normal' support needs a straight boundary (all its nodes on one line, within 1e-9 of the mesh size, the body on one side)")]
+    NotStraight {
         /// Boundary name.
         boundary: String,
+    },
+    /// A `normal` support on a node set, which has no normal.
+    #[error(
+        "'{name}' is a node set: a 'normal' support needs a boundary, whose edges give its normal"
+    )]
+    NormalOnNodeSet {
+        /// Node set name.
+        name: String,
     },
     /// A non-finite prescribed value.
     #[error("boundary '{boundary}': prescribed displacement {value} is not finite")]

@@ -6,6 +6,13 @@
 //! interface, `S = A₂₂ − A₂₁ A₁₁⁻¹ A₁₂ = L₂₂ L₂₂ᵀ`. This is what lets the domain decomposition
 //! iterate on contact quantities only: `(A⁻¹)₂₂ = S⁻¹`, read off the factor at no extra cost.
 //! The other DOFs keep the order of faer's approximate minimum degree (AMD).
+//!
+//! A node held along an inclined normal n only ([`Constraints::inclined`]) keeps one unknown, its
+//! tangential displacement q = u·t (t = n turned counter-clockwise): u = g n + t q. Its two DOFs
+//! then map to the same reduced index with the coefficients t_x and t_y, the reduced matrix is
+//! Tᵀ K T and loads are Tᵀ f. Everything public stays in global x/y components; only the maps
+//! [`FactoredBody::reduced_index`] and [`FactoredBody::interface_index`] carry the coefficient.
+//! Without inclined supports every coefficient is 1 and the arithmetic is the plain elimination.
 
 use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::linalg::cholesky::llt::factor::LltRegularization;
@@ -19,6 +26,7 @@ use faer::sparse::{SparseColMat, SparseColMatRef, SymbolicSparseColMat};
 use faer::{Conj, Mat, MatMut, Par, Side};
 
 use crate::error::BodyError;
+use crate::geometry::{component_of, node_of};
 use crate::supports::Constraints;
 
 const NONE: usize = usize::MAX;
@@ -38,14 +46,21 @@ pub struct FactoredBody {
     k: SparseColMat<usize, f64>,
     /// Reduced index of each DOF, or `NONE` if prescribed.
     reduced: Vec<usize>,
-    /// Full DOF of each reduced index.
+    /// Coefficient of each DOF on its reduced unknown; empty when all are 1 (no inclined
+    /// supports).
+    coef: Vec<f64>,
+    /// Full DOF of each reduced index (the x DOF for a node on an inclined support).
     free: Vec<usize>,
-    /// Prescribed DOFs and values.
+    /// The prescribed part of each DOF that has one, sorted by DOF: the value of a prescribed
+    /// DOF, g n_c on a node of an inclined support.
     fixed: Vec<(usize, f64)>,
     /// Lower triangle of the reduced matrix (reduced numbering).
     lower: SymbolicSparseColMat<usize>,
-    /// For each lower entry, its index in `k`'s values.
+    /// For each lower entry, its index in `k`'s values (`NONE` if it sums several, see `mixed`).
     gather: Vec<usize>,
+    /// (lower entry, index in `k`'s values, coefficient) of the entries summing several terms
+    /// (those of nodes on inclined supports).
+    mixed: Vec<(usize, usize, f64)>,
     values: Vec<f64>,
     symbolic: SymbolicCholesky<usize>,
     l_values: Vec<f64>,
@@ -69,50 +84,31 @@ impl FactoredBody {
             body: name.to_string(),
             message,
         };
-        let mut reduced = vec![NONE; ndof];
-        let mut free = Vec::with_capacity(ndof);
-        let mut fixed = Vec::new();
-        for (dof, r) in reduced.iter_mut().enumerate() {
-            match constraints.get(dof) {
-                Some(v) => fixed.push((dof, v)),
-                None => {
-                    *r = free.len();
-                    free.push(dof);
-                }
-            }
-        }
+        let Reduction {
+            reduced,
+            coef,
+            free,
+            fixed,
+        } = Reduction::new(ndof, constraints);
         let n = free.len();
         if n == 0 {
             return Err(fail(
                 "every DOF is prescribed; there is nothing to solve".into(),
             ));
         }
-        // Lower triangle of the reduced matrix, in reduced numbering (the map is monotone, so
-        // rows stay sorted).
-        let (col_ptr, row_idx) = (k.symbolic().col_ptr(), k.symbolic().row_idx());
-        let mut l_ptr = Vec::with_capacity(n + 1);
-        let mut l_rows = Vec::new();
-        let mut gather = Vec::new();
-        l_ptr.push(0);
-        for &j in &free {
-            for (p, &i) in row_idx
-                .iter()
-                .enumerate()
-                .take(col_ptr[j + 1])
-                .skip(col_ptr[j])
-            {
-                if i >= j && reduced[i] != NONE {
-                    l_rows.push(reduced[i]);
-                    gather.push(p);
-                }
-            }
-            l_ptr.push(l_rows.len());
-        }
-        let lower = SymbolicSparseColMat::new_checked(n, n, l_ptr, None, l_rows);
+        let (lower, gather, mixed) = if coef.is_empty() {
+            let (lower, gather) = plain_lower(&k, &reduced, &free);
+            (lower, gather, Vec::new())
+        } else {
+            reduced_lower_pattern(&k, &reduced, &coef, &free)
+        };
 
+        // Both DOFs of a node on an inclined support share one reduced index: keep it once.
+        let mut seen = std::collections::HashSet::new();
         let interface: Vec<usize> = interface_dofs
             .iter()
             .filter_map(|&d| (reduced[d] != NONE).then_some(reduced[d]))
+            .filter(|&r| seen.insert(r))
             .collect();
         // With no interface faer's own AMD is the ordering; otherwise AMD on the interior and the
         // interface last.
@@ -146,10 +142,12 @@ impl FactoredBody {
             name: name.to_string(),
             k,
             reduced,
+            coef,
             free,
             fixed,
             lower,
             gather,
+            mixed,
             values,
             symbolic,
             l_values,
@@ -236,12 +234,27 @@ impl FactoredBody {
     ) -> Result<(), BodyError> {
         let kv = self.k.val();
         out.values.clear();
-        out.values.extend(self.gather.iter().map(|&p| kv[p]));
+        if self.mixed.is_empty() {
+            out.values.extend(self.gather.iter().map(|&p| kv[p]));
+        } else {
+            out.values.extend(
+                self.gather
+                    .iter()
+                    .map(|&p| if p == NONE { 0.0 } else { kv[p] }),
+            );
+            for &(e, p, c) in &self.mixed {
+                out.values[e] += c * kv[p];
+            }
+        }
         for &(i, j, a) in additions {
             let (ri, rj) = (self.reduced[i], self.reduced[j]);
             if ri == NONE || rj == NONE {
                 continue;
             }
+            // Tᵀ A T: both coefficients, and an (x, y) pair of one inclined node lands twice on
+            // its diagonal (once as (i, j), once as (j, i)).
+            let twice = if i != j && ri == rj { 2.0 } else { 1.0 };
+            let a = self.coefficient(i) * self.coefficient(j) * twice * a;
             let (row, col) = (ri.max(rj), ri.min(rj));
             let start = self.lower.col_ptr()[col];
             let rows = &self.lower.row_idx()[start..self.lower.col_ptr()[col + 1]];
@@ -306,13 +319,7 @@ impl FactoredBody {
     pub fn solve(&self, f: &[f64]) -> Result<Vec<f64>, BodyError> {
         let mut rhs = self.reduced_load(f);
         self.solve_reduced_in_place(&mut rhs)?;
-        let mut u = vec![0.0; self.num_dofs()];
-        for (r, &d) in self.free.iter().enumerate() {
-            u[d] = rhs[r];
-        }
-        for &(d, value) in &self.fixed {
-            u[d] = value;
-        }
+        let u = self.expand(&rhs);
         if let Some(d) = u.iter().position(|v| !v.is_finite()) {
             return Err(BodyError::NonFinite {
                 body: self.name.clone(),
@@ -325,7 +332,17 @@ impl FactoredBody {
     /// The right-hand side of the reduced system for the load `f` (one entry per DOF): `f` on the
     /// free DOFs minus what the prescribed values load them with, `f_f − K_fd u_d`.
     pub fn reduced_load(&self, f: &[f64]) -> Vec<f64> {
-        let mut rhs: Vec<f64> = self.free.iter().map(|&d| f[d]).collect();
+        let mut rhs: Vec<f64> = if self.coef.is_empty() {
+            self.free.iter().map(|&d| f[d]).collect()
+        } else {
+            let mut rhs = vec![0.0; self.free.len()];
+            for (d, &r) in self.reduced.iter().enumerate() {
+                if r != NONE {
+                    rhs[r] += self.coef[d] * f[d];
+                }
+            }
+            rhs
+        };
         let (col_ptr, row_idx, kv) = (
             self.k.symbolic().col_ptr(),
             self.k.symbolic().row_idx(),
@@ -338,14 +355,48 @@ impl FactoredBody {
             for p in col_ptr[d]..col_ptr[d + 1] {
                 let r = self.reduced[row_idx[p]];
                 if r != NONE {
-                    rhs[r] -= kv[p] * value;
+                    rhs[r] -= self.coefficient(row_idx[p]) * kv[p] * value;
                 }
             }
         }
         rhs
     }
 
-    /// The prescribed value of a DOF (0 for a free DOF).
+    /// The full displacement of the reduced solution `q`: u_d = prescribed part + coefficient ×
+    /// q of its reduced index.
+    fn expand(&self, q: &[f64]) -> Vec<f64> {
+        let mut u = vec![0.0; self.num_dofs()];
+        if self.coef.is_empty() {
+            for (r, &d) in self.free.iter().enumerate() {
+                u[d] = q[r];
+            }
+        } else {
+            for (d, &r) in self.reduced.iter().enumerate() {
+                if r != NONE {
+                    u[d] = self.coef[d] * q[r];
+                }
+            }
+        }
+        for &(d, value) in &self.fixed {
+            if self.reduced[d] == NONE {
+                u[d] = value;
+            } else {
+                u[d] += value;
+            }
+        }
+        u
+    }
+
+    /// The coefficient of DOF `dof` on its reduced unknown (1 unless its node is on an inclined
+    /// support).
+    fn coefficient(&self, dof: usize) -> f64 {
+        self.coef.get(dof).copied().unwrap_or(1.0)
+    }
+
+    /// The prescribed part of a DOF: its value if prescribed, g n_c on a node held along an
+    /// inclined normal n (u·n = g), 0 for a free DOF. Then
+    /// u_dof = prescribed_value(dof) + coefficient × q[index] with
+    /// [`FactoredBody::reduced_index`].
     pub fn prescribed_value(&self, dof: usize) -> f64 {
         self.fixed
             .binary_search_by_key(&dof, |&(d, _)| d)
@@ -400,10 +451,12 @@ impl FactoredBody {
         self.free.len()
     }
 
-    /// The reduced index of a DOF, or `None` if it is prescribed.
-    pub fn reduced_index(&self, dof: usize) -> Option<usize> {
+    /// The reduced unknown a DOF depends on and its coefficient there, or `None` if the DOF is
+    /// prescribed. The coefficient is 1 except on a node of an inclined support, whose two DOFs
+    /// share one unknown (the tangential displacement) with the tangent's components.
+    pub fn reduced_index(&self, dof: usize) -> Option<(usize, f64)> {
         let r = self.reduced[dof];
-        (r != NONE).then_some(r)
+        (r != NONE).then(|| (r, self.coefficient(dof)))
     }
 
     /// The lower triangle of the last factorised matrix (`K + Σ additions` of
@@ -413,8 +466,9 @@ impl FactoredBody {
     }
 
     /// For each DOF of `interface_dofs` (as given to [`FactoredBody::new`]), its index in the
-    /// Schur factor, or `None` if the DOF is prescribed.
-    pub fn interface_index(&self, interface_dofs: &[usize]) -> Vec<Option<usize>> {
+    /// Schur factor and its coefficient there (as [`FactoredBody::reduced_index`]), or `None` if
+    /// the DOF is prescribed.
+    pub fn interface_index(&self, interface_dofs: &[usize]) -> Vec<Option<(usize, f64)>> {
         let mut pos = std::collections::HashMap::new();
         for (k, &r) in self.interface.iter().enumerate() {
             pos.insert(r, k);
@@ -423,7 +477,8 @@ impl FactoredBody {
             .iter()
             .map(|&d| {
                 let r = self.reduced[d];
-                (r != NONE).then(|| pos.get(&r).copied()).flatten()
+                let k = (r != NONE).then(|| pos.get(&r).copied()).flatten();
+                k.map(|k| (k, self.coefficient(d)))
             })
             .collect()
     }
@@ -483,6 +538,138 @@ impl FactoredBody {
         }
         Ok(l22)
     }
+}
+
+/// The reduced DOF numbering of a body's supports.
+struct Reduction {
+    reduced: Vec<usize>,
+    coef: Vec<f64>,
+    free: Vec<usize>,
+    fixed: Vec<(usize, f64)>,
+}
+
+impl Reduction {
+    /// Numbers the free DOFs in DOF order; both DOFs of a node on an inclined support share the
+    /// number of its tangential unknown, with the tangent's components as coefficients.
+    fn new(ndof: usize, constraints: &Constraints) -> Reduction {
+        let inclined: std::collections::HashMap<usize, ([f64; 2], f64)> = constraints
+            .inclined()
+            .map(|(v, n, g)| (v, (n, g)))
+            .collect();
+        let mut reduced = vec![NONE; ndof];
+        let mut coef = if inclined.is_empty() {
+            Vec::new()
+        } else {
+            vec![1.0; ndof]
+        };
+        let mut free = Vec::with_capacity(ndof);
+        let mut fixed = Vec::new();
+        for (dof, r) in reduced.iter_mut().enumerate() {
+            let c = component_of(dof);
+            match (constraints.get(dof), inclined.get(&node_of(dof))) {
+                (Some(v), _) => fixed.push((dof, v)),
+                (None, Some(&(n, g))) => {
+                    // The x DOF opens the node's unknown, the y DOF (next) shares it.
+                    if c == 0 || free.last() != Some(&(dof - 1)) {
+                        free.push(dof);
+                    }
+                    *r = free.len() - 1;
+                    coef[dof] = [-n[1], n[0]][c];
+                    fixed.push((dof, g * n[c]));
+                }
+                (None, None) => {
+                    *r = free.len();
+                    free.push(dof);
+                }
+            }
+        }
+        Reduction {
+            reduced,
+            coef,
+            free,
+            fixed,
+        }
+    }
+}
+
+/// Lower triangle of the reduced matrix without inclined supports, and for each entry its index
+/// in `k`'s values (the reduced map is monotone, so rows stay sorted).
+fn plain_lower(
+    k: &SparseColMat<usize, f64>,
+    reduced: &[usize],
+    free: &[usize],
+) -> (SymbolicSparseColMat<usize>, Vec<usize>) {
+    let n = free.len();
+    let (col_ptr, row_idx) = (k.symbolic().col_ptr(), k.symbolic().row_idx());
+    let mut l_ptr = Vec::with_capacity(n + 1);
+    let mut l_rows = Vec::new();
+    let mut gather = Vec::new();
+    l_ptr.push(0);
+    for &j in free {
+        for (p, &i) in row_idx
+            .iter()
+            .enumerate()
+            .take(col_ptr[j + 1])
+            .skip(col_ptr[j])
+        {
+            if i >= j && reduced[i] != NONE {
+                l_rows.push(reduced[i]);
+                gather.push(p);
+            }
+        }
+        l_ptr.push(l_rows.len());
+    }
+    let lower = SymbolicSparseColMat::new_checked(n, n, l_ptr, None, l_rows);
+    (lower, gather)
+}
+
+/// Lower triangle of Tᵀ K T with inclined supports: entry (R, C) sums c_i c_j K_ij over the DOFs
+/// i of R and j of C. Entries of one term with coefficient 1 are gathered as in [`plain_lower`],
+/// the others listed as (entry, index in `k`'s values, coefficient).
+fn reduced_lower_pattern(
+    k: &SparseColMat<usize, f64>,
+    reduced: &[usize],
+    coef: &[f64],
+    free: &[usize],
+) -> (
+    SymbolicSparseColMat<usize>,
+    Vec<usize>,
+    Vec<(usize, usize, f64)>,
+) {
+    let n = free.len();
+    let (col_ptr, row_idx) = (k.symbolic().col_ptr(), k.symbolic().row_idx());
+    let mut l_ptr = Vec::with_capacity(n + 1);
+    let (mut l_rows, mut gather, mut mixed) = (Vec::new(), Vec::new(), Vec::new());
+    let mut terms: Vec<(usize, usize, f64)> = Vec::new();
+    l_ptr.push(0);
+    for (col, &j0) in free.iter().enumerate() {
+        terms.clear();
+        // K is stored in full, so the columns of both DOFs of the unknown hold every term.
+        let cols = (j0..reduced.len()).take_while(|&j| reduced[j] == col);
+        for j in cols {
+            for p in col_ptr[j]..col_ptr[j + 1] {
+                let i = row_idx[p];
+                if reduced[i] != NONE && reduced[i] >= col {
+                    terms.push((reduced[i], p, coef[i] * coef[j]));
+                }
+            }
+        }
+        terms.sort_by_key(|t| t.0);
+        for group in terms.chunk_by(|a, b| a.0 == b.0) {
+            let e = l_rows.len();
+            l_rows.push(group[0].0);
+            match group {
+                [(_, p, c)] if *c == 1.0 => gather.push(*p),
+                _ => {
+                    gather.push(NONE);
+                    mixed.extend(group.iter().map(|&(_, p, c)| (e, p, c)));
+                }
+            }
+        }
+        l_ptr.push(l_rows.len());
+    }
+    let lower = SymbolicSparseColMat::new_checked(n, n, l_ptr, None, l_rows);
+    (lower, gather, mixed)
 }
 
 /// faer's AMD ordering of the whole matrix with the interface DOFs moved to the end (in the given

@@ -83,9 +83,12 @@ pub fn free_modes(
     for (dof, _) in constraints.fixed() {
         add(basis.at(p[node_of(dof)])[component_of(dof)]);
     }
+    // An inclined normal support removes the motion along its normal, as a spring would.
+    for (v, n, _) in constraints.inclined() {
+        add(along(&basis, p[v], n));
+    }
     for &(v, dir) in springs {
-        let m = basis.at(p[v]);
-        add([0, 1, 2].map(|k| dot(dir, std::array::from_fn(|c| m[c][k]))));
+        add(along(&basis, p[v], dir));
     }
     let scale = gram.trace().max(1.0);
     let eig = SymmetricEigen::new(gram);
@@ -96,6 +99,12 @@ pub fn free_modes(
             [v[0], v[1], v[2]]
         })
         .collect()
+}
+
+/// The three modes' displacements at `x` along the unit direction `dir`.
+fn along(basis: &RigidBasis, x: Point, dir: Vector) -> [f64; NUM_MODES] {
+    let m = basis.at(x);
+    [0, 1, 2].map(|k| dot(dir, std::array::from_fn(|c| m[c][k])))
 }
 
 #[cfg(test)]

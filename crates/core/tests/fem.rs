@@ -362,7 +362,7 @@ fn schur_factor_equals_dense_schur_complement() {
     let m = l22.nrows();
     let s = &l22 * l22.transpose();
     for (col, &dof_j) in top.iter().enumerate() {
-        let Some(j) = idx[col] else { continue };
+        let Some((j, _)) = idx[col] else { continue };
         let mut f = vec![0.0; op.num_dofs()];
         f[dof_j] = 1.0;
         let x = op.solve(&f).unwrap();
@@ -370,7 +370,7 @@ fn schur_factor_equals_dense_schur_complement() {
             let si: f64 = top
                 .iter()
                 .zip(&idx)
-                .filter_map(|(&d, p)| p.map(|p| s[(i, p)] * x[d]))
+                .filter_map(|(&d, p)| p.map(|(p, _)| s[(i, p)] * x[d]))
                 .sum();
             let expect = if i == j { 1.0 } else { 0.0 };
             assert!((si - expect).abs() < 1e-8, "S K⁻¹ [{i},{j}] = {si}");

@@ -348,14 +348,14 @@ fn condense_dense(
 ) -> Result<Mat<f64>, BodyError> {
     let l22 = op.schur_factor()?;
     let index = op.interface_index(interface);
-    let pos: std::collections::HashMap<usize, Option<usize>> =
+    let pos: std::collections::HashMap<usize, Option<(usize, f64)>> =
         interface.iter().copied().zip(index).collect();
     let m = nodes.len();
     let mut y = Mat::<f64>::zeros(l22.nrows(), m);
     for (j, (&v, n)) in nodes.iter().zip(normals).enumerate() {
         for c in 0..DIM {
-            if let Some(Some(i)) = pos.get(&dof(v, c)) {
-                y[(*i, j)] += n[c];
+            if let Some(Some((i, k))) = pos.get(&dof(v, c)) {
+                y[(*i, j)] += n[c] * k;
             }
         }
     }

@@ -118,6 +118,29 @@ pub struct MonolithicSolution {
     pub seconds: f64,
 }
 
+/// Errors for a contact node on an inclined `normal` support: the reduced system here keeps
+/// contact DOFs in x/y components, which such a node does not have (the domain decomposition
+/// solves it).
+fn check_inclined_corners(model: &Model, interface: &Interface) -> Result<(), SetupError> {
+    for p in &interface.points {
+        let body = &model.bodies[p.body];
+        if body.constraints.inclined_normal(p.node).is_some() {
+            let pair = &model.pairs[p.pair];
+            let side = usize::from(pair.bodies[1] == p.body);
+            return Err(SetupError::Body {
+                body: body.name.clone(),
+                message: format!(
+                    "node {} of contact boundary '{}' (pair '{}') lies on an inclined 'normal' \
+                     support; the monolithic reference cannot solve that corner (the domain \
+                     decomposition can)",
+                    p.node, pair.boundaries[side], pair.name
+                ),
+            });
+        }
+    }
+    Ok(())
+}
+
 /// Solves the penalty contact problem monolithically with the default limits.
 pub fn solve_monolithic(model: &Model) -> Result<MonolithicSolution, SetupError> {
     solve_monolithic_with(model, &MonolithicSettings::default(), None)
@@ -135,6 +158,7 @@ pub fn solve_monolithic_with(
     check_settings(settings)?;
     let start = Instant::now();
     let mut interface = Interface::new(model)?;
+    check_inclined_corners(model, &interface)?;
     // One level of parallelism: over bodies when there are several, inside faer otherwise.
     let par = if model.bodies.len() > 1 {
         faer::Par::Seq

@@ -26,12 +26,28 @@ const CG_MAX: usize = 30;
 
 /// A body's contact points in the reduced numbering of its sparse factor.
 pub struct SparseContact {
-    /// Per contact point, its free DOFs carrying a normal component: (reduced index, n_c).
+    /// Per contact point, its reduced unknowns carrying a normal component: (reduced index,
+    /// Σ n_c × coefficient), one entry per unknown (a node on an inclined support has one).
     dofs: Vec<Vec<(usize, f64)>>,
     /// Per contact point, n_j · (prescribed displacement of its node), at load factor 1.
     fixed: Vec<f64>,
     /// The reduced right-hand side of the body's load and prescribed values at load factor 1.
     rhs0: Vec<f64>,
+}
+
+/// The reduced unknowns of node `v`'s normal displacement n·u and their coefficients, the terms of
+/// one unknown merged (both DOFs of a node on an inclined support share one).
+fn point_terms(op: &FactoredBody, v: usize, n: Vector) -> Vec<(usize, f64)> {
+    let mut terms: Vec<(usize, f64)> = Vec::with_capacity(DIM);
+    for c in (0..DIM).filter(|&c| n[c] != 0.0) {
+        if let Some((r, k)) = op.reduced_index(dof(v, c)) {
+            match terms.iter_mut().find(|t| t.0 == r) {
+                Some(t) => t.1 += n[c] * k,
+                None => terms.push((r, n[c] * k)),
+            }
+        }
+    }
+    terms
 }
 
 /// The Robin factor of the last φ on the sparse path.
@@ -48,12 +64,7 @@ impl SparseContact {
         let dofs = nodes
             .iter()
             .zip(normals)
-            .map(|(&v, n)| {
-                (0..DIM)
-                    .filter(|&c| n[c] != 0.0)
-                    .filter_map(|c| op.reduced_index(dof(v, c)).map(|r| (r, n[c])))
-                    .collect()
-            })
+            .map(|(&v, n)| point_terms(op, v, *n))
             .collect();
         let fixed = nodes
             .iter()

@@ -201,7 +201,7 @@ fn bodies_json(model: &Model) -> Value {
         .iter()
         .map(|b| {
             let nodes = b.mesh.num_nodes();
-            let prescribed = b.constraints.fixed().count();
+            let prescribed = b.constraints.num_prescribed();
             json!({
                 "name": b.name,
                 "nodes": nodes,

@@ -198,7 +198,8 @@ fn one() -> f64 {
 pub struct SupportSpec {
     /// Boundary (or Gmsh physical point) name.
     pub boundary: String,
-    /// `x`, `y`, `both`, or `normal` (a straight axis-parallel boundary: symmetry line).
+    /// `x`, `y`, `both`, or `normal` (u·n on a straight boundary: a symmetry line or sliding
+    /// support).
     pub component: Component,
     /// Prescribed value (default 0).
     #[serde(default)]

@@ -37,7 +37,9 @@ pub struct BodyReactions {
 /// `model.bodies`) and the contact results `contact` (same order as `model.pairs`).
 ///
 /// A boundary or node set counts as supported when every one of its nodes has a prescribed
-/// displacement component; its reaction sums the prescribed components of its nodes.
+/// displacement component (or lies on an inclined `normal` support); its reaction sums the
+/// prescribed components of its nodes, both components on a node of an inclined support, whose
+/// reaction lies along its normal.
 pub fn reactions(
     model: &Model,
     bodies: &[BodyResult],
@@ -52,7 +54,9 @@ pub fn reactions(
         .map(|((body, fields), fc)| {
             let r = residual(&body.stiffness(), &fields.displacement, &body.load);
             let reaction = |d: usize| r[d] - fc[d];
-            let fixed = |d: usize| body.constraints.get(d).is_some();
+            // A node of an inclined normal support counts with both components: its reaction
+            // lies along the normal.
+            let fixed = |d: usize| body.constraints.holds(d);
             let mesh = &body.mesh;
             let names = mesh.boundaries().keys().chain(mesh.node_sets().keys());
             let supports = names

@@ -602,7 +602,7 @@ pub fn check_floating(model: &Model) -> Result<(), SetupError> {
         if model.pairs.iter().any(|p| p.bodies.contains(&b)) {
             continue;
         }
-        if body.constraints.fixed().next().is_none() {
+        if !body.constraints.any() {
             return Err(SetupError::Floating {
                 body: body.name.clone(),
             });

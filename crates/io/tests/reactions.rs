@@ -125,3 +125,123 @@ fn offset_blocks_with_an_oblique_load_balance() {
     // The tangential load 30 · 0.9 = 27 goes to the block's x support alone.
     assert!((totals[1][0] + 27.0).abs() <= 1e-8 * 100.0, "{totals:?}");
 }
+
+/// A rectangle mesh turned by `angle` degrees about the origin, written as an inline mesh.
+fn inline_rectangle(x: [f64; 2], y: [f64; 2], n: [usize; 2], angle: f64) -> String {
+    use contactdd_core::{Diagonal, Order, Rectangle};
+    let (s, c) = angle.to_radians().sin_cos();
+    let mesh = Rectangle {
+        origin: [x[0], y[0]],
+        corner: [x[1], y[1]],
+        nx: n[0],
+        ny: n[1],
+        diagonal: Diagonal::Right,
+        mirror: false,
+        order: Order::P1,
+    }
+    .mesh()
+    .expect("a mesh")
+    .map_nodes(|[x, y]| [c * x - s * y, s * x + c * y])
+    .expect("a mesh");
+    let list = |items: Vec<String>| format!("[{}]", items.join(", "));
+    let nodes = list(
+        mesh.nodes()
+            .iter()
+            .map(|p| format!("[{:?}, {:?}]", p[0], p[1]))
+            .collect(),
+    );
+    let cells = list(
+        mesh.cells()
+            .chunks(3)
+            .map(|t| format!("[{}, {}, {}]", t[0], t[1], t[2]))
+            .collect(),
+    );
+    let boundaries: Vec<String> = mesh
+        .boundaries()
+        .iter()
+        .map(|(name, edges)| {
+            let e = list(
+                edges
+                    .iter()
+                    .map(|e| format!("[{}, {}]", e.a, e.b))
+                    .collect(),
+            );
+            format!("{name} = {e}")
+        })
+        .collect();
+    format!(
+        "{{ kind = \"inline\", nodes = {nodes}, triangles = {cells}, boundaries = {{ {} }} }}",
+        boundaries.join(", ")
+    )
+}
+
+/// A block pressed onto a base, both cut by the symmetry line x = 0 and the base sliding on its
+/// floor: every support a `normal` one, turned by `angle` degrees.
+fn sliding_blocks(angle: f64) -> String {
+    format!(
+        r#"
+        plane = "strain"
+        [materials.steel]
+        young = 2.1e5
+        poisson = 0.3
+        [[bodies]]
+        name = "base"
+        material = "steel"
+        mesh = {}
+        supports = [{{ boundary = "left", component = "normal" }},
+                    {{ boundary = "bottom", component = "normal" }}]
+        [[bodies]]
+        name = "block"
+        material = "steel"
+        mesh = {}
+        supports = [{{ boundary = "left", component = "normal" }}]
+        loads = [{{ kind = "pressure", boundary = "top", value = 100.0 }}]
+        [[contact]]
+        bodies = ["base", "block"]
+        boundaries = ["top", "bottom"]
+        penalty = {{ c = 0.05, h = 0.25 }}
+        "#,
+        inline_rectangle([0.0, 2.0], [0.0, 0.5], [16, 4], angle),
+        inline_rectangle([0.0, 1.0], [0.5, 1.0], [7, 4], angle),
+    )
+}
+
+#[test]
+fn reactions_on_inclined_normal_supports_rotate_with_the_model() {
+    let (plain_model, plain) = solved(&sliding_blocks(0.0));
+    check_balance(&plain_model, &plain, 1e-8);
+    for angle in [30.0, 117.0] {
+        let (model, summary) = solved(&sliding_blocks(angle));
+        assert!(model.bodies[0].constraints.inclined().count() > 0);
+        check_balance(&model, &summary, 1e-8);
+        let (s, c) = f64::to_radians(angle).sin_cos();
+        let rot = |[x, y]: [f64; 2]| [c * x - s * y, s * x + c * y];
+        for b in 0..2 {
+            let supports = summary["reactions"][b]["supports"]
+                .as_array()
+                .expect("list");
+            let expected = plain["reactions"][b]["supports"].as_array().expect("list");
+            assert_eq!(supports.len(), expected.len());
+            for (got, want) in supports.iter().zip(expected) {
+                assert_eq!(got["boundary"], want["boundary"]);
+                let (r, r0) = (vector(&got["force"]), rot(vector(&want["force"])));
+                let diff = (r[0] - r0[0]).hypot(r[1] - r0[1]);
+                println!(
+                    "{angle}° body {b} {}: {r:?}, difference {diff:.2e}",
+                    got["boundary"]
+                );
+                assert!(diff <= 1e-7 * 100.0, "{angle}°: {r:?} vs {r0:?}");
+            }
+        }
+        // The base's supports push it up along the floor's normal and take nothing along the
+        // floor: no support resists sliding. (Per boundary the corner node, on both supports,
+        // counts twice; the total counts it once.) The normal part is the contact force on the
+        // base, which the balance above checks (less than the load 100 · 1: the base integrates
+        // its own pressures on a non-matching mesh).
+        let r = vector(&summary["reactions"][0]["total"]);
+        let (normal, tangential) = (-r[0] * s + r[1] * c, r[0] * c + r[1] * s);
+        println!("{angle}° base: normal reaction {normal}, tangential {tangential:.2e}");
+        assert!(normal > 50.0, "{r:?}");
+        assert!(tangential.abs() <= 1e-7 * 100.0, "{r:?}");
+    }
+}

@@ -53,9 +53,7 @@ pub(super) fn balance(
                 r[ri[p]] += val[p] * deformation[j];
             }
         }
-        for (d, _) in body.constraints.fixed() {
-            r[d] = 0.0;
-        }
+        body.constraints.remove_prescribed(&mut r);
         scale += dot(&body.load, &body.load) + dot(&contact[b], &contact[b]);
         residual.push(r);
     }

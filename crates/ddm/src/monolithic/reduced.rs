@@ -57,7 +57,8 @@ impl ReducedBody {
         let index = op.interface_index(&contact);
         let mut dofs = vec![0; index.iter().flatten().count()];
         for (&d, i) in contact.iter().zip(&index) {
-            if let Some(i) = i {
+            // Coefficient 1: no contact node lies on an inclined support (checked before).
+            if let Some((i, _)) = i {
                 dofs[*i] = d;
             }
         }
