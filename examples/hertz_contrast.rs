@@ -5,7 +5,8 @@
 //! measured where the gap d − s changes sign, against a.
 //!
 //! A measurement, not a test: the deviation of the soft curved body (ratio 0.1) shrinks with a/R,
-//! as Hertz's own approximation predicts (docs/method.md §4, "Which normal the gap uses").
+//! like the angle between the two sides' normals that lets its tangential displacement into the
+//! gap (docs/method.md §4, "Which normal the gap uses").
 //!
 //! Run: `cargo run --release --example hertz_contrast`
 
