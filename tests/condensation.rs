@@ -7,8 +7,10 @@
 
 use std::path::{Path, PathBuf};
 
+use contactdd::ddm::robin_sweep::Breakdown;
 use contactdd::ddm::{
-    prepare, prepare_with, solve, Accelerator, Condensation, Hooks, Model, Settings, Solution,
+    prepare, prepare_with, solve, Accelerator, Condensation, Gamma, Hooks, Method, Model, Settings,
+    Solution, Stop,
 };
 use contactdd::io::load_file;
 
@@ -126,6 +128,40 @@ fn the_cost_model_keeps_the_benchmark_dense_and_a_long_zone_sparse() {
         .iter()
         .flatten()
         .all(|b| b.sparse().is_some()));
+}
+
+/// A body that loses all contact makes its Robin problem singular: both paths stop at the same
+/// iteration and say so (the sparse factor alone would factorise the singular matrix and let the
+/// displacements grow).
+#[test]
+fn a_body_that_loses_contact_is_diagnosed_alike_on_both_paths() {
+    let loaded =
+        load_file(&Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/three_bodies.toml"))
+            .unwrap();
+    let settings = Settings {
+        u0: loaded.settings.u0,
+        u_prev: loaded.settings.u_prev,
+        ..Settings::paper(Method::ActiveSet, Gamma::Constant(1.0))
+    };
+    let stops: Vec<Stop> = [Condensation::Dense, Condensation::Sparse]
+        .map(|c| {
+            let prepared = prepare_with(&loaded.model, c).unwrap();
+            let sol = solve(&loaded.model, &prepared, &settings, Hooks::default()).unwrap();
+            sol.stop
+        })
+        .into();
+    assert!(
+        matches!(
+            stops[0],
+            Stop::Diverged {
+                reason: Breakdown::LostContact,
+                ..
+            }
+        ),
+        "dense: {:?}",
+        stops[0]
+    );
+    assert_eq!(stops[0], stops[1]);
 }
 
 fn long_strips(n: usize) -> Model {

@@ -69,36 +69,68 @@ pub fn free_modes(
     constraints: &Constraints,
     springs: &[(usize, Vector)],
 ) -> Vec<[f64; NUM_MODES]> {
-    let basis = RigidBasis::new(mesh);
-    let p = mesh.nodes();
-    // Gram matrix of the constrained values: its kernel is the set of free combinations.
-    let mut gram = Matrix3::<f64>::zeros();
-    let mut add = |row: [f64; NUM_MODES]| {
-        for i in 0..NUM_MODES {
-            for j in 0..NUM_MODES {
-                gram[(i, j)] += row[i] * row[j];
-            }
+    Holding::new(mesh, constraints, springs).free(|_| true)
+}
+
+/// What holds a body against rigid motion: its supports, and springs (node, unit direction) that
+/// may be switched on and off — asked once per set of active springs (a Robin problem's φ)
+/// without going over the supports again.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Holding {
+    /// Gram matrix of the supports' constrained values of the rigid basis.
+    supports: Matrix3<f64>,
+    /// Each spring's values of the rigid basis along its direction.
+    springs: Vec<[f64; NUM_MODES]>,
+}
+
+impl Holding {
+    /// The supports of `constraints` on `mesh`, and `springs`.
+    pub fn new(mesh: &Mesh, constraints: &Constraints, springs: &[(usize, Vector)]) -> Holding {
+        let basis = RigidBasis::new(mesh);
+        let p = mesh.nodes();
+        let mut supports = Matrix3::<f64>::zeros();
+        for (dof, _) in constraints.fixed() {
+            add(&mut supports, basis.at(p[node_of(dof)])[component_of(dof)]);
         }
-    };
-    for (dof, _) in constraints.fixed() {
-        add(basis.at(p[node_of(dof)])[component_of(dof)]);
+        // An inclined normal support removes the motion along its normal, as a spring would.
+        for (v, n, _) in constraints.inclined() {
+            add(&mut supports, along(&basis, p[v], n));
+        }
+        Holding {
+            supports,
+            springs: springs
+                .iter()
+                .map(|&(v, dir)| along(&basis, p[v], dir))
+                .collect(),
+        }
     }
-    // An inclined normal support removes the motion along its normal, as a spring would.
-    for (v, n, _) in constraints.inclined() {
-        add(along(&basis, p[v], n));
+
+    /// The rigid motions left free with the springs that `active` selects (by index), as in
+    /// [`free_modes`]: the kernel of the Gram matrix of the constrained values.
+    pub fn free(&self, active: impl Fn(usize) -> bool) -> Vec<[f64; NUM_MODES]> {
+        let mut gram = self.supports;
+        for (_, &row) in self.springs.iter().enumerate().filter(|(j, _)| active(*j)) {
+            add(&mut gram, row);
+        }
+        let scale = gram.trace().max(1.0);
+        let eig = SymmetricEigen::new(gram);
+        (0..NUM_MODES)
+            .filter(|&k| eig.eigenvalues[k] <= 1e-10 * scale)
+            .map(|k| {
+                let v = eig.eigenvectors.column(k);
+                [v[0], v[1], v[2]]
+            })
+            .collect()
     }
-    for &(v, dir) in springs {
-        add(along(&basis, p[v], dir));
+}
+
+/// Adds the outer product of `row` to `gram`.
+fn add(gram: &mut Matrix3<f64>, row: [f64; NUM_MODES]) {
+    for i in 0..NUM_MODES {
+        for j in 0..NUM_MODES {
+            gram[(i, j)] += row[i] * row[j];
+        }
     }
-    let scale = gram.trace().max(1.0);
-    let eig = SymmetricEigen::new(gram);
-    (0..NUM_MODES)
-        .filter(|&k| eig.eigenvalues[k] <= 1e-10 * scale)
-        .map(|k| {
-            let v = eig.eigenvectors.column(k);
-            [v[0], v[1], v[2]]
-        })
-        .collect()
 }
 
 /// The three modes' displacements at `x` along the unit direction `dir`.
