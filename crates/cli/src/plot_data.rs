@@ -18,23 +18,31 @@ pub struct Table {
 }
 
 impl Table {
-    /// Reads and splits a CSV file (RFC 4180 quoting, one record per line).
+    /// Reads a CSV file (RFC 4180 quoting, the `csv` crate's reader).
     pub fn read(path: &Path) -> Result<Table> {
         let text = std::fs::read_to_string(path)
             .with_context(|| format!("cannot read '{}'", path.display()))?;
-        let mut lines = text.lines().filter(|l| !l.trim().is_empty());
-        let header = split_line(lines.next().unwrap_or(""));
+        let mut reader = csv::ReaderBuilder::new()
+            .has_headers(false)
+            .flexible(true)
+            .from_reader(text.as_bytes());
+        let mut records = reader.records();
+        let record = |r: Option<csv::Result<csv::StringRecord>>| -> Result<Option<Vec<String>>> {
+            r.transpose()
+                .with_context(|| format!("'{}' is not valid CSV", path.display()))
+                .map(|r| r.map(|r| r.iter().map(String::from).collect()))
+        };
+        let header = record(records.next())?.unwrap_or_default();
         if header.iter().all(String::is_empty) {
             bail!("'{}' is empty (no header line)", path.display());
         }
         let mut rows = Vec::new();
-        for (i, line) in lines.enumerate() {
-            let row = split_line(line);
+        while let Some(row) = record(records.next())? {
             if row.len() != header.len() {
                 bail!(
                     "'{}' line {}: {} fields, the header has {}",
                     path.display(),
-                    i + 2,
+                    rows.len() + 2,
                     row.len(),
                     header.len()
                 );
@@ -74,27 +82,6 @@ impl Table {
         let c = self.column(name)?;
         (0..self.rows.len()).map(|r| self.number(r, c)).collect()
     }
-}
-
-/// Splits one CSV line into fields, undoing the quoting of `csv_field` in crates/io.
-fn split_line(line: &str) -> Vec<String> {
-    let mut fields = Vec::new();
-    let mut field = String::new();
-    let mut quoted = false;
-    let mut chars = line.chars().peekable();
-    while let Some(c) = chars.next() {
-        match c {
-            '"' if quoted && chars.peek() == Some(&'"') => {
-                field.push('"');
-                chars.next();
-            }
-            '"' => quoted = !quoted,
-            ',' if !quoted => fields.push(std::mem::take(&mut field)),
-            _ => field.push(c),
-        }
-    }
-    fields.push(field);
-    fields
 }
 
 /// What `contactdd plot` needs from `summary.json`.
@@ -181,12 +168,25 @@ mod tests {
     use super::*;
 
     #[test]
-    fn csv_lines_are_unquoted() {
-        assert_eq!(split_line("a,b,,c"), ["a", "b", "", "c"]);
+    fn csv_fields_are_unquoted_and_may_span_lines() {
+        let dir = std::env::temp_dir().join(format!("contactdd-table-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let path = dir.join("t.csv");
+        std::fs::write(
+            &path,
+            "a,b,c\n\"x,y\",\"say \"\"hi\"\"\",\"two\nlines\"\n1,,3\n",
+        )
+        .unwrap();
+        let t = Table::read(&path).unwrap();
+        assert_eq!(t.header, ["a", "b", "c"]);
         assert_eq!(
-            split_line("\"x,y\",\"say \"\"hi\"\"\",z"),
-            ["x,y", "say \"hi\"", "z"]
+            t.rows,
+            [["x,y", "say \"hi\"", "two\nlines"], ["1", "", "3"]]
         );
+        std::fs::write(&path, "a,b\n1,2,3\n").unwrap();
+        let e = Table::read(&path).err().unwrap().to_string();
+        assert!(e.contains("line 2: 3 fields, the header has 2"), "{e}");
+        std::fs::remove_dir_all(&dir).unwrap();
     }
 
     #[test]

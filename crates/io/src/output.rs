@@ -44,7 +44,6 @@
 //! [`write_results`] writes the folder as a set ([`crate::result_set`]): the data files first,
 //! `summary.json` last, so a folder without `summary.json` holds no complete result.
 
-use std::fmt::Write as _;
 use std::io::{Error, ErrorKind};
 use std::path::{Path, PathBuf};
 
@@ -266,69 +265,73 @@ pub fn contact_csv(sol: &Solution) -> String {
 
 /// The contact CSV of any list of pair results, with header `pair,body,x,y,gap,pressure,status`.
 pub fn pairs_csv(pairs: &[PairResult]) -> String {
-    let mut out = String::from("pair,body,x,y,gap,pressure,status\n");
-    for p in pairs {
-        for i in 0..p.gap.len() {
-            let _ = writeln!(
-                out,
-                "{},{},{},{},{},{},{}",
-                csv_field(&p.name),
-                csv_field(&p.bodies[p.side[i]]),
+    let header = ["pair", "body", "x", "y", "gap", "pressure", "status"];
+    let rows = pairs.iter().flat_map(|p| {
+        (0..p.gap.len()).map(move |i| {
+            vec![
+                p.name.clone(),
+                p.bodies[p.side[i]].clone(),
                 num(p.x[i]),
                 num(p.y[i]),
                 num(p.gap[i]),
                 num(p.pressure[i]),
-                point_status(p, i)
-            );
-        }
-    }
-    out
+                point_status(p, i).to_string(),
+            ]
+        })
+    });
+    csv_text(header.map(String::from), rows)
 }
 
 /// `history.csv`: one row per iteration, header
 /// `k,gamma,rel_change_<body>…,active_<body>…,normal_force_<body>…` (`normal_force` is
 /// Σ w |σ_n| over the body's contact points, see docs/outputs.md).
 pub fn history_csv(sol: &Solution) -> String {
-    let mut out = String::from("k,gamma");
+    let mut header = vec!["k".to_string(), "gamma".into()];
     for prefix in ["rel_change", "active", "normal_force"] {
-        for b in &sol.bodies {
-            out.push(',');
-            out.push_str(&csv_field(&format!("{prefix}_{}", b.name)));
-        }
+        header.extend(sol.bodies.iter().map(|b| format!("{prefix}_{}", b.name)));
     }
-    out.push('\n');
-    for r in &sol.history {
-        let _ = write!(out, "{},{}", r.k, num(r.gamma));
-        for &x in &r.rel_change {
-            let _ = write!(out, ",{}", num(x));
-        }
-        for &a in &r.active {
-            let _ = write!(out, ",{a}");
-        }
-        for &f in &r.contact_force {
-            let _ = write!(out, ",{}", num(f));
-        }
-        out.push('\n');
-    }
-    out
+    let rows = sol.history.iter().map(|r| {
+        let mut row = vec![r.k.to_string(), num(r.gamma)];
+        row.extend(r.rel_change.iter().map(|&x| num(x)));
+        row.extend(r.active.iter().map(|a| a.to_string()));
+        row.extend(r.contact_force.iter().map(|&f| num(f)));
+        row
+    });
+    csv_text(header, rows)
 }
 
 /// The table of a γ sweep, header `method,gamma,iterations,converged,reason` (γ `auto` for the
 /// Aitken rule, reason empty when converged).
 pub fn sweep_csv(runs: &[SweepRun]) -> String {
-    let mut out = String::from("method,gamma,iterations,converged,reason\n");
-    for r in runs {
-        let gamma = r.gamma.map_or_else(|| "auto".to_string(), num);
-        let _ = writeln!(
-            out,
-            "{},{gamma},{},{},{}",
-            r.method.name(),
-            r.iterations,
-            r.converged,
-            csv_field(&r.reason)
-        );
+    let header = ["method", "gamma", "iterations", "converged", "reason"];
+    let rows = runs.iter().map(|r| {
+        vec![
+            r.method.name().to_string(),
+            r.gamma.map_or_else(|| "auto".to_string(), num),
+            r.iterations.to_string(),
+            r.converged.to_string(),
+            r.reason.clone(),
+        ]
+    });
+    csv_text(header.map(String::from), rows)
+}
+
+/// The text of a CSV table (the `csv` crate's writer: fields quoted where they hold a comma, a
+/// quote or a line break; every record ends in `\n`).
+pub(crate) fn csv_text(
+    header: impl IntoIterator<Item = String>,
+    rows: impl IntoIterator<Item = Vec<String>>,
+) -> String {
+    let mut writer = csv::WriterBuilder::new()
+        .flexible(true)
+        .from_writer(Vec::new());
+    // Writing into memory cannot fail.
+    let _ = writer.write_record(header.into_iter().collect::<Vec<_>>());
+    for row in rows {
+        let _ = writer.write_record(&row);
     }
-    out
+    let bytes = writer.into_inner().unwrap_or_default();
+    String::from_utf8(bytes).unwrap_or_default()
 }
 
 /// Writes a solve's result folder (created if needed) as a set ([`write_set`]): `contact.csv`,
@@ -576,15 +579,6 @@ pub fn safe_file_name(name: &str) -> String {
     }
 }
 
-/// A CSV field, quoted when it holds a comma, quote or line break.
-fn csv_field(s: &str) -> String {
-    if s.contains([',', '"', '\n', '\r']) {
-        format!("\"{}\"", s.replace('"', "\"\""))
-    } else {
-        s.to_string()
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -599,10 +593,12 @@ mod tests {
     }
 
     #[test]
-    fn csv_fields() {
-        assert_eq!(csv_field("a,b"), "\"a,b\"");
-        assert_eq!(csv_field("say \"x\""), "\"say \"\"x\"\"\"");
-        assert_eq!(csv_field("plain"), "plain");
+    fn csv_fields_are_quoted_where_needed() {
+        let rows = [vec!["a,b".to_string(), "say \"x\"".into(), "plain".into()]];
+        assert_eq!(
+            csv_text(["h1", "h2", "h3"].map(String::from), rows),
+            "h1,h2,h3\n\"a,b\",\"say \"\"x\"\"\",plain\n"
+        );
     }
 
     #[test]

@@ -13,7 +13,8 @@ use contactdd_ddm::{Model, Solution};
 
 use crate::number::format_f64 as num;
 use crate::output::{
-    contact_csv, history_csv, json_number, safe_file_name, summary_json, write_solution_vtus_as,
+    contact_csv, csv_text, history_csv, json_number, safe_file_name, summary_json,
+    write_solution_vtus_as,
 };
 use crate::result_set::write_set;
 use crate::setup::Monitor;
@@ -80,7 +81,7 @@ pub fn steps_csv(model: &Model, steps: &[(f64, Solution)], monitor: Option<&Moni
     if monitor.is_some() {
         head.extend(["monitor_ux".to_string(), "monitor_uy".into()]);
     }
-    let mut out = head.join(",") + "\n";
+    let mut rows = Vec::with_capacity(steps.len());
     for (k, (factor, sol)) in steps.iter().enumerate() {
         let mut row = vec![
             (k + 1).to_string(),
@@ -95,9 +96,9 @@ pub fn steps_csv(model: &Model, steps: &[(f64, Solution)], monitor: Option<&Moni
         if let Some(m) = monitor {
             row.extend(monitored_displacement(&sol.bodies, m).map(num));
         }
-        out += &(row.join(",") + "\n");
+        rows.push(row);
     }
-    out
+    csv_text(head, rows)
 }
 
 /// The `steps` array of `summary.json`: per step its number, factor, convergence, iterations,
