@@ -7,7 +7,6 @@
 
 use std::io::{Error, ErrorKind, Write as _};
 use std::path::Path;
-use std::sync::atomic::{AtomicUsize, Ordering};
 
 /// Checks that a file may be written at `path`: nothing is there, or a regular file. Anything else
 /// (a symbolic link, a folder, a FIFO, a device, a socket) is an [`ErrorKind::InvalidInput`] error
@@ -55,7 +54,8 @@ fn describe(kind: std::fs::FileType) -> &'static str {
     "a special file"
 }
 
-/// True if `name` is the name of a temporary file of [`write_atomic`] (`.<name>.<pid>-<n>.tmp`)
+/// True if `name` is the name of a temporary file of [`write_atomic`] (`.<name>.<random>.tmp`, or
+/// `.<name>.<pid>-<n>.tmp` of earlier versions)
 /// whose target name ends in one of `extensions` (given without the dot). A run killed mid-write
 /// leaves such a file behind; the next result set written in that folder removes it.
 pub fn is_temp_name(name: &str, extensions: &[&str]) -> bool {
@@ -66,33 +66,45 @@ pub fn is_temp_name(name: &str, extensions: &[&str]) -> bool {
         return false;
     };
     let digits = |s: &str| !s.is_empty() && s.bytes().all(|b| b.is_ascii_digit());
-    let id_ok = id
-        .split_once('-')
-        .is_some_and(|(p, n)| digits(p) && digits(n));
+    // `<pid>-<n>`: the names of contactdd versions before the `tempfile` crate.
+    let id_ok = (id.len() == RANDOM_CHARS && id.bytes().all(|b| b.is_ascii_alphanumeric()))
+        || id
+            .split_once('-')
+            .is_some_and(|(p, n)| digits(p) && digits(n));
     let ext_ok = target
         .rsplit_once('.')
         .is_some_and(|(stem, ext)| !stem.is_empty() && extensions.contains(&ext));
     id_ok && ext_ok
 }
 
-/// `.<name>.<pid>-<n>.tmp`: unique per process and call, so that concurrent writers never share a
-/// temporary file.
-fn temp_name(file_name: &std::ffi::OsStr) -> std::ffi::OsString {
-    static COUNTER: AtomicUsize = AtomicUsize::new(0);
-    let mut temp = std::ffi::OsString::from(".");
-    temp.push(file_name);
-    temp.push(format!(
-        ".{}-{}.tmp",
-        std::process::id(),
-        COUNTER.fetch_add(1, Ordering::Relaxed)
-    ));
-    temp
+/// Random characters in a temporary file's name (the `tempfile` crate's default).
+const RANDOM_CHARS: usize = 6;
+
+/// A new temporary file `.<file_name>.<random>.tmp` in `dir`, removed when dropped unless
+/// persisted, with the permissions of a newly created file.
+fn temp_file(dir: &Path, file_name: &std::ffi::OsStr) -> std::io::Result<tempfile::NamedTempFile> {
+    let mut prefix = std::ffi::OsString::from(".");
+    prefix.push(file_name);
+    prefix.push(".");
+    let mut builder = tempfile::Builder::new();
+    builder
+        .prefix(&prefix)
+        .suffix(".tmp")
+        .rand_bytes(RANDOM_CHARS);
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::PermissionsExt as _;
+        builder.permissions(std::fs::Permissions::from_mode(0o666));
+    }
+    builder.tempfile_in(dir)
 }
 
-/// Writes `bytes` to `path` through a temporary file `.<name>.<pid>-<n>.tmp` in the same folder
-/// (synced, then renamed to `path`), so that `path` is either the old file or the complete new
-/// one. The temporary file is removed if anything fails. A `path` without a file name, or one
-/// that [`check_output_path`] refuses, is an [`ErrorKind::InvalidInput`] error.
+/// Writes `bytes` to `path` through a temporary file `.<name>.<random>.tmp` in the same folder
+/// (the `tempfile` crate: created new, synced, then persisted by a rename over `path`), so that
+/// `path` is either the old file or the complete new one. The temporary file is removed if
+/// anything fails. The file gets the permissions of a newly created file (0666 less the umask on
+/// Unix), not a temporary file's 0600. A `path` without a file name, or one that
+/// [`check_output_path`] refuses, is an [`ErrorKind::InvalidInput`] error.
 pub fn write_atomic(path: &Path, bytes: &[u8]) -> std::io::Result<()> {
     check_output_path(path)?;
     let file_name = path.file_name().ok_or_else(|| {
@@ -101,23 +113,15 @@ pub fn write_atomic(path: &Path, bytes: &[u8]) -> std::io::Result<()> {
             format!("'{}' is not a file path", path.display()),
         )
     })?;
-    let temp = path.with_file_name(temp_name(file_name));
-    let result = (|| {
-        // create_new: never write through something already lying at the temporary name.
-        let mut file = std::fs::OpenOptions::new()
-            .write(true)
-            .create_new(true)
-            .open(&temp)?;
-        file.write_all(bytes)?;
-        file.sync_all()?;
-        drop(file);
-        std::fs::rename(&temp, path)
-    })();
-    if result.is_err() {
-        // Best effort: the original error is the one worth reporting.
-        let _ = std::fs::remove_file(&temp);
-    }
-    result
+    let dir = match path.parent() {
+        Some(d) if !d.as_os_str().is_empty() => d,
+        _ => Path::new("."),
+    };
+    let mut temp = temp_file(dir, file_name)?;
+    temp.write_all(bytes)?;
+    temp.as_file().sync_all()?;
+    temp.persist(path).map_err(|e| e.error)?;
+    Ok(())
 }
 
 #[cfg(test)]
@@ -194,18 +198,47 @@ mod tests {
 
     #[test]
     fn temporary_names_are_recognised() {
-        let made = temp_name("x.vtu".as_ref()).into_string().unwrap();
-        assert!(is_temp_name(&made, &["vtu"]));
+        let dir = std::env::temp_dir().join(format!("contactdd-tempname-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let temp = temp_file(&dir, "x.vtu".as_ref()).unwrap();
+        let made = temp
+            .path()
+            .file_name()
+            .unwrap()
+            .to_str()
+            .unwrap()
+            .to_string();
+        assert!(is_temp_name(&made, &["vtu"]), "{made}");
         assert!(!is_temp_name(&made, &["csv"]));
+        drop(temp);
+        std::fs::remove_dir_all(&dir).unwrap();
         for other in [
             "x.vtu",
             ".x.vtu.tmp",
             ".x.vtu.12-a.tmp",
+            ".x.vtu.abc.tmp",
+            ".x.vtu.abc-12.tmp",
+            ".x.vtu.-12.tmp",
             "..vtu.1-2.tmp",
             ".notes.1-2.tmp",
         ] {
             assert!(!is_temp_name(other, &["vtu"]), "{other}");
         }
+    }
+
+    /// A result file gets the permissions of any new file (the umask's), not a temporary's 0600.
+    #[cfg(unix)]
+    #[test]
+    fn written_files_have_a_new_files_permissions() {
+        use std::os::unix::fs::PermissionsExt as _;
+        let dir = std::env::temp_dir().join(format!("contactdd-mode-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let (atomic, plain) = (dir.join("a.csv"), dir.join("b.csv"));
+        write_atomic(&atomic, b"x").unwrap();
+        std::fs::write(&plain, b"x").unwrap();
+        let mode = |p: &Path| std::fs::metadata(p).unwrap().permissions().mode() & 0o777;
+        assert_eq!(mode(&atomic), mode(&plain));
+        std::fs::remove_dir_all(&dir).unwrap();
     }
 
     #[test]

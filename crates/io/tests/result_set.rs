@@ -69,7 +69,9 @@ fn a_reused_folder_loses_the_previous_run_and_keeps_user_files() {
     // A file of the user's, and the temporary file a run killed mid-write leaves behind.
     std::fs::write(dir.join("notes.txt"), "mine").expect("user file");
     std::fs::write(dir.join("report.vtu"), "mine too").expect("user file");
-    std::fs::write(dir.join(".lower.vtu.99999-3.tmp"), "partial").expect("temporary");
+    std::fs::write(dir.join(".lower.vtu.aZ09xy.tmp"), "partial").expect("temporary");
+    // The same, as named by earlier versions.
+    std::fs::write(dir.join(".upper.vtu.99999-3.tmp"), "partial").expect("temporary");
 
     // The second run names its bodies differently: lower.vtu and upper.vtu become stale.
     for (b, body) in sol.bodies.iter_mut().enumerate() {
