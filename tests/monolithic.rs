@@ -212,3 +212,58 @@ fn hertz_settles_within_25_steps() {
         "{carried} against {applied}"
     );
 }
+
+/// Every shipped example, at its full load (load steps aside): the monolithic reference settles
+/// within 25 Newton steps, in equilibrium, and agrees with the DD to 1e-8 in every pair's
+/// pressures and gaps. That includes the cylinder between two plates (two curved non-matching
+/// pairs), on which full active-set steps to ever new closed sets used to wander for 50 steps.
+#[test]
+fn every_example_settles_and_agrees_with_the_decomposition() {
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("examples");
+    let mut files: Vec<_> = std::fs::read_dir(&dir)
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .filter(|p| p.extension().is_some_and(|e| e == "toml"))
+        .collect();
+    files.sort();
+    assert!(files.len() >= 6, "{files:?}");
+    for file in files {
+        let model = contactdd::io::setup::load_file(&file).unwrap().model;
+        if model.is_augmented() {
+            // The augmented Lagrangian's agreement is tests/augmented.rs's.
+            continue;
+        }
+        let reference = solve_monolithic(&model).unwrap();
+        let name = &model.name;
+        assert!(reference.converged, "{name}: {:?}", reference.message);
+        assert!(
+            reference.newton_steps <= 25,
+            "{name}: {} steps",
+            reference.newton_steps
+        );
+        let settings = Settings {
+            tol: 1e-12,
+            max_iter: 200,
+            ..Settings::default()
+        };
+        let dd = solve(
+            &model,
+            &prepare(&model).unwrap(),
+            &settings,
+            Hooks::default(),
+        )
+        .unwrap();
+        assert!(dd.converged, "{name}: DD {:?}", dd.message);
+        for (pair, refp) in dd.contact.iter().zip(&reference.contact) {
+            let err = relative_difference(&pair.pressure, &refp.pressure);
+            assert!(err <= 1e-8, "{name}: pressure off by {err:e}");
+            let err = relative_difference(&pair.gap, &refp.gap);
+            assert!(err <= 1e-8, "{name}: gap d − s off by {err:e}");
+        }
+        let residual = reference.equilibrium.iter().fold(0.0f64, |m, &e| m.max(e));
+        assert!(
+            residual <= 1e-10,
+            "{name}: equilibrium residual {residual:e}"
+        );
+    }
+}

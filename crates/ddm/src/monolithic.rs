@@ -375,12 +375,13 @@ fn newton(
             .rev()
             .take(WINDOW)
             .fold(0.0, |a: f64, &b| a.max(b));
-        // Full active-set steps while they visit new closed sets (and stay finite); the line
-        // search once a set comes back (the plain iteration would cycle).
+        // Full active-set steps while they visit new closed sets and the merit stays within the
+        // non-monotone window's worst (the rule the line search applies); the line search once a
+        // set comes back (the plain iteration would cycle) or the merit would grow past it.
         let full = seen
             .insert(chi.clone())
             .then(|| full_step(system, (&x, &lam), (&dx, &dlam)))
-            .filter(|e| merit(&z, e).is_finite());
+            .filter(|e| merit(&z, e) <= reference);
         let (alpha, next, decreased) = match full {
             Some(next) => (1.0, next, true),
             None => line_search(system, &z, (&x, &lam), (&dx, &dlam), reference),
