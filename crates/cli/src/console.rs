@@ -42,7 +42,8 @@ pub fn take_failure() -> Option<String> {
 /// The status bar on screen, if any (for [`line`] to hide).
 static BAR: Mutex<Option<ProgressBar>> = Mutex::new(None);
 
-/// A live one-line status on stderr (an `indicatif` bar), drawn at most 5 times per second. It is drawn only when stderr is a terminal: logs and pipes get the table lines alone.
+/// A live one-line status on stderr (an `indicatif` bar), drawn at most 5 times per second, and
+/// only when stderr is a terminal: logs and pipes get the table lines alone.
 pub struct Status {
     start: Instant,
     bar: Option<ProgressBar>,
