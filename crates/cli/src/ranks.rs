@@ -7,10 +7,8 @@ use std::sync::Arc;
 
 use contactdd_ddm::exchange::{Exchange, Local};
 use contactdd_ddm::{Model, Solution};
-use contactdd_io::output::write_results_noted;
 use contactdd_io::setup::Monitor;
 use contactdd_io::shared_results::{write_results_shared, write_step_results_shared, Part};
-use contactdd_io::steps::write_step_results;
 
 /// The processes of a solve and how they share the bodies.
 pub struct Ranks {
@@ -74,9 +72,6 @@ impl Ranks {
         sol: &Solution,
         units: Option<&str>,
     ) -> std::io::Result<Vec<PathBuf>> {
-        if self.size == 1 {
-            return write_results_noted(dir, model, sol, units);
-        }
         write_results_shared(dir, model, sol, units, &self.part())
     }
 
@@ -89,9 +84,6 @@ impl Ranks {
         monitor: Option<&Monitor>,
         units: Option<&str>,
     ) -> std::io::Result<Vec<PathBuf>> {
-        if self.size == 1 {
-            return write_step_results(dir, model, steps, monitor, units);
-        }
         write_step_results_shared(dir, model, steps, monitor, units, &self.part())
     }
 

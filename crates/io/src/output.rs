@@ -59,6 +59,7 @@ use crate::fields::{contact_point_data, element_von_mises, principal, tensor, Co
 use crate::number::format_f64 as num;
 use crate::reactions::reactions;
 use crate::result_set::{write_set, ResultSet};
+use crate::shared_results::{write_results_shared, Part};
 use crate::vtu::{write_vtu, Field, VtuData};
 
 /// A JSON number, or `null` for NaN and ±infinity (which JSON cannot represent).
@@ -350,21 +351,7 @@ pub fn write_results_noted(
     sol: &Solution,
     units: Option<&str>,
 ) -> std::io::Result<Vec<PathBuf>> {
-    let mut summary = summary_json(model, sol);
-    summary["units"] = json!(units);
-    write_set(dir, summary, |set| {
-        set.write("contact.csv", contact_csv(sol).as_bytes())?;
-        set.write("history.csv", history_csv(sol).as_bytes())?;
-        let before = set.len();
-        write_solution_vtus(set, model, &sol.bodies, &sol.contact)?;
-        let parts = set.names_since(before);
-        let entries: Vec<(f64, usize, String)> = parts
-            .into_iter()
-            .enumerate()
-            .map(|(part, name)| (1.0, part, name))
-            .collect();
-        set.write("results.pvd", crate::steps::pvd(&entries).as_bytes())
-    })
+    write_results_shared(dir, model, sol, units, &Part::alone())
 }
 
 /// Writes a monolithic solve's result folder as a set, like [`write_results`]: `contact.csv` and

@@ -3,7 +3,7 @@
 //! `history.csv` (and for load steps `steps.csv`), `results.pvd` over every body's file, and
 //! `summary.json` last with the manifest of all of them. The folder is the one
 //! [`crate::output::write_results_noted`] (or [`crate::steps::write_step_results`]) writes in one
-//! process, file for file.
+//! process, file for file: a single process writes through the same code, as [`Part::alone`].
 //!
 //! The processes take turns through `agree`, a collective that hands every process the first
 //! error of any (the command line's MPI exchange): the root removes the previous set before
@@ -29,6 +29,17 @@ pub struct Part<'a> {
     pub owns: Box<dyn Fn(usize) -> bool + 'a>,
     /// The collective that returns the first error of any process (the same on every process).
     pub agree: Box<dyn Fn(Option<String>) -> Option<String> + 'a>,
+}
+
+impl Part<'static> {
+    /// A single process: it writes everything.
+    pub fn alone() -> Part<'static> {
+        Part {
+            root: true,
+            owns: Box::new(|_| true),
+            agree: Box::new(|error| error),
+        }
+    }
 }
 
 /// Writes this process's part of the result folder `dir` of `sol` (every process holds the whole

@@ -12,12 +12,9 @@ use contactdd_ddm::solution::{BodyResult, PairResult};
 use contactdd_ddm::{Model, Solution};
 
 use crate::number::format_f64 as num;
-use crate::output::{
-    contact_csv, csv_text, history_csv, json_number, safe_file_name, summary_json,
-    write_solution_vtus_as,
-};
-use crate::result_set::write_set;
+use crate::output::{csv_text, json_number, safe_file_name};
 use crate::setup::Monitor;
+use crate::shared_results::{write_step_results_shared, Part};
 
 /// What one step reports per pair: the resultant contact force on the pair's first body, the
 /// length of its closed contact zone (the quadrature weights of its closed points) and the
@@ -164,33 +161,5 @@ pub fn write_step_results(
     monitor: Option<&Monitor>,
     units: Option<&str>,
 ) -> std::io::Result<Vec<PathBuf>> {
-    let Some((_, last)) = steps.last() else {
-        return Err(std::io::Error::new(
-            std::io::ErrorKind::InvalidInput,
-            "no load step to write",
-        ));
-    };
-    let mut summary = summary_json(model, last);
-    summary["steps"] = steps_json(steps, monitor);
-    summary["units"] = json!(units);
-    write_set(dir, summary, |set| {
-        set.write("contact.csv", contact_csv(last).as_bytes())?;
-        set.write("history.csv", history_csv(last).as_bytes())?;
-        set.write("steps.csv", steps_csv(model, steps, monitor).as_bytes())?;
-        let mut entries = Vec::new();
-        for (k, (factor, sol)) in steps.iter().enumerate() {
-            let before = set.len();
-            write_solution_vtus_as(
-                set,
-                model,
-                &sol.bodies,
-                &sol.contact,
-                &format!("-step{}", k + 1),
-            )?;
-            for (part, name) in set.names_since(before).into_iter().enumerate() {
-                entries.push((*factor, part, name));
-            }
-        }
-        set.write("results.pvd", pvd(&entries).as_bytes())
-    })
+    write_step_results_shared(dir, model, steps, monitor, units, &Part::alone())
 }
