@@ -29,7 +29,6 @@ use contactdd_core::geometry::dot;
 use contactdd_core::{dof, node_vector, BodyError, ElasticBody, FactoredBody, Vector, DIM};
 
 use contactdd_core::memory;
-use contactdd_core::rigid::Holding;
 use rayon::prelude::*;
 
 use crate::contact::{ContactPoint, Interface};
@@ -99,10 +98,6 @@ pub struct CondensedBody {
     d0: Vec<f64>,
     /// C₀, or what the sparse path keeps instead.
     reduction: Reduction,
-    /// On the sparse path, what holds the body (its supports and contact springs): a Robin
-    /// problem whose springs leave a rigid motion free is singular, which the sparse factor alone
-    /// does not always show.
-    holding: Option<Holding>,
     /// f₀ = Nᵀ K₀⁻¹ f (with the prescribed displacements), at the load factor.
     f0: Vec<f64>,
     /// f₀ at load factor 1.
@@ -278,16 +273,10 @@ impl<'a> Analysed<'a> {
         op.factorize(&spring_additions(&nodes, &normals, &d0))?;
         let numeric = t.elapsed().as_secs_f64();
         let t = Instant::now();
-        let (reduction, holding) = if dense {
-            let c0 = condense_dense(&op, &interface, &nodes, &normals, par)?;
-            (Reduction::Dense(c0), None)
+        let reduction = if dense {
+            Reduction::Dense(condense_dense(&op, &interface, &nodes, &normals, par)?)
         } else {
-            let springs: Vec<(usize, Vector)> =
-                nodes.iter().copied().zip(normals.iter().copied()).collect();
-            (
-                Reduction::Sparse(SparseContact::new(&op, &nodes, &normals, &body.load)),
-                Some(Holding::new(&body.mesh, &body.constraints, &springs)),
-            )
+            Reduction::Sparse(SparseContact::new(&op, body, &nodes, &normals))
         };
         let x = op.solve(&body.load)?;
         let f0: Vec<f64> = nodes
@@ -307,7 +296,6 @@ impl<'a> Analysed<'a> {
             normals,
             d0,
             reduction,
-            holding,
             f0_full: f0.clone(),
             f0,
             load: body.load.clone(),
@@ -507,11 +495,6 @@ impl CondensedBody {
         let c0 = match &self.reduction {
             Reduction::Dense(c0) => c0,
             Reduction::Sparse(s) => {
-                if let Some(holding) = &self.holding {
-                    if !holding.free(|j| phi[j] * self.d0[j] > 0.0).is_empty() {
-                        return Err(Singular);
-                    }
-                }
                 let point = (
                     self.nodes.as_slice(),
                     self.normals.as_slice(),

@@ -12,7 +12,8 @@
 
 use faer::sparse::Triplet;
 
-use contactdd_core::{dof, BodyError, FactorValues, FactoredBody, Vector, DIM};
+use contactdd_core::rigid::Holding;
+use contactdd_core::{dof, BodyError, ElasticBody, FactorValues, FactoredBody, Vector, DIM};
 
 use crate::condensed::Singular;
 
@@ -33,6 +34,9 @@ pub struct SparseContact {
     fixed: Vec<f64>,
     /// The reduced right-hand side of the body's load and prescribed values at load factor 1.
     rhs0: Vec<f64>,
+    /// What holds the body (supports and contact springs): a Robin matrix whose springs leave a
+    /// rigid motion free is singular, which its factorisation need not show.
+    holding: Holding,
 }
 
 /// The reduced unknowns of node `v`'s normal displacement n·u and their coefficients, the terms of
@@ -59,8 +63,11 @@ pub struct RobinFactor {
 }
 
 impl SparseContact {
-    /// Maps the contact points (`nodes`, `normals`) to the reduced numbering of `op`.
-    pub fn new(op: &FactoredBody, nodes: &[usize], normals: &[Vector], load: &[f64]) -> Self {
+    /// Maps the contact points (`nodes`, `normals`) of `body` to the reduced numbering of its
+    /// factor `op`.
+    pub fn new(op: &FactoredBody, body: &ElasticBody, nodes: &[usize], normals: &[Vector]) -> Self {
+        let springs: Vec<(usize, Vector)> = nodes.iter().copied().zip(normals.to_vec()).collect();
+        let load = &body.load;
         let dofs = nodes
             .iter()
             .zip(normals)
@@ -79,6 +86,7 @@ impl SparseContact {
             dofs,
             fixed,
             rhs0: op.reduced_load(load),
+            holding: Holding::new(&body.mesh, &body.constraints, &springs),
         }
     }
 
@@ -128,12 +136,14 @@ impl SparseContact {
         if !cache.ok || cache.phi.as_slice() != phi {
             cache.phi = phi.to_vec();
             let springs: Vec<f64> = phi.iter().zip(d0).map(|(p, d)| p * d).collect();
-            cache.ok = op
-                .refactorize(
-                    &spring_additions(nodes, normals, &springs),
-                    &mut cache.values,
-                )
-                .is_ok();
+            let held = self.holding.free(|j| springs[j] > 0.0).is_empty();
+            cache.ok = held
+                && op
+                    .refactorize(
+                        &spring_additions(nodes, normals, &springs),
+                        &mut cache.values,
+                    )
+                    .is_ok();
         }
         if !cache.ok {
             return Err(Singular);
