@@ -8,7 +8,9 @@ use std::path::Path;
 use contactdd::cases;
 use contactdd::ddm::benchmark::Notch;
 use contactdd::ddm::monolithic::{solve_monolithic_with, MonolithicSettings};
-use contactdd::ddm::{prepare, solve, solve_monolithic, Hooks, Model, Settings, Solution};
+use contactdd::ddm::{
+    prepare, solve, solve_monolithic, Hooks, Model, MonolithicSolution, Settings, Solution,
+};
 use contactdd::fem::{Component, Constraints, Material};
 
 /// The paper's notch with the lower body `ratio` times stiffer.
@@ -55,10 +57,9 @@ fn relative_difference(a: &[f64], b: &[f64]) -> f64 {
     diff / scale
 }
 
-/// The DD (default settings, tight tolerance) and the monolithic solution agree to `tol` on
-/// every pair's pressures and gaps and, where no rigid motion is left free, on the displacement
-/// fields.
-fn agree(model: &Model, tol: impl Fn(&Solution) -> f64) {
+/// The monolithic reference (converged) and the DD (default settings, tight tolerance) of
+/// `model`.
+fn both(model: &Model) -> (MonolithicSolution, Solution) {
     let reference = solve_monolithic(model).unwrap();
     assert!(
         reference.converged,
@@ -73,13 +74,25 @@ fn agree(model: &Model, tol: impl Fn(&Solution) -> f64) {
     let prepared = prepare(model).unwrap();
     let dd = solve(model, &prepared, &settings, Hooks::default()).unwrap();
     assert!(dd.converged, "{}: DD {:?}", model.name, dd.message);
-    let tol = tol(&dd);
+    (reference, dd)
+}
+
+/// Every pair's pressures and gaps agree to `tol`.
+fn contact_agrees(name: &str, dd: &Solution, reference: &MonolithicSolution, tol: f64) {
     for (pair, refp) in dd.contact.iter().zip(&reference.contact) {
         let err = relative_difference(&pair.pressure, &refp.pressure);
-        assert!(err <= tol, "{}: pressure off by {err:e}", model.name);
+        assert!(err <= tol, "{name}: pressure off by {err:e}");
         let err = relative_difference(&pair.gap, &refp.gap);
-        assert!(err <= tol, "{}: gap d − s off by {err:e}", model.name);
+        assert!(err <= tol, "{name}: gap d − s off by {err:e}");
     }
+}
+
+/// The DD and the monolithic solution agree to `tol` on every pair's pressures and gaps and,
+/// where no rigid motion is left free, on the displacement fields.
+fn agree(model: &Model, tol: impl Fn(&Solution) -> f64) {
+    let (reference, dd) = both(model);
+    let tol = tol(&dd);
+    contact_agrees(&model.name, &dd, &reference, tol);
     if reference.rigid_modes.is_empty() {
         for (body, refb) in dd.bodies.iter().zip(&reference.bodies) {
             let err = relative_difference(&body.displacement, &refb.displacement);
@@ -233,33 +246,14 @@ fn every_example_settles_and_agrees_with_the_decomposition() {
             // The augmented Lagrangian's agreement is tests/augmented.rs's.
             continue;
         }
-        let reference = solve_monolithic(&model).unwrap();
+        let (reference, dd) = both(&model);
         let name = &model.name;
-        assert!(reference.converged, "{name}: {:?}", reference.message);
         assert!(
             reference.newton_steps <= 25,
             "{name}: {} steps",
             reference.newton_steps
         );
-        let settings = Settings {
-            tol: 1e-12,
-            max_iter: 200,
-            ..Settings::default()
-        };
-        let dd = solve(
-            &model,
-            &prepare(&model).unwrap(),
-            &settings,
-            Hooks::default(),
-        )
-        .unwrap();
-        assert!(dd.converged, "{name}: DD {:?}", dd.message);
-        for (pair, refp) in dd.contact.iter().zip(&reference.contact) {
-            let err = relative_difference(&pair.pressure, &refp.pressure);
-            assert!(err <= 1e-8, "{name}: pressure off by {err:e}");
-            let err = relative_difference(&pair.gap, &refp.gap);
-            assert!(err <= 1e-8, "{name}: gap d − s off by {err:e}");
-        }
+        contact_agrees(name, &dd, &reference, 1e-8);
         let residual = reference.equilibrium.iter().fold(0.0f64, |m, &e| m.max(e));
         assert!(
             residual <= 1e-10,
