@@ -82,6 +82,7 @@ fn stack(n: usize, cells: usize) -> Model {
             penalty: Penalty::RodModel { c: 0.05, h: 1.0 },
             profile: None,
             enforcement: Enforcement::Penalty,
+            forces: Default::default(),
         })
         .collect();
     Model {

@@ -4,9 +4,10 @@
 //! a = sqrt(4PR/(πE*)) is R/10 or R/20 whatever the materials. Prints each side's half-width,
 //! measured where the gap d − s changes sign, against a.
 //!
-//! A measurement, not a test: the deviation of the soft curved body (ratio 0.1) shrinks with a/R,
-//! like the angle between the two sides' normals that lets its tangential displacement into the
-//! gap (docs/method.md §4, "Which normal the gap uses").
+//! A measurement, not a test: with the balanced pairs (the default), every side stays within
+//! 2.5 % of Hertz whatever the contrast, and within 1.4 % at θE*/a = 1e-3; with
+//! `forces = "own-side"` the soft curved body's tangential displacement leaks into the gap (docs/method.md
+//! §4, "Which normal the gap uses, and balanced forces").
 //!
 //! Run: `cargo run --release --example hertz_contrast`
 

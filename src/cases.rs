@@ -69,6 +69,7 @@ pub fn top_bottom(name: &str, a: usize, b: usize, c: f64, h: f64) -> ContactPair
         penalty: Penalty::RodModel { c, h },
         profile: None,
         enforcement: Enforcement::Penalty,
+        forces: Default::default(),
     }
 }
 

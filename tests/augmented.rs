@@ -6,7 +6,7 @@
 use contactdd::cases;
 use contactdd::ddm::benchmark::Notch;
 use contactdd::ddm::solution::PairResult;
-use contactdd::ddm::{prepare, solve, Enforcement, Hooks, Model, Settings, Solution, Stop};
+use contactdd::ddm::{prepare, solve, Enforcement, Forces, Hooks, Model, Settings, Solution, Stop};
 
 fn run(model: &Model, settings: &Settings) -> Solution {
     let prepared = prepare(model).unwrap();
@@ -141,12 +141,16 @@ fn exact_mode_opens_the_recess_of_two_half_planes() {
     }
 }
 
-/// Non-matching meshes: both sides' nodes cannot all close exactly, so a tight gap tolerance is
-/// out of reach; the run says so instead of reporting a solution, and returns its last consistent
-/// state (fields and pressures of one inner solve, in equilibrium).
+/// Non-matching meshes with the own-side formulation: both sides' nodes cannot all close
+/// exactly, so a tight gap tolerance is out of reach; the run says so instead of reporting a
+/// solution, and returns its last consistent state (fields and pressures of one inner solve, in
+/// equilibrium).
 #[test]
 fn an_exact_contact_out_of_reach_is_reported() {
-    let model = augmented(cases::non_matching_notch(0.05));
+    let mut model = augmented(cases::non_matching_notch(0.05));
+    for pair in &mut model.pairs {
+        pair.forces = Forces::OwnSide;
+    }
     let settings = Settings {
         gap_tol: Some(1e-14),
         ..Settings::default()
@@ -164,6 +168,22 @@ fn an_exact_contact_out_of_reach_is_reported() {
         "{:?}",
         sol.equilibrium
     );
+}
+
+/// The same non-matching notch with balanced forces (the default): only the reference side's
+/// points enforce the contact, so the tight gap tolerance is reached.
+#[test]
+fn balanced_pairs_reach_exact_contact_on_non_matching_meshes() {
+    let model = augmented(cases::non_matching_notch(0.05));
+    let settings = Settings {
+        gap_tol: Some(1e-14),
+        ..Settings::default()
+    };
+    let sol = run(&model, &settings);
+    assert!(sol.converged, "{:?}", sol.message);
+    let pair = &sol.contact[0];
+    let (a, b) = (pair.force_on(0), pair.force_on(1));
+    assert!((a[0] + b[0]).hypot(a[1] + b[1]) <= 1e-10 * a[0].hypot(a[1]));
 }
 
 /// The monolithic reference in augmented mode (plain Uzawa updates around its own Newton solver)

@@ -1,7 +1,8 @@
 //! `examples/cylinder_plates.toml`: a cylinder between two plates (three bodies in one Gmsh
 //! file, P2, two curved non-matching contacts) in five load steps, against Hertz: at every step
 //! the contact half-width of each side of each pair, a = sqrt(4 P R / (π E*)) for the load P of
-//! the step, and the lower plate's equilibrium with its support.
+//! the step, the lower plate's equilibrium with its support and its reaction against the applied
+//! load (1e-8), and every pair's force balance.
 
 use contactdd::ddm::solution::PairResult;
 use contactdd::ddm::steps::solve_steps;
@@ -75,11 +76,26 @@ fn every_load_step_matches_hertz() {
             residual <= 1e-8 * P * factor,
             "factor {factor}: residual {residual:e}"
         );
-        // Against the applied load, the two sides of each non-matching pair integrate their own
-        // pressures: they agree to the 1 % that tests/examples.rs allows such pairs.
+        // The pairs are balanced (the default forces): the lower plate's support carries the
+        // applied load, and every pair's two sides carry equal and opposite forces with no
+        // tangential resultant on this symmetric problem.
         assert!(
-            (support[1] - P * factor).abs() <= 1e-2 * P * factor,
+            (support[1] - P * factor).abs() <= 1e-8 * P * factor,
             "factor {factor}: reaction {support:?}"
         );
+        for pair in &sol.contact {
+            let (a, b) = (pair.force_on(0), pair.force_on(1));
+            let imbalance = (a[0] + b[0]).hypot(a[1] + b[1]);
+            assert!(
+                imbalance <= 1e-10 * P * factor,
+                "{}: {a:?} {b:?}",
+                pair.name
+            );
+            assert!(
+                a[0].abs() <= 1e-10 * P * factor,
+                "{}: tangential {a:?}",
+                pair.name
+            );
+        }
     }
 }

@@ -36,6 +36,7 @@ fn strips(n: usize) -> Model {
             penalty: Penalty::RodModel { c: 0.5, h: 1.0 },
             profile: None,
             enforcement: Enforcement::Penalty,
+            forces: Default::default(),
         }],
     }
 }

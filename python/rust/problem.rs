@@ -20,8 +20,8 @@ use contactdd_core::gmsh::parse_msh_surface;
 use contactdd_core::{Material, Mesh, Order, Plane, Vector, DIM};
 use contactdd_ddm::{Gamma, Method, Model, Settings, SetupError};
 use contactdd_io::problem::{
-    AcceleratorSpec, BodySpec, CoarseSpec, ContactSpec, EnforcementSpec, GammaSpec, GapSpec,
-    MaterialSpec, MeshSpec, PenaltySpec, Problem as ProblemSpec, SolverSpec,
+    AcceleratorSpec, BodySpec, CoarseSpec, ContactSpec, EnforcementSpec, ForcesSpec, GammaSpec,
+    GapSpec, MaterialSpec, MeshSpec, PenaltySpec, Problem as ProblemSpec, SolverSpec,
 };
 use contactdd_io::setup::{self, ModelBuilder};
 use contactdd_io::write_problem;
@@ -630,7 +630,9 @@ impl Problem {
     ///     name: pair name (default ``"<body0>-<body1>"``).
     ///     enforcement: ``"penalty"`` (the paper's formulation, the default) or ``"augmented"``
     ///         (augmented Lagrangian: the exact unilateral contact for any penalty).
-    #[pyo3(signature = (bodies, boundaries, c = None, h = None, theta = None, gap = None, name = None, enforcement = None))]
+    ///     forces: ``"balanced"`` (the default: the two sides receive equal and opposite forces)
+    ///         or ``"own-side"`` (the paper's formulation: each side loaded by its own points).
+    #[pyo3(signature = (bodies, boundaries, c = None, h = None, theta = None, gap = None, name = None, enforcement = None, forces = None))]
     #[allow(clippy::too_many_arguments)]
     fn add_contact(
         &mut self,
@@ -642,6 +644,7 @@ impl Problem {
         gap: Option<&Bound<'_, PyAny>>,
         name: Option<String>,
         enforcement: Option<&Bound<'_, PyAny>>,
+        forces: Option<&Bound<'_, PyAny>>,
     ) -> PyResult<()> {
         let mut spec = ContactSpec {
             name,
@@ -650,7 +653,17 @@ impl Problem {
             penalty: PenaltySpec { c, h, theta },
             gap: None,
             enforcement: None,
+            forces: None,
         };
+        if let Some(f) = forces.filter(|f| !f.is_none()) {
+            let f: ForcesSpec = parse(f, "forces")?.map_err(|message| {
+                setup_error(SetupError::Pair {
+                    pair: spec.pair_name(),
+                    message,
+                })
+            })?;
+            spec.forces = Some(f);
+        }
         if let Some(e) = enforcement.filter(|e| !e.is_none()) {
             let e: EnforcementSpec = parse(e, "enforcement")?.map_err(|message| {
                 setup_error(SetupError::Pair {

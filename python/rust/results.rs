@@ -234,8 +234,8 @@ pub struct Contact {
     /// ``(k, 2)`` outward unit normal of each point.
     #[pyo3(get)]
     normal: Py<PyAny>,
-    /// Total contact force on each side, ``((fx, fy), (fx, fy))``: Σ w σ_n n over the side's
-    /// points (the force the other body exerts).
+    /// Total contact force on each side, ``((fx, fy), (fx, fy))``: the sum of the side's nodal
+    /// contact forces (the force the other body exerts; Σ w σ_n n for an own-side pair).
     #[pyo3(get)]
     forces: ((f64, f64), (f64, f64)),
     /// The largest penetration max (s − d)⁺ (a length; 0 for exact contact).

@@ -130,7 +130,7 @@ fn pair_text(model: &Model, p: usize, interface: &Interface) -> String {
         let points: Vec<_> = interface
             .points
             .iter()
-            .filter(|q| q.pair == p && q.body == pair.bodies[side])
+            .filter(|q| q.is_contact() && q.pair == p && q.body == pair.bodies[side])
             .collect();
         let partnered: Vec<_> = points.iter().filter(|q| q.has_partner()).collect();
         let min_gap = partnered

@@ -186,12 +186,17 @@ fn inner_solve(
     outcome
 }
 
-/// The points of `interface` whose pair uses the augmented Lagrangian (and that have a partner).
+/// The points of `interface` whose pair uses the augmented Lagrangian (and that have a partner
+/// and carry their pressure).
 pub(crate) fn augmented_points(model: &Model, interface: &Interface) -> Vec<bool> {
     interface
         .points
         .iter()
-        .map(|p| p.has_partner() && model.pairs[p.pair].enforcement == Enforcement::Augmented)
+        .map(|p| {
+            p.carries()
+                && p.has_partner()
+                && model.pairs[p.pair].enforcement == Enforcement::Augmented
+        })
         .collect()
 }
 

@@ -141,6 +141,7 @@ impl Notch {
                     along: Along::X,
                 }),
                 enforcement: Enforcement::Penalty,
+                forces: Default::default(),
             }],
         })
     }

@@ -226,7 +226,7 @@ impl FloatingModes {
         for (j, p) in interface.points.iter().enumerate() {
             let du = self.own_shift(j, &c);
             un[j] += du;
-            t[j] += p.weight / p.theta * du;
+            t[j] += p.spring * du;
         }
         steps
     }
@@ -251,13 +251,16 @@ impl FloatingModes {
     fn residual(&self, interface: &Interface, s: &[f64], c: &[f64]) -> Vec<f64> {
         let mut f = self.load.clone();
         for (j, p) in interface.points.iter().enumerate() {
-            let r = self.range[p.body].clone();
-            if r.is_empty() {
+            if !p.has_partner() {
                 continue;
             }
             let force = p.weight * p.pressure(s[j] + self.shift(interface, j, c));
-            for (q, &rho) in r.zip(&self.rho[j]) {
-                f[q] += force * rho;
+            // The point's force on every unknown it loads (its own alone for an own-side point).
+            for (u, a) in p.load_row(j) {
+                let r = self.range[self.body[u]].clone();
+                for (q, &rho) in r.zip(&self.rho[u]) {
+                    f[q] += a * force * rho;
+                }
             }
         }
         f
@@ -317,15 +320,21 @@ impl FloatingModes {
             .enumerate()
             .map(|(j, p)| p.overlap(s[j] + self.shift(interface, j, c)) < 0.0)
             .collect();
+        // A body is held once a closed point loads it (its own, or a carrier facing it).
         let mut any_closed = vec![false; self.range.len()];
         for (j, p) in interface.points.iter().enumerate() {
-            any_closed[p.body] |= closed[j];
+            for (u, _) in p.load_row(j) {
+                any_closed[self.body[u]] |= closed[j];
+            }
         }
         let mut jac = Mat::<f64>::zeros(n, n);
         for (j, p) in interface.points.iter().enumerate() {
-            let rows = self.range[p.body].clone();
-            let used = closed[j] || (!any_closed[p.body] && p.has_partner());
-            if rows.is_empty() || !used {
+            let loose = p
+                .load_row(j)
+                .iter()
+                .any(|&(u, _)| !any_closed[self.body[u]]);
+            let used = closed[j] || (loose && p.has_partner());
+            if !used {
                 continue;
             }
             let k = p.weight / p.theta;
@@ -338,9 +347,12 @@ impl FloatingModes {
                 let cols = self.range[self.body[pk]].clone();
                 grad.extend(cols.zip(self.rho[pk].iter().map(|r| ck * r)));
             }
-            for (row, &rho) in rows.zip(&self.rho[j]) {
-                for &(col, g) in &grad {
-                    jac[(row, col)] -= k * rho * g;
+            for (u, a) in p.load_row(j) {
+                let rows = self.range[self.body[u]].clone();
+                for (row, &rho) in rows.zip(&self.rho[u]) {
+                    for &(col, g) in &grad {
+                        jac[(row, col)] -= a * k * rho * g;
+                    }
                 }
             }
         }

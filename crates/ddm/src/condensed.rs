@@ -201,7 +201,7 @@ impl<'a> Analysed<'a> {
     ) -> Result<Analysed<'a>, BodyError> {
         let nodes: Vec<usize> = points.iter().map(|p| p.node).collect();
         let normals: Vec<Vector> = points.iter().map(|p| p.normal).collect();
-        let d0: Vec<f64> = points.iter().map(|p| p.weight / p.theta).collect();
+        let d0: Vec<f64> = points.iter().map(|p| p.spring).collect();
         let springs: Vec<(usize, Vector)> =
             nodes.iter().copied().zip(normals.iter().copied()).collect();
         body.check_held(&springs)?;

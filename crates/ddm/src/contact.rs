@@ -46,13 +46,60 @@ pub struct ContactPoint {
     pub multiplier: f64,
     /// Interpolation of the partner's normal displacement at the projection: (global point index,
     /// coefficient). Empty if the normal ray misses the partner boundary (the point stays open).
+    /// For a balanced pair the partner's displacement is read along this point's normal, through
+    /// the partner's normal and tangential unknowns ([`crate::balance`]).
     pub partner: Vec<(usize, f64)>,
+    /// The reference spring D₀ of this interface unknown: w/θ, or for a balanced pair the lumped
+    /// penalty stiffness of the pressures that load it.
+    pub spring: f64,
+    /// What the unknown is and how its point's pressure loads the bodies.
+    pub role: Role,
+}
+
+/// The role of an interface unknown.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Role {
+    /// A contact point whose pressure loads its own node along its own normal (the paper's
+    /// formulation, and every pair whose sides match node for node).
+    OwnSide,
+    /// A contact point of the reference side of a balanced pair: its pressure acts on its own
+    /// node and, with the opposite sign, on the partner's nodes through its gap's coefficients.
+    Carrier,
+    /// A contact point of the other side of a balanced pair: the carriers' pressures load it; its
+    /// own gap only sets its Robin coefficient and is reported.
+    Follower,
+    /// The tangential displacement of a contact node of a balanced pair (`normal` is the tangent):
+    /// it has no gap or pressure of its own, and carries the tangential part of the gaps and
+    /// forces.
+    Tangent,
 }
 
 impl ContactPoint {
     /// True if the point has a partner (can close).
     pub fn has_partner(&self) -> bool {
         !self.partner.is_empty()
+    }
+
+    /// True for a contact point (not a tangential unknown).
+    pub fn is_contact(&self) -> bool {
+        self.role != Role::Tangent
+    }
+
+    /// True for a point whose own pressure loads the bodies (own-side or carrier).
+    pub fn carries(&self) -> bool {
+        matches!(self.role, Role::OwnSide | Role::Carrier)
+    }
+
+    /// The unknowns that point `j` (this point) loads, with the share of its nodal force w σ_n
+    /// each receives: itself for an own-side point; its gap's row for a carrier; nothing else.
+    pub fn load_row(&self, j: usize) -> Vec<(usize, f64)> {
+        match self.role {
+            Role::OwnSide => vec![(j, 1.0)],
+            Role::Carrier => std::iter::once((j, 1.0))
+                .chain(self.partner.iter().copied())
+                .collect(),
+            Role::Follower | Role::Tangent => Vec::new(),
+        }
     }
 
     /// The gap the penalty acts on: d − θλ (d itself for the penalty formulation, λ = 0).
@@ -86,6 +133,9 @@ pub struct Interface {
     pub points: Vec<ContactPoint>,
     /// Index range of each body's points.
     pub body_range: Vec<Range<usize>>,
+    /// Per unknown q, the points whose pressure loads it and their shares a: the contact force
+    /// along q is F_q = Σ a w_j σ_n,j (the transpose of [`ContactPoint::load_row`]).
+    pub carried: Vec<Vec<(usize, f64)>>,
 }
 
 impl Interface {
@@ -98,6 +148,8 @@ impl Interface {
             nodes: Vec<usize>,
             normals: Vec<Vector>,
             weights: Vec<f64>,
+            /// Balanced pairs: the dual mortar integrals per node (`crate::mortar`).
+            mortar: HashMap<usize, crate::mortar::Integrals>,
         }
         let mut sides = Vec::new();
         // The contact boundary of every (pair, side), indexed for the projections.
@@ -123,12 +175,19 @@ impl Interface {
             for s in 0..2 {
                 let (b, mesh, edges) = zone[s];
                 let (nodes, normals, weights) = nodal_quadrature(mesh, edges, &index[1 - s]);
+                let mortar = if pair.forces == crate::model::Forces::Balanced {
+                    let profile = |x| pair.profile.as_ref().map_or(0.0, |p| p.at(x));
+                    crate::mortar::dual_integrals(mesh, edges, &index[1 - s], &profile)
+                } else {
+                    HashMap::new()
+                };
                 sides.push(Side {
                     body: b,
                     pair: p,
                     nodes,
                     normals,
                     weights,
+                    mortar,
                 });
             }
             boundaries.extend(index);
@@ -149,6 +208,9 @@ impl Interface {
             body_range[b] = start..next;
         }
         let mut points: Vec<Option<ContactPoint>> = vec![None; next];
+        // Per point, the length of its ray to the partner, and its dual mortar coefficients.
+        let mut hits: Vec<Option<f64>> = vec![None; next];
+        let mut mortar: Vec<Option<crate::balance::Mortar>> = vec![None; next];
         for (i, side) in sides.iter().enumerate() {
             let pair = &model.pairs[side.pair];
             let other = i ^ 1; // sides come in pairs (2p, 2p + 1)
@@ -172,15 +234,22 @@ impl Interface {
                 let n = side.normals[k];
                 let hit = boundaries[other].project(x, n);
                 let (gap, partner) = match hit {
-                    Some((t, coeffs)) => (
-                        t,
-                        coeffs
-                            .into_iter()
-                            .filter_map(|(node, c)| partner_index.get(&node).map(|&g| (g, c)))
-                            .collect(),
-                    ),
+                    Some((t, coeffs)) => {
+                        hits[offset[i] + k] = Some(t);
+                        (
+                            t,
+                            coeffs
+                                .into_iter()
+                                .filter_map(|(node, c)| partner_index.get(&node).map(|&g| (g, c)))
+                                .collect(),
+                        )
+                    }
                     None => (f64::INFINITY, Vec::new()),
                 };
+                mortar[offset[i] + k] = side
+                    .mortar
+                    .get(&v)
+                    .and_then(|node| normalised(node, &partner_index));
                 let profile = pair.profile.as_ref().map_or(0.0, |p| p.at(x));
                 points[offset[i] + k] = Some(ContactPoint {
                     body: side.body,
@@ -192,13 +261,48 @@ impl Interface {
                     theta,
                     multiplier: 0.0,
                     partner,
+                    spring: a_spring(side.weights[k], theta),
+                    role: Role::OwnSide,
                 });
             }
         }
+        let points: Vec<ContactPoint> = points.into_iter().flatten().collect();
+        let pairs: Vec<(bool, usize)> = model
+            .pairs
+            .iter()
+            .map(|p| (p.forces == crate::model::Forces::Balanced, p.bodies[0]))
+            .collect();
+        let (points, body_range) =
+            crate::balance::balance(points, body_range, &hits, &mortar, &pairs);
+        let carried = carried(&points);
         Ok(Interface {
-            points: points.into_iter().flatten().collect(),
+            points,
             body_range,
+            carried,
         })
+    }
+
+    /// The contact pressure σ_n ≤ 0 at point j for the pair sums `s`: its penalty pressure where
+    /// it carries; for a follower the traction of the carriers' forces on its node, F_j/w_j (0
+    /// where it has no weight or no partner).
+    pub fn pressure(&self, j: usize, s: &[f64]) -> f64 {
+        let p = &self.points[j];
+        match p.role {
+            Role::Follower if p.weight > 0.0 && p.has_partner() => self.force(j, s) / p.weight,
+            Role::Follower | Role::Tangent => 0.0,
+            Role::OwnSide | Role::Carrier => p.pressure(s[j]),
+        }
+    }
+
+    /// The contact force along unknown q for the pair sums `s`: F_q = Σ a w_j σ_n,j.
+    pub fn force(&self, q: usize, s: &[f64]) -> f64 {
+        self.carried[q]
+            .iter()
+            .map(|&(j, a)| {
+                let p = &self.points[j];
+                a * (p.weight * p.pressure(s[j]))
+            })
+            .sum()
     }
 
     /// The points of body `b`.
@@ -222,6 +326,53 @@ impl Interface {
             out[j] = un[j] + p.partner.iter().map(|&(k, c)| c * un[k]).sum::<f64>();
         }
     }
+}
+
+/// The mortar integrals of one point normalised by ∫ ψ: the coefficients over the partner's
+/// points (they sum to 1, which makes the gap invariant under a joint translation), in point
+/// order, with the weighted ray vector and profile; `None` where ∫ ψ is not a positive share of
+/// the point.
+fn normalised(
+    node: &crate::mortar::Integrals,
+    partner_index: &HashMap<usize, usize>,
+) -> Option<crate::balance::Mortar> {
+    let mut out: Vec<(usize, f64)> = node
+        .coupling
+        .iter()
+        .filter_map(|(node, &c)| partner_index.get(node).map(|&g| (g, c)))
+        .collect();
+    out.sort_by_key(|e| e.0);
+    let total: f64 = out.iter().map(|e| e.1).sum();
+    let size: f64 = out.iter().map(|e| e.1.abs()).sum();
+    // Also refuses NaN.
+    if total.is_nan() || total <= 1e-9 * size {
+        return None;
+    }
+    Some(crate::balance::Mortar {
+        coefficients: out.into_iter().map(|(g, c)| (g, c / total)).collect(),
+        ray: [node.ray[0] / total, node.ray[1] / total],
+        profile: node.profile / total,
+    })
+}
+
+/// The reference spring w/θ of an own-side point.
+fn a_spring(weight: f64, theta: f64) -> f64 {
+    weight / theta
+}
+
+/// Per unknown, the points that load it with their shares (see [`Interface::carried`]).
+pub(crate) fn carried(points: &[ContactPoint]) -> Vec<Vec<(usize, f64)>> {
+    let mut out = vec![Vec::new(); points.len()];
+    for (j, p) in points.iter().enumerate() {
+        for (q, a) in p.load_row(j) {
+            // A row may name its own unknown twice (the implicit 1 and a correction): one share.
+            match out[q].last_mut() {
+                Some((i, b)) if *i == j => *b += a,
+                _ => out[q].push((j, a)),
+            }
+        }
+    }
+    out
 }
 
 /// Nodes of a boundary with their nodal normals and quadrature weights.
@@ -426,6 +577,52 @@ impl<'m> EdgeIndex<'m> {
                 _ => r *= 2.0,
             }
         }
+    }
+}
+
+impl EdgeIndex<'_> {
+    /// Where the vertices of the partner edges facing the edge a → b (outward normal `n`) project
+    /// onto its line, as parameters t of a + t (b − a): the breakpoints of the partner's shape
+    /// functions along the edge. Searched in the band the edge sweeps along n out to its rays'
+    /// hits, widened by its length; empty if no ray from it hits.
+    pub(crate) fn vertices_facing(&self, a: Point, b: Point, n: Vector) -> Vec<f64> {
+        let mid = [0.5 * (a[0] + b[0]), 0.5 * (a[1] + b[1])];
+        let reach: Vec<f64> = [a, mid, b]
+            .iter()
+            .filter_map(|&x| self.project(x, n).map(|h| h.0))
+            .collect();
+        if reach.is_empty() {
+            return Vec::new();
+        }
+        let len = dist(a, b);
+        let lo = reach.iter().fold(f64::INFINITY, |m, &t| m.min(t)) - len;
+        let hi = reach.iter().fold(f64::NEG_INFINITY, |m, &t| m.max(t)) + len;
+        let corners = [a, b].map(|x| [lo, hi].map(|s| [x[0] + s * n[0], x[1] + s * n[1]]));
+        let all = corners.iter().flatten();
+        let (mut min, mut max) = ([f64::INFINITY; DIM], [f64::NEG_INFINITY; DIM]);
+        for x in all {
+            for c in 0..DIM {
+                min[c] = min[c].min(x[c]);
+                max[c] = max[c].max(x[c]);
+            }
+        }
+        let dir: Vector = [b[0] - a[0], b[1] - a[1]];
+        let dd = dot(dir, dir);
+        let p = self.mesh.nodes();
+        let mut out = Vec::new();
+        for g in self
+            .tree
+            .locate_in_envelope_intersecting(&AABB::from_corners(min, max))
+        {
+            let e = &self.edges[g.data];
+            if dot(self.mesh.edge_normal(e).0, n) >= -1e-3 {
+                continue;
+            }
+            for v in [e.a, e.b] {
+                out.push(dot([p[v][0] - a[0], p[v][1] - a[1]], dir) / dd);
+            }
+        }
+        out
     }
 }
 

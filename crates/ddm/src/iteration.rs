@@ -14,12 +14,13 @@
 //!
 //! `docs/two-level.md` describes the accelerated two-level iteration, the default.
 
+use std::ops::Range;
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::Instant;
 
 use crate::anderson::Anderson;
 pub use crate::coarse::CoarseMode;
-use crate::contact::Interface;
+use crate::contact::{Interface, Role};
 use crate::exchange::share_slices;
 use crate::method::Method;
 use crate::relaxation::{Gamma, Relaxation};
@@ -283,14 +284,15 @@ impl State {
         for (b, body) in prepared.bodies.iter().enumerate() {
             let Some(body) = body else { continue };
             let range = interface.body_range[b].clone();
-            let (u_b, t_b) = body.initial_state(&vec![settings.u0; body.len()]);
+            let u0 = starting_values(interface, range.clone(), settings.u0);
+            let (u_b, t_b) = body.initial_state(&u0);
             t[range.clone()].copy_from_slice(&t_b);
             u[range].copy_from_slice(&u_b);
         }
         share_slices(&*prepared.exchange, &interface.body_range, &mut t);
         share_slices(&*prepared.exchange, &interface.body_range, &mut u);
         let mut state = State {
-            u_prev: vec![settings.u_prev; m],
+            u_prev: starting_values(interface, 0..m, settings.u_prev),
             u,
             s_prev: vec![0.0; m],
             s: vec![0.0; m],
@@ -308,6 +310,15 @@ impl State {
         std::mem::swap(&mut self.s_prev, &mut self.s);
         std::mem::swap(&mut self.s, s);
     }
+}
+
+/// The starting value `value` of the normal displacements of the points in `range`, and 0 for the
+/// tangential unknowns of balanced pairs (the paper's u⁰ is a normal approach).
+pub(crate) fn starting_values(interface: &Interface, range: Range<usize>, value: f64) -> Vec<f64> {
+    interface.points[range]
+        .iter()
+        .map(|p| if p.is_contact() { value } else { 0.0 })
+        .collect()
 }
 
 /// Per body: ‖a − b‖/‖a‖ over its points (‖a − b‖ if a = 0).
@@ -348,7 +359,8 @@ fn first_breakdown(
     })
 }
 
-/// Closed points and total normal contact force Σ w |σ_n| per body for the pair sums `s`.
+/// Closed points and total normal contact force Σ w |σ_n| per body for the pair sums `s` (on the
+/// following side of a balanced pair, Σ |F| of its nodal forces).
 pub(crate) fn contact_summary(
     interface: &Interface,
     s: &[f64],
@@ -358,7 +370,11 @@ pub(crate) fn contact_summary(
     for (j, p) in interface.points.iter().enumerate() {
         if p.overlap(s[j]) < 0.0 {
             active[p.body] += 1;
+        }
+        if p.carries() && p.overlap(s[j]) < 0.0 {
             force[p.body] -= p.weight * p.pressure(s[j]);
+        } else if p.role == Role::Follower {
+            force[p.body] += interface.force(j, s).abs();
         }
     }
     (active, force)

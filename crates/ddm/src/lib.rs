@@ -12,6 +12,7 @@
 
 pub mod anderson;
 pub mod augmented;
+pub mod balance;
 pub mod benchmark;
 pub mod coarse;
 pub mod condensed;
@@ -23,6 +24,7 @@ pub mod iteration;
 pub mod method;
 pub mod model;
 pub mod monolithic;
+mod mortar;
 pub mod newton;
 pub mod profile;
 pub mod relaxation;
@@ -37,7 +39,7 @@ pub use condensed::Condensation;
 pub use error::SetupError;
 pub use iteration::{Accelerator, CoarseMode, Hooks, Record, Settings, Stop};
 pub use method::Method;
-pub use model::{ContactPair, Enforcement, Model, Penalty};
+pub use model::{ContactPair, Enforcement, Forces, Model, Penalty};
 pub use monolithic::{solve_monolithic, MonolithicSolution};
 pub use profile::GapProfile;
 pub use relaxation::Gamma;

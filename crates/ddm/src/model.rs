@@ -54,6 +54,30 @@ impl std::fmt::Display for Enforcement {
     }
 }
 
+/// How a contact pair's pressure loads its two bodies (docs/method.md §4, "Which normal the gap
+/// uses").
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Forces {
+    /// Both sides read the gap along the normals of the flatter side, whose pressure loads both
+    /// bodies with equal and opposite forces (dual mortar coefficients): the pair's forces
+    /// balance on non-matching and curved zones. A pair whose sides match node for node on a
+    /// flat zone is the same discrete problem as `OwnSide` and keeps its arithmetic.
+    #[default]
+    Balanced,
+    /// The paper's formulation: each side is loaded only by its own points' pressure along its own
+    /// normal, with the partner's displacement read along the partner's normal.
+    OwnSide,
+}
+
+impl std::fmt::Display for Forces {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(match self {
+            Forces::Balanced => "balanced",
+            Forces::OwnSide => "own-side",
+        })
+    }
+}
+
 /// A contact pair: boundary `boundaries[0]` of body `bodies[0]` may touch boundary
 /// `boundaries[1]` of body `bodies[1]`.
 #[derive(Clone, Debug, PartialEq)]
@@ -70,6 +94,8 @@ pub struct ContactPair {
     pub profile: Option<GapProfile>,
     /// Penalty (the default) or augmented Lagrangian.
     pub enforcement: Enforcement,
+    /// How the pressure loads the two bodies.
+    pub forces: Forces,
 }
 
 /// Bodies and contact pairs.

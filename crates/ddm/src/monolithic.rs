@@ -425,19 +425,25 @@ fn newton(
 }
 
 /// The points treated as closed in J: the closed points, and for a body with free rigid modes
-/// that has no closed point, its partnered points of smallest gap d − s (it moves until they
+/// that no closed point loads, the partnered points loading it of smallest gap d − s (it moves until they
 /// touch, instead of being held still; closing every partnered point would glue it on across
 /// gaps of any size and cost the line search many short steps).
 fn jacobian_set(system: &System, modes: &[Mode], eval: &Evaluation) -> Vec<bool> {
     let points = &system.interface.points;
     let mut chi = eval.closed.clone();
     for (b, range) in system.interface.body_range.iter().enumerate() {
+        // The points whose pressure loads the body: its own, or the carriers facing it.
+        let mut loaders: Vec<usize> = range
+            .clone()
+            .flat_map(|q| system.interface.carried[q].iter().map(|&(j, _)| j))
+            .collect();
+        loaders.dedup();
         let floating = modes.iter().any(|m| m.body == b);
-        if !floating || chi[range.clone()].iter().any(|&c| c) {
+        if !floating || loaders.iter().any(|&j| chi[j]) {
             continue;
         }
         let gap = |j: usize| points[j].penalty_gap() - eval.s[j];
-        let partnered = range.clone().filter(|&j| points[j].has_partner());
+        let partnered = loaders.iter().copied().filter(|&j| points[j].has_partner());
         let Some(least) = partnered.clone().map(gap).min_by(f64::total_cmp) else {
             continue;
         };

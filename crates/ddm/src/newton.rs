@@ -48,9 +48,11 @@ use nalgebra::{DMatrix, SymmetricEigen};
 use rayon::prelude::*;
 
 use crate::condensed::CondensedBody;
-use crate::contact::Interface;
+use crate::contact::{Interface, Role};
 use crate::exchange::{share_matrices, share_slices, Exchange};
-use crate::iteration::{contact_summary, relative_change, Hooks, Outcome, Record, Settings, Stop};
+use crate::iteration::{
+    contact_summary, relative_change, starting_values, Hooks, Outcome, Record, Settings, Stop,
+};
 use crate::robin_sweep::Breakdown;
 use crate::solver::Prepared;
 
@@ -115,6 +117,9 @@ struct System<'a> {
     rho: Vec<f64>,
     /// Points with zero quadrature weight (D₀ = 0): they carry no force, and τ_j = 0.
     weightless: Vec<bool>,
+    /// Unknowns of balanced pairs: their contact force gathers the pressures of several points
+    /// (`Interface::carried`), and their points close where s > d (ρ = 1).
+    balanced: Vec<bool>,
     /// The sparse LU kept between steps (sparse path only).
     lu: Mutex<LuCache>,
 }
@@ -171,7 +176,12 @@ impl<'a> System<'a> {
             }
         }
         share_slices(exchange, &interface.body_range, &mut d0);
-        let rho = response
+        let balanced: Vec<bool> = interface
+            .points
+            .iter()
+            .map(|p| p.role != Role::OwnSide)
+            .collect();
+        let rho: Vec<f64> = response
             .iter()
             .zip(&prepared.bodies)
             .enumerate()
@@ -184,6 +194,8 @@ impl<'a> System<'a> {
                 }),
                 (None, None) => vec![1.0; interface.body_range[b].len()],
             })
+            .zip(&balanced)
+            .map(|(r, &b)| if b { 1.0 } else { r })
             .collect();
         let mut next = interface.len() + modes_bound(mode_range);
         let sparse_offset = prepared
@@ -208,6 +220,7 @@ impl<'a> System<'a> {
             body_of: interface.points.iter().map(|p| p.body).collect(),
             rho,
             weightless: d0.iter().map(|&d| d == 0.0).collect(),
+            balanced,
             d0,
             lu: Mutex::new(LuCache::default()),
         }
@@ -263,6 +276,10 @@ impl<'a> System<'a> {
                 if self.weightless[j] || !p.has_partner() {
                     return false;
                 }
+                if self.balanced[j] {
+                    // Only carriers' pressures act; a follower's own gap is a reading.
+                    return p.carries() && s[j] > p.penalty_gap();
+                }
                 let q = u[j] - tau[j];
                 q + self.rho[j] * (s[j] - p.penalty_gap() - q) > 0.0
             })
@@ -271,6 +288,16 @@ impl<'a> System<'a> {
             .map(|j| {
                 if self.weightless[j] {
                     tau[j]
+                } else if self.balanced[j] {
+                    let force: f64 = self.interface.carried[j]
+                        .iter()
+                        .filter(|&&(i, _)| closed[i])
+                        .map(|&(i, a)| {
+                            let p = &points[i];
+                            a * (p.weight / p.theta) * (p.penalty_gap() - s[i])
+                        })
+                        .sum();
+                    tau[j] - u[j] - force / self.d0[j]
                 } else if closed[j] {
                     tau[j] - u[j] - (points[j].penalty_gap() - s[j])
                 } else {
@@ -286,15 +313,22 @@ impl<'a> System<'a> {
         tau.iter().zip(&self.d0).map(|(t, d)| t * d).collect()
     }
 
-    /// The points treated as closed in J: the closed points, and every partnered point of a
-    /// floating body that has no closed point.
+    /// The points treated as closed in J: the closed points, and every partnered point that loads
+    /// a floating body none of whose loading points is closed.
     fn jacobian_set(&self, eval: &Evaluation) -> Vec<bool> {
         let points = &self.interface.points;
         let mut chi = eval.closed.clone();
         for b in 0..self.bodies.len() {
-            let range = self.range(b);
-            if !self.mode_range[b].is_empty() && !chi[range.clone()].iter().any(|&c| c) {
-                for j in range {
+            if self.mode_range[b].is_empty() {
+                continue;
+            }
+            // The points whose pressure loads the body: its own, or the carriers facing it.
+            let loaders: Vec<usize> = self
+                .range(b)
+                .flat_map(|q| self.interface.carried[q].iter().map(|&(j, _)| j))
+                .collect();
+            if !loaders.iter().any(|&j| chi[j]) {
+                for j in loaders {
                     chi[j] = points[j].has_partner();
                 }
             }
@@ -393,7 +427,10 @@ impl<'a> System<'a> {
             if self.weightless[j] {
                 continue;
             }
-            if first_sparse.is_some() && p.has_partner() {
+            if self.balanced[j] {
+                let combination = self.balanced_row(j, chi, first_sparse.is_some());
+                self.push_rows(&mut trip, j, &combination);
+            } else if first_sparse.is_some() && p.has_partner() {
                 // Both the closed and the open entries (one set zero): the pattern, and with it
                 // the LU's symbolic analysis, stays the same while the closed set changes.
                 let closed = if chi[j] { 1.0 } else { 0.0 };
@@ -477,6 +514,13 @@ impl<'a> System<'a> {
         for (j, p) in self.interface.points.iter().enumerate() {
             let jd = if self.weightless[j] {
                 delta[j]
+            } else if self.balanced[j] {
+                delta[j]
+                    + self
+                        .balanced_row(j, chi, false)
+                        .iter()
+                        .map(|&(k, c)| c * bd[k])
+                        .sum::<f64>()
             } else if chi[j] {
                 delta[j] + p.partner.iter().map(|&(k, c)| c * bd[k]).sum::<f64>()
             } else {
@@ -493,6 +537,58 @@ impl<'a> System<'a> {
             res[(m + q, 0)] = -delta[p];
         }
         Some(res)
+    }
+
+    /// Row q of J − I for an unknown of a balanced pair as a combination Σ c_k B_k· of rows of
+    /// B: −B_q·, plus for every closed point j that loads q with share a, g (B_j· + Σ c_jk B_k·)
+    /// with g = a (w_j/θ_j)/D₀_q. With `pattern`, the open points' entries too, as zeros (the
+    /// sparse LU's pattern then stays the same while the closed set changes).
+    fn balanced_row(&self, q: usize, chi: &[bool], pattern: bool) -> Vec<(usize, f64)> {
+        let mut row = vec![(q, -1.0)];
+        for &(j, a) in &self.interface.carried[q] {
+            let p = &self.interface.points[j];
+            if !p.has_partner() || !(chi[j] || pattern) {
+                continue;
+            }
+            let g = if chi[j] {
+                a * (p.weight / p.theta) / self.d0[q]
+            } else {
+                0.0
+            };
+            row.push((j, g));
+            row.extend(p.partner.iter().map(|&(k, c)| (k, g * c)));
+        }
+        row
+    }
+
+    /// Pushes Σ c·(row k of B) over `combination` into row j, summed per dense body first (a
+    /// balanced row combines many rows of the same bodies).
+    fn push_rows(
+        &self,
+        trip: &mut Vec<Triplet<usize, usize, f64>>,
+        j: usize,
+        combination: &[(usize, f64)],
+    ) {
+        let mut bodies: Vec<usize> = combination.iter().map(|&(k, _)| self.body_of[k]).collect();
+        bodies.sort_unstable();
+        bodies.dedup();
+        for b in bodies {
+            let terms = combination.iter().filter(|&&(k, _)| self.body_of[k] == b);
+            let Some(bm) = &self.response[b] else {
+                for &(k, c) in terms {
+                    self.push_row(trip, j, k, c);
+                }
+                continue;
+            };
+            let range = self.range(b);
+            let terms: Vec<(usize, f64)> = terms.map(|&(k, c)| (k - range.start, c)).collect();
+            for (i, col) in range.enumerate() {
+                let v: f64 = terms.iter().map(|&(local, c)| c * bm[(local, i)]).sum();
+                if v != 0.0 {
+                    trip.push(Triplet::new(j, col, v));
+                }
+            }
+        }
     }
 
     /// Pushes c·(row k of B) into row j: the entries B_k· over k's body; on the sparse path
@@ -720,7 +816,8 @@ impl<'s, 'a> Run<'s, 'a> {
             match (warm, body) {
                 (Some(warm), _) => t[range.clone()].copy_from_slice(&warm[range]),
                 (None, Some(body)) => {
-                    t[range].copy_from_slice(&body.initial_load(&vec![settings.u0; body.len()]))
+                    let u0 = starting_values(system.interface, range.clone(), settings.u0);
+                    t[range].copy_from_slice(&body.initial_load(&u0))
                 }
                 (None, None) => {}
             }

@@ -13,7 +13,7 @@
 use rayon::prelude::*;
 
 use crate::condensed::{CondensedBody, RobinCache};
-use crate::contact::Interface;
+use crate::contact::{Interface, Role};
 use crate::exchange::{share_outputs, Exchange};
 use crate::method::Method;
 
@@ -161,6 +161,10 @@ impl BodyInput<'_> {
     fn coefficients(&self, method: Method, scratch: &mut Scratch) {
         let points = &self.interface.points[self.start..self.start + self.un.len()];
         for (j, p) in points.iter().enumerate() {
+            if p.role != Role::OwnSide {
+                (scratch.phi[j], scratch.r[j]) = self.balanced(method, self.start + j);
+                continue;
+            }
             if !p.has_partner() {
                 // Never closes: φ = 0, no contact force.
                 (scratch.phi[j], scratch.r[j]) = (0.0, 0.0);
@@ -172,6 +176,32 @@ impl BodyInput<'_> {
             let kw = p.weight / p.theta;
             scratch.r[j] = kw * (scratch.phi[j] * self.un[j] + p.overlap(s));
         }
+    }
+}
+
+impl BodyInput<'_> {
+    /// φ and r of an unknown of a balanced pair: φ is the average of the Robin coefficients of the
+    /// points that load it, weighted like its reference spring D₀ = Σ |a| w_j/θ_j (the lumped
+    /// penalty stiffness; a carrier's own φ, as for an own-side point); its load is the contact
+    /// force F_q of the state, which gathers the pressures of those points.
+    fn balanced(&self, method: Method, q: usize) -> (f64, f64) {
+        let p = &self.interface.points[q];
+        let (mut force, mut spring) = (0.0, 0.0);
+        for &(i, a) in &self.interface.carried[q] {
+            let loader = &self.interface.points[i];
+            let k = loader.weight / loader.theta;
+            force += a * k * loader.overlap(self.s[i]);
+            if loader.has_partner() {
+                let phi = method.phi(loader.penalty_gap(), self.s[i], self.s_prev[i]);
+                spring += a.abs() * k * phi;
+            }
+        }
+        let phi = if p.spring > 0.0 {
+            (spring / p.spring).min(1.0)
+        } else {
+            0.0
+        };
+        (phi, phi * p.spring * self.un[q - self.start] + force)
     }
 }
 

@@ -45,9 +45,11 @@ pub struct PairResult {
     pub y: Vec<f64>,
     /// Gap after deformation d − s (negative = penetration of the penalty solution).
     pub gap: Vec<f64>,
-    /// Normal contact stress σ_n = (d − s)⁻/θ (≤ 0).
+    /// Normal contact stress σ_n = (d − s)⁻/θ (≤ 0); on the following side of a balanced pair the
+    /// traction of the nodal contact force, F/w.
     pub pressure: Vec<f64>,
-    /// True where closed: the pressure is not zero (d − s < 0 for the penalty formulation).
+    /// True where closed: the gap d − s is negative (where the penalty formulation has pressure;
+    /// on the following side of a balanced pair, its own gap).
     pub closed: Vec<bool>,
     /// Nodal quadrature weight of each point.
     pub weight: Vec<f64>,
@@ -55,6 +57,11 @@ pub struct PairResult {
     pub nx: Vec<f64>,
     /// Outward normal of each point (y component).
     pub ny: Vec<f64>,
+    /// The contact force on each point's node (x component): w σ_n n for an own-side pair; for a
+    /// balanced pair the node's share of the reference side's pressures (docs/method.md §4).
+    pub fx: Vec<f64>,
+    /// The contact force on each point's node (y component).
+    pub fy: Vec<f64>,
 }
 
 impl PairResult {
@@ -75,12 +82,13 @@ impl PairResult {
             .fold(0.0, |m, i| m.max(self.gap[i].abs()))
     }
 
-    /// Total contact force on side `side`: Σ w σ_n n (the force the other body exerts).
+    /// Total contact force on side `side` (the force the other body exerts): the sum of its
+    /// nodal forces, Σ w σ_n n for an own-side pair.
     pub fn force_on(&self, side: usize) -> Vector {
         let mut f = [0.0; DIM];
         for i in (0..self.side.len()).filter(|&i| self.side[i] == side) {
-            f[0] += self.weight[i] * self.pressure[i] * self.nx[i];
-            f[1] += self.weight[i] * self.pressure[i] * self.ny[i];
+            f[0] += self.fx[i];
+            f[1] += self.fy[i];
         }
         f
     }
@@ -306,7 +314,30 @@ pub fn pair_results(model: &Model, interface: &Interface, un: &[f64]) -> Vec<Pai
             ..Default::default()
         })
         .collect();
+    // The tangential unknown of each (pair, body, node), where a balanced pair has one.
+    let tangent: std::collections::HashMap<(usize, usize, usize), usize> = interface
+        .points
+        .iter()
+        .enumerate()
+        .filter(|(_, p)| !p.is_contact())
+        .map(|(j, p)| ((p.pair, p.body, p.node), j))
+        .collect();
     for (j, p) in interface.points.iter().enumerate() {
+        if !p.is_contact() {
+            continue;
+        }
+        let mut force = [0.0; DIM];
+        let fj = interface.force(j, &s);
+        for c in 0..DIM {
+            force[c] = fj * p.normal[c];
+        }
+        if let Some(&t) = tangent.get(&(p.pair, p.body, p.node)) {
+            let ft = interface.force(t, &s);
+            let dir = interface.points[t].normal;
+            for c in 0..DIM {
+                force[c] += ft * dir[c];
+            }
+        }
         let r = &mut out[p.pair];
         let side = usize::from(model.pairs[p.pair].bodies[0] != p.body);
         let x = model.bodies[p.body].mesh.nodes()[p.node];
@@ -320,11 +351,13 @@ pub fn pair_results(model: &Model, interface: &Interface, un: &[f64]) -> Vec<Pai
         r.x.push(x[0]);
         r.y.push(x[1]);
         r.gap.push(gap);
-        r.pressure.push(p.pressure(s[j]));
+        r.pressure.push(interface.pressure(j, &s));
         r.closed.push(p.overlap(s[j]) < 0.0);
         r.weight.push(p.weight);
         r.nx.push(p.normal[0]);
         r.ny.push(p.normal[1]);
+        r.fx.push(force[0]);
+        r.fy.push(force[1]);
     }
     out
 }
@@ -348,7 +381,7 @@ pub fn body_results(
             let mut pressure = vec![0.0; body.mesh.num_nodes()];
             for (j, p) in interface.points.iter().enumerate() {
                 if p.body == b && p.has_partner() {
-                    let sn = p.pressure(s[j]);
+                    let sn = interface.pressure(j, &s);
                     pressure[p.node] = f64::min(pressure[p.node], sn);
                 }
             }

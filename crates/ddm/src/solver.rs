@@ -297,10 +297,7 @@ fn recover(
 pub fn equilibrium(interface: &Interface, un: &[f64], t_load: &[f64]) -> Vec<f64> {
     let mut s = vec![0.0; un.len()];
     interface.sum_normal(un, &mut s);
-    let force = |j: usize| {
-        let p = &interface.points[j];
-        p.weight * p.pressure(s[j])
-    };
+    let force = |j: usize| interface.force(j, &s);
     let total = (0..un.len()).map(|j| force(j).powi(2)).sum::<f64>().sqrt();
     interface
         .body_range
@@ -310,7 +307,7 @@ pub fn equilibrium(interface: &Interface, un: &[f64], t_load: &[f64]) -> Vec<f64
                 .clone()
                 .map(|j| {
                     let p = &interface.points[j];
-                    (t_load[j] - p.weight / p.theta * un[j] - force(j)).powi(2)
+                    (t_load[j] - p.spring * un[j] - force(j)).powi(2)
                 })
                 .sum::<f64>()
                 .sqrt();

@@ -91,6 +91,10 @@ fn model(angle: f64) -> Model {
             penalty: Penalty::Theta(1e-4),
             profile: None,
             enforcement: Enforcement::Penalty,
+            // The paper's formulation: the axis-parallel and turned problems follow the same
+            // sweeps; Anderson on the sparse path loses the contact on the turned balanced
+            // problem (tests/balance.rs covers balanced pairs).
+            forces: Forces::OwnSide,
         }],
     }
 }

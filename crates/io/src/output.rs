@@ -251,6 +251,7 @@ fn contact_json(pairs: &[PairResult]) -> Value {
                 "status": status,
                 "weight": json_numbers(&p.weight),
                 "normal": p.nx.iter().zip(&p.ny).map(|(&x, &y)| json_numbers(&[x, y])).collect::<Vec<_>>(),
+                "nodal_force": p.fx.iter().zip(&p.fy).map(|(&x, &y)| json_numbers(&[x, y])).collect::<Vec<_>>(),
                 "force": [json_numbers(&p.force_on(0)), json_numbers(&p.force_on(1))],
                 "max_penetration": json_number(p.max_penetration()),
                 "complementarity": json_number(p.complementarity()),

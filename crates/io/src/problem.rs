@@ -252,6 +252,29 @@ pub struct ContactSpec {
     /// Lagrangian: the exact unilateral contact for any θ).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub enforcement: Option<EnforcementSpec>,
+    /// `"balanced"` (the default: both sides receive equal and opposite forces) or `"own-side"`
+    /// (the paper's formulation: each side loaded by its own points along its own normal).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub forces: Option<ForcesSpec>,
+}
+
+/// `forces`: how a contact pair's pressure loads its two bodies.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Deserialize, Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum ForcesSpec {
+    /// Equal and opposite forces, the gap along one normal per point.
+    Balanced,
+    /// Each side loaded by its own points along its own normal.
+    OwnSide,
+}
+
+impl From<ForcesSpec> for contactdd_ddm::Forces {
+    fn from(f: ForcesSpec) -> Self {
+        match f {
+            ForcesSpec::Balanced => contactdd_ddm::Forces::Balanced,
+            ForcesSpec::OwnSide => contactdd_ddm::Forces::OwnSide,
+        }
+    }
 }
 
 /// `enforcement`: how a contact pair enforces non-penetration.

@@ -95,7 +95,7 @@ fn sum_fixed(
     sum
 }
 
-/// Per body, the nodal contact forces w σ_n n of the reported pressures (2 per node).
+/// Per body, the nodal contact forces of the result (2 per node; w σ_n n for an own-side pair).
 fn nodal_contact_forces(model: &Model, contact: &[PairResult]) -> Vec<Vec<f64>> {
     let mut forces: Vec<Vec<f64>> = model
         .bodies
@@ -105,11 +105,10 @@ fn nodal_contact_forces(model: &Model, contact: &[PairResult]) -> Vec<Vec<f64>> 
     for (pair, p) in model.pairs.iter().zip(contact) {
         for i in 0..p.side.len() {
             let f = &mut forces[pair.bodies[p.side[i]]];
-            let wp = p.weight[i] * p.pressure[i];
-            // A point without a partner has no pressure (NaN-free by construction, but be safe).
-            if wp.is_finite() {
-                f[dof(p.node[i], 0)] += wp * p.nx[i];
-                f[dof(p.node[i], 1)] += wp * p.ny[i];
+            // A point without a partner has no force (NaN-free by construction, but be safe).
+            if p.fx[i].is_finite() && p.fy[i].is_finite() {
+                f[dof(p.node[i], 0)] += p.fx[i];
+                f[dof(p.node[i], 1)] += p.fy[i];
             }
         }
     }

@@ -984,6 +984,7 @@ pub fn pair(
         penalty,
         profile,
         enforcement: spec.enforcement.map(Into::into).unwrap_or_default(),
+        forces: spec.forces.map(Into::into).unwrap_or_default(),
     })
 }
 

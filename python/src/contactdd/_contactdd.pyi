@@ -160,9 +160,11 @@ class Problem:
         gap: Optional[_GapDict] = None,
         name: Optional[str] = None,
         enforcement: Optional[Literal["penalty", "augmented"]] = None,
+        forces: Optional[Literal["balanced", "own-side"]] = None,
     ) -> None:
         """Adds a contact pair; penalty by the rod model (c, h) or theta directly;
-        enforcement "augmented" gives the exact unilateral contact for any penalty."""
+        enforcement "augmented" gives the exact unilateral contact for any penalty; forces
+        "balanced" (default) loads both sides equally and oppositely, "own-side" is the paper's."""
     def solver(
         self,
         method: Optional[_MethodName] = None,

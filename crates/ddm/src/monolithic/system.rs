@@ -159,7 +159,9 @@ impl<'a> System<'a> {
         let closed: Vec<bool> = (0..points.len())
             .map(|j| {
                 let (p, k) = (&points[j], self.spring(j));
-                p.has_partner()
+                // A follower's own gap is a reading: only carried pressures act.
+                p.carries()
+                    && p.has_partner()
                     && k > 0.0
                     && lam[j] + self.rho[j] * (k * (s[j] - p.penalty_gap()) - lam[j]) > 0.0
             })
@@ -183,9 +185,11 @@ impl<'a> System<'a> {
                 f[o + i] = (0..m).map(|k| body.s[(i, k)] * xb[k]).sum::<f64>() - body.g[i];
             }
         }
-        for (j, a) in self.un.iter().enumerate() {
-            for &(i, c) in &a.terms {
-                f[i] += lam[j] * c;
+        for (j, p) in self.interface.points.iter().enumerate() {
+            for (q, share) in p.load_row(j) {
+                for &(i, c) in &self.un[q].terms {
+                    f[i] += lam[j] * share * c;
+                }
             }
         }
         Evaluation { s, closed, f, phi }
@@ -212,9 +216,11 @@ impl<'a> System<'a> {
             })
             .collect();
         let mut rhs: Vec<f64> = eval.f.iter().map(|v| -v).collect();
-        for (j, a) in self.un.iter().enumerate() {
-            for &(i, c) in &a.terms {
-                rhs[i] -= c * lam0[j];
+        for (j, p) in points.iter().enumerate() {
+            for (q, share) in p.load_row(j) {
+                for &(i, c) in &self.un[q].terms {
+                    rhs[i] -= share * c * lam0[j];
+                }
             }
         }
         let dx = self.solve(chi, z, &rhs)?;
@@ -248,9 +254,11 @@ impl<'a> System<'a> {
         }
         for j in (0..chi.len()).filter(|&j| chi[j]) {
             let k = self.spring(j);
-            for &(row, a) in &self.un[j].terms {
-                for &(col, b) in &self.s[j].terms {
-                    trip.push(Triplet::new(row, col, k * a * b));
+            for (q, share) in self.interface.points[j].load_row(j) {
+                for &(row, a) in &self.un[q].terms {
+                    for &(col, b) in &self.s[j].terms {
+                        trip.push(Triplet::new(row, col, k * share * a * b));
+                    }
                 }
             }
         }
@@ -276,10 +284,14 @@ impl<'a> System<'a> {
             .iter()
             .map(|b| vec![0.0; b.load.len()])
             .collect();
-        for (j, p) in self.interface.points.iter().enumerate() {
+        let points = &self.interface.points;
+        for (j, p) in points.iter().enumerate() {
             let force = p.weight * p.pressure(s[j]);
-            for c in 0..DIM {
-                out[p.body][dof(p.node, c)] += force * p.normal[c];
+            for (q, share) in p.load_row(j) {
+                let (body, node, normal) = (points[q].body, points[q].node, points[q].normal);
+                for c in 0..DIM {
+                    out[body][dof(node, c)] += share * force * normal[c];
+                }
             }
         }
         out

@@ -1,0 +1,266 @@
+//! Balanced contact pairs: one normal per point for both sides' displacements, and every point's
+//! pressure acting on both bodies, so that a pair's two sides receive equal and opposite forces
+//! by construction (docs/method.md §4, "Which normal the gap uses").
+//!
+//! Both sides' gaps are read along the normals of one side of the pair, the *reference* side:
+//! the flatter one (the smaller spread of its normals over the points that face the partner;
+//! side 0 on a tie). A point j of the reference side reads along its own normal, ν_j = n_j; a
+//! point of the other side reads along the reference side's normal where its ray hits it,
+//! ν_j = −n_ref(x′_j), interpolated from the nodal normals. Then
+//!   s_j = u_α(x_j)·ν_j − u_β(x′_j)·ν_j
+//!       = (n_j·ν_j) U_j + (t_j·ν_j) V_j − Σ_k c_jk [(n_k·ν_j) U_k + (t_k·ν_j) V_k],
+//! with U, V the normal and tangential displacements of a node (t = n turned by +90°), and the
+//! gap d_j is the distance along ν_j. One normal field for both sides keeps the two passes'
+//! gaps consistent; with a flat reference side it is the common normal of Hertz's theory, in
+//! which tangential displacements do not change the gap. A tangential unknown V exists only
+//! where some coefficient needs it, so a flat zone keeps its normal unknowns alone.
+//!
+//! Only the reference side's points carry pressure (one pass): point j's nodal force w_j σ_j acts
+//! on its own unknown and, with the opposite sign, on the partner's unknowns through its gap row
+//! ([`ContactPoint::load_row`]); the other side's points follow. s_j is invariant under a joint
+//! translation, so the two sides' forces, the derivatives of Σ_j w_j/(2θ) ((d_j − s_j)⁻)², are
+//! equal and opposite. The partner's coefficients are the dual mortar ones (`crate::mortar`).
+
+use std::ops::Range;
+
+use contactdd_core::geometry::dot;
+use contactdd_core::Vector;
+
+use crate::contact::{carried, ContactPoint, Role};
+
+/// A point's dual mortar coefficients and weighted gap (`crate::mortar`, normalised).
+#[derive(Clone, Debug)]
+pub(crate) struct Mortar {
+    /// Coefficients over the partner's (normal) points.
+    pub coefficients: Vec<(usize, f64)>,
+    /// The weighted ray vector ∫ ψ t n_e / ∫ ψ: its component along ν is the distance.
+    pub ray: Vector,
+    /// The weighted gap profile.
+    pub profile: f64,
+}
+
+/// What a coefficient of a balanced gap row multiplies.
+#[derive(Clone, Copy, PartialEq)]
+enum Target {
+    /// The normal unknown of (old) point k.
+    Normal(usize),
+    /// The tangential unknown at the node of (old) point k.
+    Tangent(usize),
+}
+
+/// Rewrites the points of the pairs that `pairs` selects (balanced, with the body of side 0) into
+/// balanced form: carriers and followers, new gap rows, tangential unknowns appended to each
+/// body's points, and reference springs. Pairs whose sides
+/// match node for node (the same discrete problem either way) keep their own-side arithmetic.
+pub(crate) fn balance(
+    points: Vec<ContactPoint>,
+    body_range: Vec<Range<usize>>,
+    hits: &[Option<f64>],
+    mortar: &[Option<Mortar>],
+    pairs: &[(bool, usize)],
+) -> (Vec<ContactPoint>, Vec<Range<usize>>) {
+    let balanced: Vec<bool> = pairs.iter().map(|p| p.0).collect();
+    let npairs = balanced.len();
+    let reference = reference_bodies(&points, pairs);
+    let rows: Vec<(Vec<(Target, f64)>, Vector)> = (0..points.len())
+        .map(|j| row(&points, j, mortar[j].as_ref(), reference[points[j].pair]))
+        .collect();
+    let mut rewrite = balanced.to_vec();
+    for (pair, flag) in rewrite.iter_mut().enumerate().take(npairs) {
+        *flag = *flag && !matches_node_for_node(&points, pair);
+    }
+    if !rewrite.iter().any(|&b| b) {
+        return (points, body_range);
+    }
+    // Tangential unknowns: the nodes some balanced row reads tangentially, after each body's
+    // own points.
+    let mut tangent = vec![false; points.len()];
+    for (j, p) in points.iter().enumerate() {
+        if rewrite[p.pair] {
+            for (t, _) in &rows[j].0 {
+                if let Target::Tangent(k) = *t {
+                    tangent[k] = true;
+                }
+            }
+        }
+    }
+    let mut new_index = vec![0usize; points.len()];
+    let mut tangent_index = vec![usize::MAX; points.len()];
+    let mut new_range = Vec::with_capacity(body_range.len());
+    let mut next = 0;
+    for range in &body_range {
+        let start = next;
+        for j in range.clone() {
+            new_index[j] = next;
+            next += 1;
+        }
+        for k in range.clone().filter(|&k| tangent[k]) {
+            tangent_index[k] = next;
+            next += 1;
+        }
+        new_range.push(start..next);
+    }
+    let mut out: Vec<Option<ContactPoint>> = vec![None; next];
+    for (j, p) in points.iter().enumerate() {
+        let mut q = p.clone();
+        if rewrite[p.pair] {
+            q.role = if p.body == reference[p.pair] {
+                Role::Carrier
+            } else {
+                Role::Follower
+            };
+            q.gap = match (&mortar[j], hits[j]) {
+                // The weighted distance along ν.
+                (Some(m), _) => m.profile + dot(m.ray, rows[j].1),
+                // The distance along ν instead of the ray's length.
+                (None, Some(t)) => (p.gap - t) + t * dot(p.normal, rows[j].1),
+                (None, None) => p.gap,
+            };
+            q.partner = rows[j]
+                .0
+                .iter()
+                .map(|&(t, c)| match t {
+                    Target::Normal(k) => (new_index[k], c),
+                    Target::Tangent(k) => (tangent_index[k], c),
+                })
+                .collect();
+        } else {
+            q.partner = p.partner.iter().map(|&(k, c)| (new_index[k], c)).collect();
+        }
+        out[new_index[j]] = Some(q);
+        if tangent[j] {
+            out[tangent_index[j]] = Some(ContactPoint {
+                normal: turned(p.normal),
+                weight: 0.0,
+                gap: f64::INFINITY,
+                multiplier: 0.0,
+                partner: Vec::new(),
+                spring: 0.0,
+                role: Role::Tangent,
+                ..p.clone()
+            });
+        }
+    }
+    let mut points: Vec<ContactPoint> = out.into_iter().flatten().collect();
+    // Reference springs of the balanced pairs' unknowns: the lumped stiffness Σ |a| w_j/θ_j of
+    // the pressures that load them (w/θ where the sides match).
+    for (q, loads) in carried(&points).iter().enumerate() {
+        if points[q].role != Role::OwnSide {
+            points[q].spring = loads
+                .iter()
+                .map(|&(j, a)| a.abs() * points[j].weight / points[j].theta)
+                .sum();
+        }
+    }
+    (points, new_range)
+}
+
+/// The gap row of point j read along ν_j (see the module docs), and ν_j: its own normal unknown's coefficient less 1 (the 1 is
+/// implicit in `partner`), its own tangential unknown, the partner's normal and tangential
+/// unknowns with the dual mortar coefficients (`crate::mortar`; the ray's interpolation where
+/// there are none); zero coefficients left out.
+fn row(
+    points: &[ContactPoint],
+    j: usize,
+    mortar: Option<&Mortar>,
+    reference: usize,
+) -> (Vec<(Target, f64)>, Vector) {
+    let p = &points[j];
+    if !p.has_partner() {
+        return (Vec::new(), p.normal);
+    }
+    let nu = if p.body == reference {
+        p.normal
+    } else {
+        let mut n = [0.0; 2];
+        for &(k, c) in &p.partner {
+            n[0] -= c * points[k].normal[0];
+            n[1] -= c * points[k].normal[1];
+        }
+        let l = n[0].hypot(n[1]);
+        [n[0] / l, n[1] / l]
+    };
+    let mut out = Vec::with_capacity(2 * p.partner.len() + 2);
+    let mut push = |t: Target, c: f64| {
+        // A tangential coefficient below 1e−12 is a straight zone turned in floating point: no
+        // unknown for it (it would carry a spring of that size).
+        let negligible = matches!(t, Target::Tangent(_)) && c.abs() <= 1e-12;
+        if c != 0.0 && !negligible {
+            out.push((t, c));
+        }
+    };
+    let along = dot(p.normal, nu);
+    push(Target::Normal(j), along - 1.0);
+    push(Target::Tangent(j), dot(turned(p.normal), nu));
+    let coefficients = mortar.map_or(p.partner.as_slice(), |m| m.coefficients.as_slice());
+    for &(k, c) in coefficients {
+        let nk = points[k].normal;
+        push(Target::Normal(k), -dot(nk, nu) * c);
+        push(Target::Tangent(k), -dot(turned(nk), nu) * c);
+    }
+    (out, nu)
+}
+
+/// The reference body of every pair: the side whose partnered points' normals spread least
+/// (1 − n_j·n̄ at most, n̄ their mean direction); side 0 on a tie.
+fn reference_bodies(points: &[ContactPoint], pairs: &[(bool, usize)]) -> Vec<usize> {
+    let spread = |pair: usize, body: usize| {
+        let side = || {
+            points
+                .iter()
+                .filter(move |p| p.pair == pair && p.body == body && p.has_partner())
+        };
+        let mut mean = [0.0; 2];
+        for p in side() {
+            mean[0] += p.normal[0];
+            mean[1] += p.normal[1];
+        }
+        let l = mean[0].hypot(mean[1]);
+        if l == 0.0 {
+            return 0.0;
+        }
+        let mean = [mean[0] / l, mean[1] / l];
+        side().fold(0.0f64, |m, p| m.max(1.0 - dot(p.normal, mean)))
+    };
+    pairs
+        .iter()
+        .enumerate()
+        .map(|(pair, &(_, first))| {
+            let second = points
+                .iter()
+                .find(|p| p.pair == pair && p.body != first)
+                .map_or(first, |p| p.body);
+            if spread(pair, second) < spread(pair, first) {
+                second
+            } else {
+                first
+            }
+        })
+        .collect()
+}
+
+/// True if every point of `pair` faces exactly one partner node, which faces it back, along
+/// exactly opposite normals, with the same weight and gap: then each side's pressure equals the
+/// other's and the own-side formulation is already balanced.
+fn matches_node_for_node(points: &[ContactPoint], pair: usize) -> bool {
+    points
+        .iter()
+        .enumerate()
+        .filter(|(_, p)| p.pair == pair)
+        .all(|(j, p)| match p.partner.as_slice() {
+            [] => true,
+            [(k, 1.0)] => {
+                let q = &points[*k];
+                q.partner.as_slice() == [(j, 1.0)]
+                    && -dot(p.normal, q.normal) == 1.0
+                    && q.weight == p.weight
+                    && q.gap == p.gap
+            }
+            _ => false,
+        })
+}
+
+/// n turned by +90°.
+fn turned(n: [f64; 2]) -> [f64; 2] {
+    [-n[1], n[0]]
+}
