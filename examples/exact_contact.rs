@@ -80,6 +80,9 @@ fn main() {
     row("column of 8, c = 0.01", cases::column(8, 0.01));
     row("recess E1/E2 = 2", cases::recess(2.0, 0.05, 32));
     row("non-matching notch", cases::non_matching_notch(0.05));
+    let mut own_side = cases::non_matching_notch(0.05);
+    own_side.pairs[0].forces = contactdd::ddm::Forces::OwnSide;
+    row("non-matching notch, own-side", own_side);
 
     let e_star = 2.1e5 / (2.0 * (1.0 - 0.3f64.powi(2)));
     let q_star = 3.0 * e_star * cases::RECESS_R0 / (4.0 * cases::RECESS_B);

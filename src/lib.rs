@@ -10,3 +10,4 @@ pub use contactdd_ddm as ddm;
 pub use contactdd_io as io;
 
 pub mod cases;
+pub mod hertz;

@@ -20,8 +20,8 @@ use contactdd_core::gmsh::parse_msh_surface;
 use contactdd_core::{Material, Mesh, Order, Plane, Vector, DIM};
 use contactdd_ddm::{Gamma, Method, Model, Settings, SetupError};
 use contactdd_io::problem::{
-    AcceleratorSpec, BodySpec, CoarseSpec, ContactSpec, EnforcementSpec, ForcesSpec, GammaSpec,
-    GapSpec, MaterialSpec, MeshSpec, PenaltySpec, Problem as ProblemSpec, SolverSpec,
+    AcceleratorSpec, BodySpec, CoarseSpec, ContactSpec, GammaSpec, MaterialSpec, MeshSpec,
+    PenaltySpec, Problem as ProblemSpec, SolverSpec,
 };
 use contactdd_io::setup::{self, ModelBuilder};
 use contactdd_io::write_problem;
@@ -249,6 +249,25 @@ fn parse<T: DeserializeOwned>(obj: &Bound<'_, PyAny>, key: &str) -> PyResult<Res
         Err(Bad::Value(message)) => Ok(Err(message)),
         Err(Bad::Py(e)) => Err(e),
     }
+}
+
+/// An optional value `key` of contact pair `pair` (`None` and Python's `None` alike), its errors
+/// naming the pair.
+fn pair_option<T: DeserializeOwned>(
+    obj: Option<&Bound<'_, PyAny>>,
+    key: &str,
+    pair: &str,
+) -> PyResult<Option<T>> {
+    let Some(obj) = obj.filter(|o| !o.is_none()) else {
+        return Ok(None);
+    };
+    let value = parse(obj, key)?.map_err(|message| {
+        setup_error(SetupError::Pair {
+            pair: pair.to_string(),
+            message,
+        })
+    })?;
+    Ok(Some(value))
 }
 
 /// A list of support or load dicts of body `body`.
@@ -655,33 +674,10 @@ impl Problem {
             enforcement: None,
             forces: None,
         };
-        if let Some(f) = forces.filter(|f| !f.is_none()) {
-            let f: ForcesSpec = parse(f, "forces")?.map_err(|message| {
-                setup_error(SetupError::Pair {
-                    pair: spec.pair_name(),
-                    message,
-                })
-            })?;
-            spec.forces = Some(f);
-        }
-        if let Some(e) = enforcement.filter(|e| !e.is_none()) {
-            let e: EnforcementSpec = parse(e, "enforcement")?.map_err(|message| {
-                setup_error(SetupError::Pair {
-                    pair: spec.pair_name(),
-                    message,
-                })
-            })?;
-            spec.enforcement = Some(e);
-        }
-        if let Some(g) = gap.filter(|g| !g.is_none()) {
-            let gap: GapSpec = parse(g, "gap")?.map_err(|message| {
-                setup_error(SetupError::Pair {
-                    pair: spec.pair_name(),
-                    message,
-                })
-            })?;
-            spec.gap = Some(gap);
-        }
+        let pair = spec.pair_name();
+        spec.forces = pair_option(forces, "forces", &pair)?;
+        spec.enforcement = pair_option(enforcement, "enforcement", &pair)?;
+        spec.gap = pair_option(gap, "gap", &pair)?;
         self.model.add_pair(&spec).map_err(setup_error)?;
         self.spec.contact.push(spec);
         Ok(())

@@ -62,24 +62,32 @@ pub struct PairResult {
     pub fx: Vec<f64>,
     /// The contact force on each point's node (y component).
     pub fy: Vec<f64>,
+    /// True where the point's gap is one the contact enforces (an own-side point, or the
+    /// reference side of a balanced pair); false where it is a reading of the following side.
+    pub enforced: Vec<bool>,
 }
 
 impl PairResult {
-    /// The largest penetration max (s − d)⁺ over the points with a partner (a length; 0 if none).
+    /// The largest penetration max (s − d)⁺ over the points with a partner whose gap the contact
+    /// enforces (a length; 0 if none).
     pub fn max_penetration(&self) -> f64 {
-        self.gap
-            .iter()
-            .filter(|g| g.is_finite())
-            .fold(0.0, |m, &g| m.max(-g))
+        (0..self.gap.len())
+            .filter(|&i| self.is_enforced(i) && self.gap[i].is_finite())
+            .fold(0.0, |m, i| m.max(-self.gap[i]))
     }
 
-    /// The complementarity residual: the largest |d − s| where the pressure is not zero (a
-    /// length). The exact unilateral contact has zero gap wherever it presses; the penalty
-    /// formulation leaves the penetration θ·p there.
+    /// The complementarity residual: the largest |d − s| where the pressure is not zero, over the
+    /// points whose gap the contact enforces (a length). The exact unilateral contact has zero gap
+    /// wherever it presses; the penalty formulation leaves the penetration θ·p there.
     pub fn complementarity(&self) -> f64 {
         (0..self.gap.len())
-            .filter(|&i| self.pressure[i] < 0.0 && self.gap[i].is_finite())
+            .filter(|&i| self.is_enforced(i) && self.pressure[i] < 0.0 && self.gap[i].is_finite())
             .fold(0.0, |m, i| m.max(self.gap[i].abs()))
+    }
+
+    /// Point i's gap is enforced (true where `enforced` is not filled in).
+    fn is_enforced(&self, i: usize) -> bool {
+        self.enforced.get(i).copied().unwrap_or(true)
     }
 
     /// Total contact force on side `side` (the force the other body exerts): the sum of its
@@ -358,6 +366,7 @@ pub fn pair_results(model: &Model, interface: &Interface, un: &[f64]) -> Vec<Pai
         r.ny.push(p.normal[1]);
         r.fx.push(force[0]);
         r.fy.push(force[1]);
+        r.enforced.push(p.carries());
     }
     out
 }
