@@ -50,8 +50,8 @@ enum Target {
 
 /// Rewrites the points of the pairs that `pairs` selects (balanced, with the body of side 0) into
 /// balanced form: carriers and followers, new gap rows, tangential unknowns appended to each
-/// body's points, and reference springs. Pairs whose sides
-/// match node for node (the same discrete problem either way) keep their own-side arithmetic.
+/// body's points, and reference springs. Pairs whose sides match node for node (the same
+/// discrete problem either way) keep their own-side arithmetic.
 pub(crate) fn balance(
     points: Vec<ContactPoint>,
     body_range: Vec<Range<usize>>,
@@ -59,48 +59,27 @@ pub(crate) fn balance(
     mortar: &[Option<Mortar>],
     pairs: &[(bool, usize)],
 ) -> (Vec<ContactPoint>, Vec<Range<usize>>) {
-    let balanced: Vec<bool> = pairs.iter().map(|p| p.0).collect();
-    let npairs = balanced.len();
+    let rewrite: Vec<bool> = (0..pairs.len())
+        .map(|pair| pairs[pair].0 && !matches_node_for_node(&points, pair))
+        .collect();
+    if !rewrite.iter().any(|&b| b) {
+        return (points, body_range);
+    }
     let reference = reference_bodies(&points, pairs);
     let rows: Vec<(Vec<(Target, f64)>, Vector)> = (0..points.len())
         .map(|j| row(&points, j, mortar[j].as_ref(), reference[points[j].pair]))
         .collect();
-    let mut rewrite = balanced.to_vec();
-    for (pair, flag) in rewrite.iter_mut().enumerate().take(npairs) {
-        *flag = *flag && !matches_node_for_node(&points, pair);
-    }
-    if !rewrite.iter().any(|&b| b) {
-        return (points, body_range);
-    }
-    // Tangential unknowns: the nodes some balanced row reads tangentially, after each body's
-    // own points.
+    // Tangential unknowns: the nodes some balanced row reads tangentially.
     let mut tangent = vec![false; points.len()];
-    for (j, p) in points.iter().enumerate() {
-        if rewrite[p.pair] {
-            for (t, _) in &rows[j].0 {
-                if let Target::Tangent(k) = *t {
-                    tangent[k] = true;
-                }
+    for (j, _) in points.iter().enumerate().filter(|(_, p)| rewrite[p.pair]) {
+        for (t, _) in &rows[j].0 {
+            if let Target::Tangent(k) = *t {
+                tangent[k] = true;
             }
         }
     }
-    let mut new_index = vec![0usize; points.len()];
-    let mut tangent_index = vec![usize::MAX; points.len()];
-    let mut new_range = Vec::with_capacity(body_range.len());
-    let mut next = 0;
-    for range in &body_range {
-        let start = next;
-        for j in range.clone() {
-            new_index[j] = next;
-            next += 1;
-        }
-        for k in range.clone().filter(|&k| tangent[k]) {
-            tangent_index[k] = next;
-            next += 1;
-        }
-        new_range.push(start..next);
-    }
-    let mut out: Vec<Option<ContactPoint>> = vec![None; next];
+    let numbering = Numbering::new(&body_range, &tangent);
+    let mut out: Vec<Option<ContactPoint>> = vec![None; numbering.len];
     for (j, p) in points.iter().enumerate() {
         let mut q = p.clone();
         if rewrite[p.pair] {
@@ -119,17 +98,18 @@ pub(crate) fn balance(
             q.partner = rows[j]
                 .0
                 .iter()
-                .map(|&(t, c)| match t {
-                    Target::Normal(k) => (new_index[k], c),
-                    Target::Tangent(k) => (tangent_index[k], c),
-                })
+                .map(|&(t, c)| (numbering.of(t), c))
                 .collect();
         } else {
-            q.partner = p.partner.iter().map(|&(k, c)| (new_index[k], c)).collect();
+            q.partner = p
+                .partner
+                .iter()
+                .map(|&(k, c)| (numbering.of(Target::Normal(k)), c))
+                .collect();
         }
-        out[new_index[j]] = Some(q);
+        out[numbering.normal[j]] = Some(q);
         if tangent[j] {
-            out[tangent_index[j]] = Some(ContactPoint {
+            out[numbering.tangent[j]] = Some(ContactPoint {
                 normal: turned(p.normal),
                 weight: 0.0,
                 gap: f64::INFINITY,
@@ -142,9 +122,56 @@ pub(crate) fn balance(
         }
     }
     let mut points: Vec<ContactPoint> = out.into_iter().flatten().collect();
-    // Reference springs of the balanced pairs' unknowns: the lumped stiffness Σ |a| w_j/θ_j of
-    // the pressures that load them (w/θ where the sides match).
-    for (q, loads) in carried(&points).iter().enumerate() {
+    lump_springs(&mut points);
+    (points, numbering.body_range)
+}
+
+/// The new numbering of the unknowns: every body's points in their order, then its tangential
+/// unknowns.
+struct Numbering {
+    /// New index of the normal unknown of every (old) point.
+    normal: Vec<usize>,
+    /// New index of the tangential unknown at the node of every (old) point (where it has one).
+    tangent: Vec<usize>,
+    body_range: Vec<Range<usize>>,
+    len: usize,
+}
+
+impl Numbering {
+    fn new(body_range: &[Range<usize>], tangent: &[bool]) -> Numbering {
+        let mut n = Numbering {
+            normal: vec![0; tangent.len()],
+            tangent: vec![usize::MAX; tangent.len()],
+            body_range: Vec::with_capacity(body_range.len()),
+            len: 0,
+        };
+        for range in body_range {
+            let start = n.len;
+            for j in range.clone() {
+                n.normal[j] = n.len;
+                n.len += 1;
+            }
+            for k in range.clone().filter(|&k| tangent[k]) {
+                n.tangent[k] = n.len;
+                n.len += 1;
+            }
+            n.body_range.push(start..n.len);
+        }
+        n
+    }
+
+    fn of(&self, target: Target) -> usize {
+        match target {
+            Target::Normal(k) => self.normal[k],
+            Target::Tangent(k) => self.tangent[k],
+        }
+    }
+}
+
+/// Reference springs of the balanced pairs' unknowns: the lumped stiffness Σ |a| w_j/θ_j of the
+/// pressures that load them (w/θ for a carrier).
+fn lump_springs(points: &mut [ContactPoint]) {
+    for (q, loads) in carried(points).iter().enumerate() {
         if points[q].role != Role::OwnSide {
             points[q].spring = loads
                 .iter()
@@ -152,13 +179,12 @@ pub(crate) fn balance(
                 .sum();
         }
     }
-    (points, new_range)
 }
 
-/// The gap row of point j read along ν_j (see the module docs), and ν_j: its own normal unknown's coefficient less 1 (the 1 is
-/// implicit in `partner`), its own tangential unknown, the partner's normal and tangential
-/// unknowns with the dual mortar coefficients (`crate::mortar`; the ray's interpolation where
-/// there are none); zero coefficients left out.
+/// The gap row of point j read along ν_j (see the module docs), and ν_j. The row holds its own
+/// normal unknown's coefficient less 1 (the 1 is implicit in `partner`), its own tangential
+/// unknown, and the partner's normal and tangential unknowns with the dual mortar coefficients
+/// (`crate::mortar`; the ray's interpolation where there are none); zero coefficients left out.
 fn row(
     points: &[ContactPoint],
     j: usize,

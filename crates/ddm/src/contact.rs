@@ -261,7 +261,8 @@ impl Interface {
                     theta,
                     multiplier: 0.0,
                     partner,
-                    spring: a_spring(side.weights[k], theta),
+                    // The reference spring w/θ; balanced pairs lump theirs (`crate::balance`).
+                    spring: side.weights[k] / theta,
                     role: Role::OwnSide,
                 });
             }
@@ -353,11 +354,6 @@ fn normalised(
         ray: [node.ray[0] / total, node.ray[1] / total],
         profile: node.profile / total,
     })
-}
-
-/// The reference spring w/θ of an own-side point.
-fn a_spring(weight: f64, theta: f64) -> f64 {
-    weight / theta
 }
 
 /// Per unknown, the points that load it with their shares (see [`Interface::carried`]).
