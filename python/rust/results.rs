@@ -66,7 +66,7 @@ const BODY_STATE: [&str; 8] = [
 ];
 
 /// The attributes of a [`Contact`], in its state dict.
-const CONTACT_STATE: [&str; 15] = [
+const CONTACT_STATE: [&str; 16] = [
     "name",
     "bodies",
     "side",
@@ -79,6 +79,7 @@ const CONTACT_STATE: [&str; 15] = [
     "status",
     "weight",
     "normal",
+    "nodal_force",
     "forces",
     "max_penetration",
     "complementarity",
@@ -234,6 +235,10 @@ pub struct Contact {
     /// ``(k, 2)`` outward unit normal of each point.
     #[pyo3(get)]
     normal: Py<PyAny>,
+    /// ``(k, 2)`` contact force on each point's node: w σ_n n for an own-side pair; for a
+    /// balanced pair the node's share of the reference side's pressures.
+    #[pyo3(get)]
+    nodal_force: Py<PyAny>,
     /// Total contact force on each side, ``((fx, fy), (fx, fy))``: the sum of the side's nodal
     /// contact forces (the force the other body exerts; Σ w σ_n n for an own-side pair).
     #[pyo3(get)]
@@ -270,6 +275,7 @@ impl Contact {
             status: get(state, "status")?.extract()?,
             weight: get(state, "weight")?.unbind(),
             normal: get(state, "normal")?.unbind(),
+            nodal_force: get(state, "nodal_force")?.unbind(),
             forces: get(state, "forces")?.extract()?,
             max_penetration: get(state, "max_penetration")?.extract()?,
             complementarity: get(state, "complementarity")?.extract()?,
@@ -291,6 +297,7 @@ impl Contact {
     fn new(py: Python<'_>, p: &PairResult) -> PyResult<Contact> {
         let [b0, b1] = p.bodies.clone();
         let normal: Vec<f64> = p.nx.iter().zip(&p.ny).flat_map(|(&a, &b)| [a, b]).collect();
+        let nodal_force: Vec<f64> = p.fx.iter().zip(&p.fy).flat_map(|(&a, &b)| [a, b]).collect();
         let force = |s| {
             let f = p.force_on(s);
             (f[0], f[1])
@@ -310,6 +317,7 @@ impl Contact {
                 .collect(),
             weight: array1(py, p.weight.clone()).unbind(),
             normal: array2(py, normal, DIM)?.unbind(),
+            nodal_force: array2(py, nodal_force, DIM)?.unbind(),
             forces: (force(0), force(1)),
             max_penetration: p.max_penetration(),
             complementarity: p.complementarity(),

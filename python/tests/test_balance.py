@@ -38,8 +38,11 @@ def test_balanced_sides_carry_equal_and_opposite_forces():
     assert default.converged and own.converged
     assert imbalance(default) <= 1e-10
     assert imbalance(own) > 1e-6
-    # Both carry the applied load 100 · 2 on the loaded body's side.
-    assert default.contact[0].forces[1][1] == pytest.approx(200.0, rel=1e-8)
+    # Both carry the applied load 100 · 2 on the loaded body's side, the sum of the nodal forces.
+    contact = default.contact[0]
+    assert contact.forces[1][1] == pytest.approx(200.0, rel=1e-8)
+    upper = contact.side == 1
+    assert contact.nodal_force[upper].sum(axis=0) == pytest.approx(contact.forces[1], abs=1e-9)
     assert np.all(np.asarray(default.contact[0].pressure) <= 1e-9 * 100.0)
 
 

@@ -249,6 +249,9 @@ class Contact:
     @property
     def normal(self) -> npt.NDArray[np.float64]: ...
     @property
+    def nodal_force(self) -> npt.NDArray[np.float64]:
+        """(k, 2) contact force on each point's node."""
+    @property
     def forces(self) -> Tuple[Tuple[float, float], Tuple[float, float]]:
         """Total contact force (fx, fy) on side 0 and on side 1."""
     @property

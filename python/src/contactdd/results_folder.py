@@ -195,6 +195,7 @@ def _contact(pair: dict[str, Any], folder: Path) -> Contact:
             "status": list(status),
             "weight": _floats(pair["weight"]),
             "normal": _floats([c for n in pair["normal"] for c in n]).reshape(-1, 2),
+            "nodal_force": _floats([c for f in pair["nodal_force"] for c in f]).reshape(-1, 2),
             "forces": tuple(tuple(_number(c) for c in f) for f in pair["force"]),
             "max_penetration": _number(pair["max_penetration"]),
             "complementarity": _number(pair["complementarity"]),
