@@ -54,7 +54,8 @@ pub struct MonolithicSettings {
     /// forces (round-off reaches about 1e-7 with a 1e8 stiffness contrast between bodies).
     pub equilibrium_tol: f64,
     /// Largest accepted net force, relative to the same, along a rigid motion that no contact
-    /// resists (non-matching meshes leave a small one: each side integrates its own pressures).
+    /// resists (own-side pairs on non-matching meshes leave a small one: each side integrates its
+    /// own pressures).
     pub imbalance_tol: f64,
     /// Augmented Lagrangian pairs: the largest violation of the Signorini conditions (a length;
     /// `None`: [`GAP_TOL`] times the largest normal displacement of the contact points).

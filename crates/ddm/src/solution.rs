@@ -247,7 +247,7 @@ fn newton_message(stop: &Stop, model: &Model, history: &[Record], tol: f64) -> O
         Stop::Interrupted => Some(format!("interrupted after {steps} Newton steps")),
         Stop::Unenforced { .. } => unenforced_message(stop),
         Stop::Stalled { residual, limit } => Some(format!(
-            "stalled: the Newton steps converged, but the contact forces that the fields carry differ from those of the contact pressures by {residual:.2e} of the total contact force (more than equilibrium-tol = {limit:.1e}); with non-matching meshes each body integrates its own pressures, so a body held only by contact may not balance: refine the coarser contact mesh"
+            "stalled: the Newton steps converged, but the contact forces that the fields carry differ from those of the contact pressures by {residual:.2e} of the total contact force (more than equilibrium-tol = {limit:.1e}); with own-side pairs on non-matching meshes each body integrates its own pressures, so a body held only by contact may not balance: refine the coarser contact mesh or use forces = \"balanced\""
         )),
         Stop::Diverged {
             body: b,
