@@ -4,7 +4,7 @@
 use anyhow::Result;
 
 use contactdd_core::{num_dofs, Component, ElasticBody, Order};
-use contactdd_ddm::contact::Interface;
+use contactdd_ddm::contact::{Interface, Role};
 use contactdd_ddm::contact_check;
 use contactdd_ddm::{Gamma, Model, Penalty};
 use contactdd_io::problem::{BodySpec, LoadSpec, MeshSpec};
@@ -143,14 +143,37 @@ fn pair_text(model: &Model, p: usize, interface: &Interface) -> String {
             format!(", smallest initial gap {}", sig(min_gap))
         };
         out += &format!(
-            "  {}: {} contact points, {} facing {}{gap}\n",
+            "  {}: {} contact points, {} facing {}{gap}{}\n",
             body.name,
             points.len(),
             partnered.len(),
-            [b, a][side].name
+            [b, a][side].name,
+            side_role(interface, p, pair.bodies[side])
         );
     }
     out
+}
+
+/// How a side of pair `p` takes part in a balanced pair (empty for an own-side one): whether its
+/// pressure loads both bodies (the reference side) or it follows, and its tangential unknowns.
+fn side_role(interface: &Interface, p: usize, body: usize) -> String {
+    let on_side = || {
+        interface
+            .points
+            .iter()
+            .filter(move |q| q.pair == p && q.body == body)
+    };
+    let tangents = on_side().filter(|q| q.role == Role::Tangent).count();
+    let extra = if tangents > 0 {
+        format!(", {tangents} tangential unknowns")
+    } else {
+        String::new()
+    };
+    match on_side().map(|q| q.role).find(|r| *r != Role::Tangent) {
+        Some(Role::Carrier) => format!("; balanced: its pressure loads both sides{extra}"),
+        Some(Role::Follower) => format!("; balanced: loaded by the other side{extra}"),
+        _ => String::new(),
+    }
 }
 
 /// The solver settings line.
