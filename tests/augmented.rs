@@ -186,6 +186,23 @@ fn balanced_pairs_reach_exact_contact_on_non_matching_meshes() {
     assert!((a[0] + b[0]).hypot(a[1] + b[1]) <= 1e-10 * a[0].hypot(a[1]));
 }
 
+/// Curved non-matching meshes: the shipped Hertz example (P2 half disc on a block) in exact mode
+/// reaches its gap tolerance with the balanced pair, whose two sides stay equal and opposite.
+#[test]
+fn exact_contact_on_the_curved_non_matching_hertz_example() {
+    let file = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/hertz.toml");
+    let loaded = contactdd::io::load_file(&file).unwrap();
+    let model = augmented(loaded.model);
+    let sol = run(&model, &loaded.settings);
+    assert!(sol.converged, "{:?}", sol.message);
+    let pair = &sol.contact[0];
+    assert!(sol.gap_tol.is_some_and(|tol| pair.max_penetration() <= tol));
+    assert!(pair.complementarity() <= sol.gap_tol.unwrap_or(0.0));
+    let (a, b) = (pair.force_on(0), pair.force_on(1));
+    assert!((a[0] + b[0]).hypot(a[1] + b[1]) <= 1e-10 * a[0].hypot(a[1]));
+    assert!((b[1].abs() - 900.0).abs() <= 1e-8 * 900.0, "{b:?}");
+}
+
 /// The monolithic reference in augmented mode (plain Uzawa updates around its own Newton solver)
 /// reaches the same exact contact as the DD's accelerated loop: the notch and a stiff block under
 /// a softer one, with a gap tolerance near round-off.
