@@ -59,13 +59,20 @@ pub(crate) fn balance(
     mortar: &[Option<Mortar>],
     pairs: &[(bool, usize)],
 ) -> (Vec<ContactPoint>, Vec<Range<usize>>) {
+    // The points of every pair, found once.
+    let mut of_pair: Vec<Vec<usize>> = vec![Vec::new(); pairs.len()];
+    for (j, p) in points.iter().enumerate() {
+        of_pair[p.pair].push(j);
+    }
     let rewrite: Vec<bool> = (0..pairs.len())
-        .map(|pair| pairs[pair].0 && !matches_node_for_node(&points, pair))
+        .map(|pair| pairs[pair].0 && !matches_node_for_node(&points, &of_pair[pair]))
         .collect();
     if !rewrite.iter().any(|&b| b) {
         return (points, body_range);
     }
-    let reference = reference_bodies(&points, pairs);
+    let reference: Vec<usize> = (0..pairs.len())
+        .map(|pair| reference_body(&points, &of_pair[pair], pairs[pair].1))
+        .collect();
     let rows: Vec<(Vec<(Target, f64)>, Vector)> = (0..points.len())
         .map(|j| row(&points, j, mortar[j].as_ref(), reference[points[j].pair]))
         .collect();
@@ -227,14 +234,16 @@ fn row(
     (out, nu)
 }
 
-/// The reference body of every pair: the side whose partnered points' normals spread least
-/// (1 − n_j·n̄ at most, n̄ their mean direction); side 0 on a tie.
-fn reference_bodies(points: &[ContactPoint], pairs: &[(bool, usize)]) -> Vec<usize> {
-    let spread = |pair: usize, body: usize| {
+/// The reference body of a pair (its points `of_pair`, `first` the body of side 0): the side
+/// whose partnered points' normals spread least (1 − n_j·n̄ at most, n̄ their mean direction);
+/// side 0 on a tie.
+fn reference_body(points: &[ContactPoint], of_pair: &[usize], first: usize) -> usize {
+    let spread = |body: usize| {
         let side = || {
-            points
+            of_pair
                 .iter()
-                .filter(move |p| p.pair == pair && p.body == body && p.has_partner())
+                .map(|&j| &points[j])
+                .filter(move |p| p.body == body && p.has_partner())
         };
         let mut mean = [0.0; 2];
         for p in side() {
@@ -248,32 +257,25 @@ fn reference_bodies(points: &[ContactPoint], pairs: &[(bool, usize)]) -> Vec<usi
         let mean = [mean[0] / l, mean[1] / l];
         side().fold(0.0f64, |m, p| m.max(1.0 - dot(p.normal, mean)))
     };
-    pairs
+    let second = of_pair
         .iter()
-        .enumerate()
-        .map(|(pair, &(_, first))| {
-            let second = points
-                .iter()
-                .find(|p| p.pair == pair && p.body != first)
-                .map_or(first, |p| p.body);
-            if spread(pair, second) < spread(pair, first) {
-                second
-            } else {
-                first
-            }
-        })
-        .collect()
+        .map(|&j| points[j].body)
+        .find(|&b| b != first)
+        .unwrap_or(first);
+    if spread(second) < spread(first) {
+        second
+    } else {
+        first
+    }
 }
 
-/// True if every point of `pair` faces exactly one partner node, which faces it back, along
-/// exactly opposite normals, with the same weight and gap: then each side's pressure equals the
-/// other's and the own-side formulation is already balanced.
-fn matches_node_for_node(points: &[ContactPoint], pair: usize) -> bool {
-    points
-        .iter()
-        .enumerate()
-        .filter(|(_, p)| p.pair == pair)
-        .all(|(j, p)| match p.partner.as_slice() {
+/// True if every point of a pair (`of_pair`) faces exactly one partner node, which faces it
+/// back, along exactly opposite normals, with the same weight and gap: then each side's pressure
+/// equals the other's and the own-side formulation is already balanced.
+fn matches_node_for_node(points: &[ContactPoint], of_pair: &[usize]) -> bool {
+    of_pair.iter().all(|&j| {
+        let p = &points[j];
+        match p.partner.as_slice() {
             [] => true,
             [(k, 1.0)] => {
                 let q = &points[*k];
@@ -283,7 +285,8 @@ fn matches_node_for_node(points: &[ContactPoint], pair: usize) -> bool {
                     && q.gap == p.gap
             }
             _ => false,
-        })
+        }
+    })
 }
 
 /// n turned by +90°.

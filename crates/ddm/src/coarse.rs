@@ -329,10 +329,7 @@ impl FloatingModes {
         }
         let mut jac = Mat::<f64>::zeros(n, n);
         for (j, p) in interface.points.iter().enumerate() {
-            let loose = p
-                .load_row(j)
-                .iter()
-                .any(|&(u, _)| !any_closed[self.body[u]]);
+            let loose = p.load_row(j).any(|(u, _)| !any_closed[self.body[u]]);
             let used = closed[j] || (loose && p.has_partner());
             if !used {
                 continue;

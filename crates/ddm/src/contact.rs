@@ -92,14 +92,13 @@ impl ContactPoint {
 
     /// The unknowns that point `j` (this point) loads, with the share of its nodal force w σ_n
     /// each receives: itself for an own-side point; its gap's row for a carrier; nothing else.
-    pub fn load_row(&self, j: usize) -> Vec<(usize, f64)> {
-        match self.role {
-            Role::OwnSide => vec![(j, 1.0)],
-            Role::Carrier => std::iter::once((j, 1.0))
-                .chain(self.partner.iter().copied())
-                .collect(),
-            Role::Follower | Role::Tangent => Vec::new(),
-        }
+    pub fn load_row(&self, j: usize) -> impl Iterator<Item = (usize, f64)> + '_ {
+        let own = self.carries().then_some((j, 1.0));
+        let through = match self.role {
+            Role::Carrier => self.partner.as_slice(),
+            _ => &[],
+        };
+        own.into_iter().chain(through.iter().copied())
     }
 
     /// The gap the penalty acts on: d − θλ (d itself for the penalty formulation, λ = 0).

@@ -289,15 +289,9 @@ impl<'a> System<'a> {
                 if self.weightless[j] {
                     tau[j]
                 } else if self.balanced[j] {
-                    let force: f64 = self.interface.carried[j]
-                        .iter()
-                        .filter(|&&(i, _)| closed[i])
-                        .map(|&(i, a)| {
-                            let p = &points[i];
-                            a * (p.weight / p.theta) * (p.penalty_gap() - s[i])
-                        })
-                        .sum();
-                    tau[j] - u[j] - force / self.d0[j]
+                    // A carrier closes exactly where its overlap is negative (ρ = 1), so the
+                    // penalty force is that of the closed set.
+                    tau[j] - u[j] - self.interface.force(j, &s) / self.d0[j]
                 } else if closed[j] {
                     tau[j] - u[j] - (points[j].penalty_gap() - s[j])
                 } else {

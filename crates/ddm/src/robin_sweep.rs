@@ -186,11 +186,10 @@ impl BodyInput<'_> {
     /// force F_q of the state, which gathers the pressures of those points.
     fn balanced(&self, method: Method, q: usize) -> (f64, f64) {
         let p = &self.interface.points[q];
-        let (mut force, mut spring) = (0.0, 0.0);
+        let mut spring = 0.0;
         for &(i, a) in &self.interface.carried[q] {
             let loader = &self.interface.points[i];
             let k = loader.weight / loader.theta;
-            force += a * k * loader.overlap(self.s[i]);
             if loader.has_partner() {
                 let phi = method.phi(loader.penalty_gap(), self.s[i], self.s_prev[i]);
                 spring += a.abs() * k * phi;
@@ -201,6 +200,7 @@ impl BodyInput<'_> {
         } else {
             0.0
         };
+        let force = self.interface.force(q, self.s);
         (phi, phi * p.spring * self.un[q - self.start] + force)
     }
 }
