@@ -90,6 +90,7 @@ fn stack(n: usize, cells: usize) -> Model {
         plane: Plane::Strain,
         bodies,
         pairs,
+        remote: Vec::new(),
     }
 }
 

@@ -115,6 +115,7 @@ fn notch_pair(name: &str, lower: ElasticBody, upper: ElasticBody, c: f64) -> Mod
         plane: Plane::Strain,
         bodies: vec![lower, upper],
         pairs: vec![pair],
+        remote: Vec::new(),
     }
 }
 
@@ -149,6 +150,7 @@ pub fn column(n: usize, c: f64) -> Model {
         plane: Plane::Strain,
         bodies,
         pairs,
+        remote: Vec::new(),
     }
 }
 
@@ -198,6 +200,7 @@ pub fn recess(ratio: f64, c: f64, n: usize) -> Model {
         plane: Plane::Strain,
         bodies: vec![lower, upper],
         pairs: vec![pair],
+        remote: Vec::new(),
     }
 }
 

@@ -187,5 +187,6 @@ fn long_strips(n: usize) -> Model {
         plane: contactdd::fem::Plane::Strain,
         bodies: vec![lower, upper],
         pairs: vec![top_bottom("strips", 0, 1, 0.05, 1.0)],
+        remote: Vec::new(),
     }
 }

@@ -38,6 +38,7 @@ fn strips(n: usize) -> Model {
             enforcement: Enforcement::Penalty,
             forces: Default::default(),
         }],
+        remote: Vec::new(),
     }
 }
 

@@ -6,7 +6,6 @@ use std::io::IsTerminal;
 use contactdd_core::Vector;
 use contactdd_ddm::solution::PairResult;
 use contactdd_ddm::{Model, Record};
-use contactdd_io::output::applied_load;
 use contactdd_io::reactions::BodyReactions;
 
 /// A number with 4 significant digits: fixed notation for moderate magnitudes, else exponent.
@@ -186,7 +185,8 @@ pub fn applied_loads(model: &Model) -> String {
     let items: Vec<String> = model
         .bodies
         .iter()
-        .map(|b| format!("{} {}", b.name, vec2(applied_load(&b.load))))
+        .enumerate()
+        .map(|(i, b)| format!("{} {}", b.name, vec2(model.facts(i).applied_load)))
         .collect();
     format!("applied loads: {}", items.join(", "))
 }

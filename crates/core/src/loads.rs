@@ -2,7 +2,7 @@
 
 use crate::assembly::{add_body_force, add_edge_traction, add_pressure};
 use crate::error::MeshError;
-use crate::geometry::{num_dofs, Vector};
+use crate::geometry::{num_dofs, Vector, DIM};
 use crate::mesh::Mesh;
 
 /// One load.
@@ -41,4 +41,11 @@ pub fn load_vector(mesh: &Mesh, loads: &[Load]) -> Result<Vec<f64>, MeshError> {
         }
     }
     Ok(f)
+}
+
+/// Total applied force `[fx, fy]` of a body (the sum of its nodal load vector).
+pub fn applied_load(load: &[f64]) -> Vector {
+    load.chunks(DIM).fold([0.0; DIM], |s, f| {
+        std::array::from_fn(|c| s[c] + f.get(c).copied().unwrap_or(0.0))
+    })
 }

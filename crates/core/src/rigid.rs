@@ -36,6 +36,17 @@ impl RigidBasis {
         }
     }
 
+    /// The basis rotating about `center`, scaled by `size` (the values [`RigidBasis::parts`]
+    /// returns: how a basis travels between processes).
+    pub fn from_parts(center: Point, size: f64) -> RigidBasis {
+        RigidBasis { center, size }
+    }
+
+    /// The rotation centre and the scale.
+    pub fn parts(&self) -> (Point, f64) {
+        (self.center, self.size)
+    }
+
     /// The three modes at point `x`: row `c` holds displacement component `c` of each mode.
     pub fn at(&self, x: Point) -> [[f64; NUM_MODES]; DIM] {
         let (dx, dy) = (

@@ -26,11 +26,8 @@ use std::ops::Range;
 
 use faer::{Mat, Side};
 
-use contactdd_core::geometry::dot;
-use contactdd_core::node_vector;
-use contactdd_core::rigid::{free_modes, RigidBasis};
-
 use crate::contact::Interface;
+use crate::facts::BodyFacts;
 use crate::model::Model;
 
 /// Newton steps at most per correction (the system is piecewise linear and small).
@@ -71,26 +68,17 @@ pub struct Coarse {
 impl Coarse {
     /// Finds the free rigid modes of every body and their values on the contact points.
     pub fn new(model: &Model, interface: &Interface) -> Coarse {
-        let free: Vec<Vec<[f64; 3]>> = model
-            .bodies
-            .iter()
-            .map(|b| free_modes(&b.mesh, &b.constraints, &[]))
-            .collect();
-        let mut in_chain = vec![false; free.len()];
+        let facts: Vec<BodyFacts> = (0..model.bodies.len()).map(|b| model.facts(b)).collect();
+        let mut in_chain = vec![false; facts.len()];
         for pair in &model.pairs {
             let [a, b] = pair.bodies;
-            if !free[a].is_empty() && !free[b].is_empty() {
+            if !facts[a].free.is_empty() && !facts[b].free.is_empty() {
                 (in_chain[a], in_chain[b]) = (true, true);
             }
         }
-        let chains: Vec<Vec<[f64; 3]>> = free
-            .iter()
-            .zip(&in_chain)
-            .map(|(f, &c)| if c { f.clone() } else { Vec::new() })
-            .collect();
         Coarse {
-            chains: FloatingModes::new(model, interface, &chains),
-            all: FloatingModes::new(model, interface, &free),
+            chains: FloatingModes::new(model, interface, &facts, |b| in_chain[b]),
+            all: FloatingModes::new(model, interface, &facts, |_| true),
         }
     }
 
@@ -148,35 +136,32 @@ struct FloatingModes {
 }
 
 impl FloatingModes {
-    /// The modes `free[b]` (coefficient vectors of the rigid basis) of every body b.
-    fn new(model: &Model, interface: &Interface, free: &[Vec<[f64; 3]>]) -> FloatingModes {
-        let mut range = Vec::with_capacity(model.bodies.len());
-        let mut modes = Vec::with_capacity(model.bodies.len());
+    /// The free modes of the bodies `take` selects (their facts' `free`).
+    fn new(
+        model: &Model,
+        interface: &Interface,
+        facts: &[BodyFacts],
+        take: impl Fn(usize) -> bool,
+    ) -> FloatingModes {
+        let mut range = Vec::with_capacity(facts.len());
+        let mut modes = Vec::with_capacity(facts.len());
         let mut load = Vec::new();
-        for (body, free) in model.bodies.iter().zip(free) {
-            let basis = RigidBasis::new(&body.mesh);
+        for (b, f) in facts.iter().enumerate() {
+            let (free, work) = if take(b) {
+                (f.free.as_slice(), f.free_load.as_slice())
+            } else {
+                (&[][..], &[][..])
+            };
             range.push(load.len()..load.len() + free.len());
-            for v in free {
-                let work: f64 = body
-                    .mesh
-                    .nodes()
-                    .iter()
-                    .enumerate()
-                    .map(|(i, &x)| {
-                        let u = basis.motion(x, v);
-                        dot(u, node_vector(&body.load, i))
-                    })
-                    .sum();
-                load.push(work);
-            }
-            modes.push((basis, free.as_slice()));
+            load.extend_from_slice(work);
+            modes.push((f.basis, free));
         }
         let rho = interface
             .points
             .iter()
             .map(|p| {
                 let (basis, free) = &modes[p.body];
-                let x = model.bodies[p.body].mesh.nodes()[p.node];
+                let x = model.position(p.body, p.node);
                 free.iter()
                     .map(|v| {
                         let u = basis.motion(x, v);

@@ -20,7 +20,7 @@
 
 use std::fmt;
 
-use contactdd_core::{Mesh, Point};
+use contactdd_core::Point;
 
 use crate::contact::Interface;
 use crate::error::SetupError;
@@ -129,7 +129,7 @@ pub fn check(model: &Model, interface: &Interface) -> Vec<Finding> {
         let thickness = pair
             .bodies
             .iter()
-            .map(|&b| thickness(&model.bodies[b].mesh))
+            .map(|&b| model.facts(b).thickness())
             .fold(f64::INFINITY, f64::min);
         let overlap = -worst.gap;
         if overlap > WARNING_FRACTION * thickness {
@@ -137,7 +137,7 @@ pub fn check(model: &Model, interface: &Interface) -> Vec<Finding> {
             findings.push(Finding::Overlap {
                 pair: pair.name.clone(),
                 body: body.name.clone(),
-                at: body.mesh.nodes()[worst.node],
+                at: model.position(worst.body, worst.node),
                 overlap,
                 thickness,
             });
@@ -155,16 +155,4 @@ pub fn refuse(findings: &[Finding]) -> Result<(), SetupError> {
         }),
         None => Ok(()),
     }
-}
-
-/// The shorter side of the mesh's bounding box.
-fn thickness(mesh: &Mesh) -> f64 {
-    let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
-    for p in mesh.nodes() {
-        for d in 0..2 {
-            lo[d] = lo[d].min(p[d]);
-            hi[d] = hi[d].max(p[d]);
-        }
-    }
-    (hi[0] - lo[0]).min(hi[1] - lo[1])
 }

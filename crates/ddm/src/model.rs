@@ -2,8 +2,9 @@
 //! pairs. This is solver input, built from a problem file by the `contactdd-io` crate or directly
 //! in code.
 
-use contactdd_core::{ElasticBody, Plane};
+use contactdd_core::{ElasticBody, Plane, Point};
 
+use crate::facts::BodyFacts;
 use crate::profile::GapProfile;
 
 /// How the penalty parameter θ of a contact pair is chosen.
@@ -110,6 +111,20 @@ pub struct Model {
     pub bodies: Vec<ElasticBody>,
     /// The contact pairs.
     pub pairs: Vec<ContactPair>,
+    /// Per body, `Some` where another process meshes it (a distributed solve, docs/mpi.md);
+    /// empty, or all `None`, when this process meshes every body.
+    pub remote: Vec<Option<Remote>>,
+}
+
+/// A body that another process meshes: this process holds only its contact boundaries (the
+/// body's `mesh` is that skin, with its nodes numbered compactly, no elements, no supports and
+/// no loads) and the facts the solve needs of the rest.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Remote {
+    /// The body's own number of each node of the skin, increasing.
+    pub ids: Vec<usize>,
+    /// What the solve needs of the whole body.
+    pub facts: BodyFacts,
 }
 
 impl Model {
@@ -125,6 +140,32 @@ impl Model {
         self.pairs
             .iter()
             .any(|p| p.enforcement == Enforcement::Augmented)
+    }
+
+    /// Body `b` if another process meshes it.
+    pub fn remote(&self, b: usize) -> Option<&Remote> {
+        self.remote.get(b).and_then(Option::as_ref)
+    }
+
+    /// The facts of body `b`: its own, or those its process sent.
+    pub fn facts(&self, b: usize) -> BodyFacts {
+        match self.remote(b) {
+            Some(r) => r.facts.clone(),
+            None => BodyFacts::of(&self.bodies[b]),
+        }
+    }
+
+    /// The position of node `node` (in the body's own numbering) of body `b` (NaN for a node a
+    /// remote body's skin does not hold).
+    pub fn position(&self, b: usize, node: usize) -> Point {
+        let nodes = self.bodies[b].mesh.nodes();
+        match self.remote(b) {
+            Some(r) => r
+                .ids
+                .binary_search(&node)
+                .map_or([f64::NAN; 2], |k| nodes[k]),
+            None => nodes[node],
+        }
     }
 
     /// θ of every pair.

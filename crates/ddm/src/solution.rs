@@ -348,7 +348,7 @@ pub fn pair_results(model: &Model, interface: &Interface, un: &[f64]) -> Vec<Pai
         }
         let r = &mut out[p.pair];
         let side = usize::from(model.pairs[p.pair].bodies[0] != p.body);
-        let x = model.bodies[p.body].mesh.nodes()[p.node];
+        let x = model.position(p.body, p.node);
         let gap = if p.has_partner() {
             p.gap - s[j]
         } else {

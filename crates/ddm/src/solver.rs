@@ -105,10 +105,8 @@ pub fn prepare_on(
     };
     let t_factor = t.elapsed().as_secs_f64();
     let sum = |f: fn(&SetupTimes) -> f64| times.iter().map(f).sum::<f64>();
-    let scale = model
-        .bodies
-        .iter()
-        .map(|b| 10.0 * b.mesh.bounding_box_diameter())
+    let scale = (0..model.bodies.len())
+        .map(|b| 10.0 * model.facts(b).diameter())
         .collect();
     let coarse = Coarse::new(model, &interface);
     Ok(Prepared {

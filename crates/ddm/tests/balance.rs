@@ -92,6 +92,7 @@ fn disc_on_block(ratio: f64, forces: Forces) -> Model {
         plane: Plane::Strain,
         bodies: vec![block, disc],
         pairs: vec![pair("disc", [0, 1], ["top", "bottom"], forces)],
+        remote: Vec::new(),
     }
 }
 
@@ -128,6 +129,7 @@ fn column(forces: Forces) -> Model {
             pair("01", [0, 1], ["top", "bottom"], forces),
             pair("12", [1, 2], ["top", "bottom"], forces),
         ],
+        remote: Vec::new(),
     }
 }
 
@@ -300,6 +302,7 @@ fn pairs_that_match_node_for_node_keep_their_arithmetic() {
             plane: Plane::Strain,
             bodies: vec![lower, upper],
             pairs: vec![pair("p", [0, 1], ["top", "bottom"], forces)],
+            remote: Vec::new(),
         }
     };
     let (a, b) = (model(Forces::Balanced), model(Forces::OwnSide));

@@ -78,6 +78,7 @@ fn two_bodies(name: &str, lower: ElasticBody, upper: ElasticBody, penalty: Penal
             enforcement: Enforcement::Penalty,
             forces: Default::default(),
         }],
+        remote: Vec::new(),
     }
 }
 
@@ -289,6 +290,7 @@ fn stack(order: Order, n: usize) -> Model {
         plane: Plane::Stress,
         bodies,
         pairs,
+        remote: Vec::new(),
     }
 }
 

@@ -96,6 +96,7 @@ fn model(angle: f64) -> Model {
             // problem (tests/balance.rs covers balanced pairs).
             forces: Forces::OwnSide,
         }],
+        remote: Vec::new(),
     }
 }
 

@@ -49,7 +49,7 @@ use std::path::{Path, PathBuf};
 
 use serde_json::{json, Value};
 
-use contactdd_core::{num_dofs, Order, Vector, DIM};
+use contactdd_core::{num_dofs, Order};
 use contactdd_ddm::solution::{BodyResult, PairResult, Solution};
 use contactdd_ddm::sweep::SweepRun;
 use contactdd_ddm::{Gamma, Model, MonolithicSolution, Stop};
@@ -188,30 +188,25 @@ fn gamma_json(gamma: Gamma) -> Value {
     }
 }
 
-/// Total applied force `[fx, fy]` of a body (the sum of its nodal load vector).
-pub fn applied_load(load: &[f64]) -> Vector {
-    load.chunks(DIM).fold([0.0; DIM], |s, f| {
-        std::array::from_fn(|c| s[c] + f.get(c).copied().unwrap_or(0.0))
-    })
-}
+pub use contactdd_core::loads::applied_load;
 
 fn bodies_json(model: &Model) -> Value {
     model
         .bodies
         .iter()
-        .map(|b| {
-            let nodes = b.mesh.num_nodes();
-            let prescribed = b.constraints.num_prescribed();
+        .enumerate()
+        .map(|(b, body)| {
+            let f = model.facts(b);
             json!({
-                "name": b.name,
-                "nodes": nodes,
-                "elements": b.mesh.num_cells(),
-                "dofs": num_dofs(nodes).saturating_sub(prescribed),
-                "order": match b.mesh.order() {
+                "name": body.name,
+                "nodes": f.nodes,
+                "elements": f.cells,
+                "dofs": num_dofs(f.nodes).saturating_sub(f.prescribed),
+                "order": match f.order {
                     Order::P1 => "p1",
                     Order::P2 => "p2",
                 },
-                "applied_load": json_numbers(&applied_load(&b.load)),
+                "applied_load": json_numbers(&f.applied_load),
             })
         })
         .collect()

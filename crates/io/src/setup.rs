@@ -181,10 +181,10 @@ fn resolve_named(
 /// The model's size: the longest side of the bounding box of every body's nodes.
 pub fn model_size(model: &Model) -> f64 {
     let (mut lo, mut hi) = ([f64::INFINITY; DIM], [f64::NEG_INFINITY; DIM]);
-    for p in model.bodies.iter().flat_map(|b| b.mesh.nodes()) {
+    for f in (0..model.bodies.len()).map(|b| model.facts(b)) {
         for d in 0..DIM {
-            lo[d] = lo[d].min(p[d]);
-            hi[d] = hi[d].max(p[d]);
+            lo[d] = lo[d].min(f.lo[d]);
+            hi[d] = hi[d].max(f.hi[d]);
         }
     }
     (hi[0] - lo[0]).max(hi[1] - lo[1])
@@ -383,6 +383,7 @@ impl ModelBuilder {
             plane: self.plane,
             bodies: self.bodies,
             pairs: self.pairs,
+            remote: Vec::new(),
         };
         check_floating(&model)?;
         Ok(model)
@@ -599,7 +600,8 @@ pub fn check_body_name<'a>(
 /// remove all its rigid-body modes.
 pub fn check_floating(model: &Model) -> Result<(), SetupError> {
     for (b, body) in model.bodies.iter().enumerate() {
-        if model.pairs.iter().any(|p| p.bodies.contains(&b)) {
+        // A remote body's process checks it.
+        if model.remote(b).is_some() || model.pairs.iter().any(|p| p.bodies.contains(&b)) {
             continue;
         }
         if !body.constraints.any() {
