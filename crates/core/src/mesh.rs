@@ -343,6 +343,76 @@ impl Mesh {
         }
     }
 
+    /// The part of the mesh on the boundaries `names`: their nodes, renumbered in increasing
+    /// order of their numbers here (returned beside: the new node k is node `ids[k]` here), and
+    /// their edges. Every other boundary and node set keeps its name with no edges or nodes, and
+    /// there are no elements. What another process needs of a body to pair with it; names that
+    /// are not boundaries of the mesh are left out.
+    pub fn skin(&self, names: &[&str]) -> (Mesh, Vec<usize>) {
+        let chosen = |name: &String| names.contains(&name.as_str());
+        let mut ids: Vec<usize> = (self.boundaries.iter())
+            .filter(|(name, _)| chosen(name))
+            .flat_map(|(_, edges)| edges.iter().flat_map(|e| e.nodes()))
+            .collect();
+        ids.sort_unstable();
+        ids.dedup();
+        // Every node of a chosen edge is in `ids`, so the search finds it.
+        let at = |v: usize| ids.binary_search(&v).unwrap_or_else(|k| k);
+        let boundaries = (self.boundaries.iter())
+            .map(|(name, edges)| {
+                let kept = match chosen(name) {
+                    true => (edges.iter())
+                        .map(|e| Edge {
+                            a: at(e.a),
+                            b: at(e.b),
+                            mid: e.mid.map(at),
+                        })
+                        .collect(),
+                    false => Vec::new(),
+                };
+                (name.clone(), kept)
+            })
+            .collect();
+        let skin = Mesh {
+            nodes: ids.iter().map(|&v| self.nodes[v]).collect(),
+            order: self.order,
+            cells: Vec::new(),
+            boundaries,
+            node_sets: self
+                .node_sets
+                .keys()
+                .map(|k| (k.clone(), Vec::new()))
+                .collect(),
+        };
+        (skin, ids)
+    }
+
+    /// A skin ([`Mesh::skin`]) from its parts, as it travels between processes: its nodes, order
+    /// and boundaries (checked to name existing nodes), and the names of the body's node sets.
+    pub fn skin_from_parts(
+        nodes: Vec<Point>,
+        order: Order,
+        boundaries: BTreeMap<String, Vec<Edge>>,
+        node_sets: Vec<String>,
+    ) -> Result<Mesh, MeshError> {
+        for (name, edges) in &boundaries {
+            if let Some(e) = edges.iter().find(|e| e.nodes().any(|v| v >= nodes.len())) {
+                return Err(MeshError::NotABoundaryEdge {
+                    boundary: name.clone(),
+                    a: e.a,
+                    b: e.b,
+                });
+            }
+        }
+        Ok(Mesh {
+            nodes,
+            order,
+            cells: Vec::new(),
+            boundaries,
+            node_sets: node_sets.into_iter().map(|k| (k, Vec::new())).collect(),
+        })
+    }
+
     /// Outward unit normal and length of a boundary edge.
     pub fn edge_normal(&self, edge: &Edge) -> (Vector, f64) {
         let (a, b) = (self.nodes[edge.a], self.nodes[edge.b]);

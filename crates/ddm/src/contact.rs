@@ -266,7 +266,13 @@ impl Interface {
                 });
             }
         }
-        let points: Vec<ContactPoint> = points.into_iter().flatten().collect();
+        let mut points: Vec<ContactPoint> = points.into_iter().flatten().collect();
+        // A remote body's points name their nodes in its own numbering, as on its process.
+        for p in &mut points {
+            if let Some(remote) = model.remote(p.body) {
+                p.node = remote.ids.get(p.node).copied().unwrap_or(usize::MAX);
+            }
+        }
         let pairs: Vec<(bool, usize)> = model
             .pairs
             .iter()

@@ -2,7 +2,7 @@
 //! pairs. This is solver input, built from a problem file by the `contactdd-io` crate or directly
 //! in code.
 
-use contactdd_core::{ElasticBody, Plane, Point};
+use contactdd_core::{Constraints, ElasticBody, Material, Mesh, Plane, Point, DIM};
 
 use crate::facts::BodyFacts;
 use crate::profile::GapProfile;
@@ -127,6 +127,30 @@ pub struct Remote {
     pub facts: BodyFacts,
 }
 
+impl Remote {
+    /// `body` as the processes that do not mesh it hold it: the stand-in on its skin on the
+    /// boundaries `contact` (those of its contact pairs), and the remote part.
+    pub fn of(body: &ElasticBody, contact: &[&str]) -> (ElasticBody, Remote) {
+        let (mesh, ids) = body.mesh.skin(contact);
+        let facts = BodyFacts::of(body);
+        let stand_in = Remote::stand_in(&body.name, mesh, body.material, body.plane);
+        (stand_in, Remote { ids, facts })
+    }
+
+    /// The stand-in of a remote body on its skin `mesh`: no supports, no loads.
+    pub fn stand_in(name: &str, mesh: Mesh, material: Material, plane: Plane) -> ElasticBody {
+        let n = mesh.num_nodes();
+        ElasticBody {
+            name: name.to_string(),
+            constraints: Constraints::new(n),
+            load: vec![0.0; DIM * n],
+            mesh,
+            material,
+            plane,
+        }
+    }
+}
+
 impl Model {
     /// The penalty θ of pair `p`.
     pub fn theta(&self, p: usize) -> f64 {
@@ -166,6 +190,20 @@ impl Model {
                 .map_or([f64::NAN; 2], |k| nodes[k]),
             None => nodes[node],
         }
+    }
+
+    /// The boundaries of body `b` that its contact pairs name, in pair order, each once.
+    pub fn contact_boundaries(&self, b: usize) -> Vec<&str> {
+        let mut names: Vec<&str> = Vec::new();
+        for pair in &self.pairs {
+            for s in 0..2 {
+                let name = pair.boundaries[s].as_str();
+                if pair.bodies[s] == b && !names.contains(&name) {
+                    names.push(name);
+                }
+            }
+        }
+        names
     }
 
     /// θ of every pair.
