@@ -12,7 +12,8 @@
 # - solves a column whose top block one rank cannot factorise (no support against sliding) and
 #   runs in which a body's Robin problem turns singular, and checks that every rank ends with the
 #   single process's exit code and the same one message, naming the body, without hanging; and
-#   the same for a results folder that cannot be written.
+#   the same for a results folder that cannot be written and for input errors in a body only its
+#   own rank meshes; and that rank 0's console report holds every body's loads and reactions.
 #
 # Usage: bash scripts/test_mpi.sh
 set -euo pipefail
@@ -110,6 +111,43 @@ for n in 2 3; do
   check "sliding block: -n $n prints the single process's message once" \
     test "$(grep '^error: ' "$work/sliding-$n.stderr")" = "$(cat "$work/sliding-1.stderr")"
 done
+
+# Input errors that only the rank meshing the body meets (each rank meshes its own bodies):
+# every rank ends with exit 1 and the single process's one message.
+fails_alike() {
+  local name=$1 file=$2 pattern=$3
+  for n in 1 2 3; do run "$work/$name-$n" "$n" "$file"; done
+  check "$name: the single process fails with exit 1 naming the body" \
+    sh -c "grep -qx 1 '$work/$name-1.code' && grep -q \"$pattern\" '$work/$name-1.stderr'"
+  for n in 2 3; do
+    check "$name: -n $n ends with exit 1" grep -qx 1 "$work/$name-$n.code"
+    check "$name: -n $n prints the single process's message once" \
+      test "$(grep '^error: ' "$work/$name-$n.stderr")" = "$(cat "$work/$name-1.stderr")"
+  done
+}
+# The last block's mesh has no cells.
+awk '/^mesh = / { last = NR } { line[NR] = $0 } END { for (i = 1; i <= NR; i++) { if (i == last) sub(/nx = 30/, "nx = 0", line[i]); print line[i] } }' \
+  examples/stack.toml >"$work/bad_mesh.toml"
+fails_alike bad-mesh "$work/bad_mesh.toml" "body 'b7'"
+# A ninth body, last, with neither supports nor contact: only its rank sees that it floats.
+cat examples/stack.toml - >"$work/loose.toml" <<'TOML'
+
+[[bodies]]
+name = "loose"
+material = "steel"
+mesh = { kind = "rectangle", x = [3.0, 4.0], y = [0.0, 1.0], nx = 4, ny = 4 }
+TOML
+fails_alike loose "$work/loose.toml" "loose"
+
+# The console report (rank 0's) carries every body's applied load and reactions, also those
+# of the bodies other ranks hold.
+for n in 1 2; do
+  if [ "$n" = 1 ]; then "$bin" solve examples/stack.toml --out "$work/report-1" >"$work/report-1.txt"
+  else "${mpirun[@]}" -n 2 "$bin" solve examples/stack.toml --out "$work/report-2" >"$work/report-2.txt"; fi
+  grep -E '^(applied loads|reactions on)' "$work/report-$n.txt" >"$work/report-$n.lines"
+done
+check "console report: -n 2 prints the single process's loads and reactions" \
+  sh -c "test -s '$work/report-1.lines' && cmp -s '$work/report-1.lines' '$work/report-2.lines'"
 
 # A run that diverges (the paper's neumann rule with γ = 1 on the column): exit 2 everywhere.
 same stack-diverges examples/stack.toml --method neumann --gamma 1 --max-iter 50

@@ -10,8 +10,7 @@ use mpi::topology::SimpleCommunicator;
 use mpi::traits::{Communicator, CommunicatorCollectives, Equivalence};
 use mpi::Count;
 
-use contactdd_ddm::exchange::{factor_cost, partition, Exchange};
-use contactdd_ddm::Model;
+use contactdd_ddm::exchange::{partition, Exchange};
 
 use crate::ranks::RankUse;
 
@@ -37,21 +36,17 @@ pub struct MpiExchange {
 }
 
 impl MpiExchange {
-    /// The exchange of `model` when MPI runs with more than one rank; `None` otherwise.
-    pub fn for_model(model: &Model) -> Option<MpiExchange> {
+    /// The exchange of bodies of estimated factorisation costs `cost` when MPI runs with more
+    /// than one rank; `None` otherwise.
+    pub fn for_costs(cost: &[f64]) -> Option<MpiExchange> {
         world_rank()?;
         let world = SimpleCommunicator::world();
         let size = world.size() as usize;
         if size < 2 {
             return None;
         }
-        let cost: Vec<f64> = model
-            .bodies
-            .iter()
-            .map(|b| factor_cost(2 * b.mesh.num_nodes()))
-            .collect();
         Some(MpiExchange {
-            owner: partition(&cost, size),
+            owner: partition(cost, size),
             rank: world.rank() as usize,
             size,
             nanos: AtomicU64::new(0),

@@ -7,8 +7,14 @@ use std::sync::Arc;
 
 use contactdd_ddm::exchange::{Exchange, Local};
 use contactdd_ddm::{Model, Solution};
+use contactdd_io::reactions::BodyReactions;
 use contactdd_io::setup::Monitor;
-use contactdd_io::shared_results::{write_results_shared, write_step_results_shared, Part};
+use contactdd_io::shared_results::{
+    shared_monitor, shared_reactions, write_results_shared, write_step_results_shared, Part,
+};
+use contactdd_io::Loaded;
+#[cfg(feature = "mpi")]
+use contactdd_io::{read_problem, shared_setup::estimated_costs};
 
 /// The processes of a solve and how they share the bodies.
 pub struct Ranks {
@@ -28,18 +34,39 @@ pub struct RankUse {
 }
 
 impl Ranks {
-    /// The ranks of this run for `model`: under `mpirun` with more than one rank, the bodies are
-    /// partitioned by their estimated factorisation cost; otherwise one process owns them all.
-    pub fn new(model: &Model) -> Ranks {
+    /// Reads the problem file `path` for this run: in one process every body is meshed; under
+    /// `mpirun` with more than one rank the bodies are partitioned by their estimated
+    /// factorisation cost, and each rank meshes only its own and holds the others as their
+    /// contact skins (a collective).
+    pub fn load(path: &Path) -> anyhow::Result<(Loaded, Ranks)> {
         #[cfg(feature = "mpi")]
-        if let Some(mpi) = crate::mpi_exchange::MpiExchange::for_model(model) {
-            let mpi = Arc::new(mpi);
-            return Ranks {
-                exchange: mpi.clone(),
-                size: mpi.size(),
-                mpi: Some(mpi),
-            };
+        {
+            let file = read_problem(path).map_err(|e| anyhow::anyhow!("{e}"))?;
+            let costs = estimated_costs(&file.problem, &file.base_dir);
+            if let Some(mpi) = crate::mpi_exchange::MpiExchange::for_costs(&costs) {
+                let mpi = Arc::new(mpi);
+                let loaded = file.resolve_on(&*mpi).map_err(|e| anyhow::anyhow!("{e}"))?;
+                let ranks = Ranks {
+                    exchange: mpi.clone(),
+                    size: mpi.size(),
+                    mpi: Some(mpi),
+                };
+                return Ok((loaded, ranks));
+            }
+            let loaded = file.resolve().map_err(|e| anyhow::anyhow!("{e}"))?;
+            let ranks = Ranks::alone(&loaded.model);
+            Ok((loaded, ranks))
         }
+        #[cfg(not(feature = "mpi"))]
+        {
+            let loaded = crate::load(path)?;
+            let ranks = Ranks::alone(&loaded.model);
+            Ok((loaded, ranks))
+        }
+    }
+
+    /// One process owning every body of `model`.
+    fn alone(model: &Model) -> Ranks {
         Ranks {
             exchange: Arc::new(Local::new(model.bodies.len())),
             size: 1,
@@ -63,6 +90,18 @@ impl Ranks {
         self.exchange.rank() == 0
     }
 
+    /// The support reactions of every body, each computed by the rank that holds its field (a
+    /// collective).
+    pub fn reactions(&self, model: &Model, sol: &Solution) -> std::io::Result<Vec<BodyReactions>> {
+        shared_reactions(model, sol, &self.part())
+    }
+
+    /// The monitored displacement of `sol`, from the rank that holds the body's field (a
+    /// collective).
+    pub fn monitored(&self, sol: &Solution, monitor: &Monitor) -> [f64; 2] {
+        shared_monitor(sol, monitor, &self.part())
+    }
+
     /// Writes the result folder: in one process all of it; on several ranks each rank its own
     /// bodies' VTU files and rank 0 the rest (a collective). Returns the paths this rank wrote.
     pub fn write_results(
@@ -70,9 +109,10 @@ impl Ranks {
         dir: &Path,
         model: &Model,
         sol: &Solution,
+        reactions: &[BodyReactions],
         units: Option<&str>,
     ) -> std::io::Result<Vec<PathBuf>> {
-        write_results_shared(dir, model, sol, units, &self.part())
+        write_results_shared(dir, model, sol, reactions, units, &self.part())
     }
 
     /// [`write_results`](Ranks::write_results) for the steps of a load-step run.
@@ -94,6 +134,7 @@ impl Ranks {
             root: self.is_root(),
             owns: Box::new(move |b| exchange.owns(b)),
             agree: Box::new(move |error| exchange.agree(error)),
+            gather: Box::new(move |own| exchange.gather(own)),
         }
     }
 

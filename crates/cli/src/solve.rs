@@ -16,7 +16,7 @@ use contactdd_ddm::{
     MonolithicSolution, Prepared, Record,
 };
 use contactdd_io::output::{safe_file_name, write_monolithic_results};
-use contactdd_io::reactions::reactions;
+use contactdd_io::reactions::BodyReactions;
 use contactdd_io::setup::Loaded;
 
 use crate::args::{Common, MonolithicArgs, SolveArgs};
@@ -169,7 +169,7 @@ fn iterate_shown(
 /// `contactdd solve`.
 pub fn solve(args: SolveArgs) -> Result<Exit> {
     let start = Instant::now();
-    let loaded = load(&args.file)?;
+    let (loaded, ranks) = Ranks::load(&args.file)?;
     let t_load = start.elapsed().as_secs_f64();
     let (settings, threads) = cli_settings(&args, &loaded);
     let mut model = loaded.model;
@@ -181,7 +181,6 @@ pub fn solve(args: SolveArgs) -> Result<Exit> {
         .out
         .clone()
         .unwrap_or_else(|| default_dir(model, "out"));
-    let ranks = Ranks::new(model);
     // Only rank 0 of a distributed run speaks.
     let quiet = args.quiet || !ranks.is_root();
 
@@ -219,8 +218,14 @@ pub fn solve(args: SolveArgs) -> Result<Exit> {
             }
         }
         let written = ranks
-            .write_results(&out, model, &sol, loaded.problem.units.as_deref())
+            .reactions(model, &sol)
+            .and_then(|reactions| {
+                let units = loaded.problem.units.as_deref();
+                let written = ranks.write_results(&out, model, &sol, &reactions, units)?;
+                Ok((written, reactions))
+            })
             .with_context(|| format!("cannot write the results to '{}'", out.display()))?;
+        let (written, reactions) = written;
         if !ranks.is_root() {
             // Rank 0 reports; every rank ends with the same exit code.
             return Ok(if sol.converged {
@@ -257,7 +262,7 @@ pub fn solve(args: SolveArgs) -> Result<Exit> {
             );
             phases.push(("total", start.elapsed().as_secs_f64()));
             let usage = (ranks.size() > 1).then_some(usage.as_slice());
-            print_summary(model, &sol, &phases, usage);
+            print_summary(model, &sol, &reactions, &phases, usage);
             say!("results: {}", files(&out, &written));
         }
         Ok(exit(sol.converged, &out))
@@ -278,6 +283,7 @@ const SOLVE_PHASES: [&str; 5] = [
 fn print_summary(
     model: &Model,
     sol: &contactdd_ddm::Solution,
+    reactions: &[BodyReactions],
     phases: &[(&str, f64)],
     usage: Option<&[RankUse]>,
 ) {
@@ -285,7 +291,7 @@ fn print_summary(
         say!("{line}");
     }
     say!("{}", applied_loads(model));
-    for line in reaction_report(&reactions(model, &sol.bodies, &sol.contact)) {
+    for line in reaction_report(reactions) {
         say!("{line}");
     }
     say!("{}", timing(phases.to_vec()));

@@ -8,7 +8,6 @@ use anyhow::{Context, Result};
 use contactdd_ddm::steps::solve_steps;
 use contactdd_ddm::{Hooks, Model, Prepared, Settings, Solution};
 use contactdd_io::setup::Monitor;
-use contactdd_io::steps::monitored_displacement;
 
 use crate::ranks::Ranks;
 use crate::report::{sig, vec2};
@@ -57,8 +56,10 @@ pub fn run_steps(run: StepRun<'_>, prepared: &mut Prepared) -> Result<Exit> {
     }
     let count = factors.len();
     let mut line = |k: usize, factor: f64, sol: &Solution| {
+        // Every rank takes part: the monitored body's rank holds its field.
+        let monitored = monitor.map(|m| ranks.monitored(sol, m));
         if !quiet {
-            say!("{}", step_line(k, count, factor, sol, monitor));
+            say!("{}", step_line(k, count, factor, sol, monitored));
         }
     };
     let steps = solve_steps(
@@ -108,13 +109,13 @@ pub fn run_steps(run: StepRun<'_>, prepared: &mut Prepared) -> Result<Exit> {
 }
 
 /// `step 2/4, factor 0.5: converged in 3 iterations; pair: force (0, 4200), max |σn| 2647[;
-/// monitor (ux, uy)]`.
+/// monitor (ux, uy)]` with the monitored displacement.
 fn step_line(
     k: usize,
     count: usize,
     factor: f64,
     sol: &Solution,
-    monitor: Option<&Monitor>,
+    monitored: Option<[f64; 2]>,
 ) -> String {
     let state = if sol.converged {
         format!("converged in {} iterations", sol.iterations)
@@ -132,8 +133,8 @@ fn step_line(
             sig(peak)
         );
     }
-    if let Some(m) = monitor {
-        line += &format!("; monitor {}", vec2(monitored_displacement(&sol.bodies, m)));
+    if let Some(u) = monitored {
+        line += &format!("; monitor {}", vec2(u));
     }
     line
 }

@@ -3,7 +3,7 @@
 use std::collections::BTreeMap;
 
 use contactdd_core::post::stresses;
-use contactdd_core::{Mesh, Vector, DIM};
+use contactdd_core::{ElasticBody, Mesh, Vector, DIM};
 
 use crate::contact::Interface;
 use crate::iteration::{Accelerator, Breakdown, CoarseMode, Record, Settings, Stop};
@@ -26,6 +26,26 @@ pub struct BodyResult {
     pub von_mises: Vec<f64>,
     /// Contact pressure σ_n at the body's contact nodes (≤ 0, compressive), 0 elsewhere.
     pub contact_pressure: Vec<f64>,
+}
+
+impl BodyResult {
+    /// The entry of a body whose fields another process holds (a distributed solve): its name
+    /// and skin, no fields.
+    pub fn elsewhere(body: &ElasticBody) -> BodyResult {
+        BodyResult {
+            name: body.name.clone(),
+            mesh: body.mesh.clone(),
+            displacement: Vec::new(),
+            stress: Vec::new(),
+            von_mises: Vec::new(),
+            contact_pressure: Vec::new(),
+        }
+    }
+
+    /// Whether this process holds the body's fields.
+    pub fn has_fields(&self) -> bool {
+        !self.displacement.is_empty()
+    }
 }
 
 /// Contact quantities of one pair, one entry per contact point (both sides).
@@ -386,6 +406,10 @@ pub fn body_results(
         .zip(displacements)
         .enumerate()
         .map(|(b, (body, u))| {
+            // Another process recovered this body's field.
+            if u.is_empty() {
+                return BodyResult::elsewhere(body);
+            }
             let st = stresses(&body.mesh, &body.material, body.plane, &u);
             let mut pressure = vec![0.0; body.mesh.num_nodes()];
             for (j, p) in interface.points.iter().enumerate() {

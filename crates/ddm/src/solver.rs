@@ -12,7 +12,7 @@ use crate::coarse::Coarse;
 use crate::condensed::{analyse_all, Condensation, CondensedBody, SetupTimes};
 use crate::contact::Interface;
 use crate::error::SetupError;
-use crate::exchange::{share_vectors, Exchange, Local};
+use crate::exchange::{Exchange, Local};
 use crate::iteration::{iterate_on, Hooks, Settings, Stop};
 use crate::model::Model;
 use crate::solution::{body_results, pair_results, stop_message, Solution};
@@ -260,8 +260,9 @@ pub fn solve_from(
     })
 }
 
-/// Every body's displacement field for the interface loads `t_load`: each process recovers its
-/// own bodies', and the exchange shares them. A failure on any process fails every process.
+/// The displacement fields for the interface loads `t_load` of the bodies this process owns
+/// (empty for the others, whose processes hold them). A failure on any process fails every
+/// process.
 fn recover(
     prepared: &Prepared,
     interface: &Interface,
@@ -282,7 +283,7 @@ fn recover(
     }
     let error = exchange.agree(own.as_ref().err().map(|e| e.to_string()));
     match (own, error) {
-        (Ok(own), None) => Ok(share_vectors(exchange, own)),
+        (Ok(own), None) => Ok(own),
         (_, Some(message)) => Err(SetupError::Distributed(message)),
         (Err(e), None) => Err(e.into()),
     }

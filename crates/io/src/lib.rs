@@ -20,14 +20,16 @@ pub mod error;
 pub mod fields;
 pub mod number;
 pub mod output;
+pub mod packed;
 pub mod problem;
 pub mod reactions;
 pub mod result_set;
 pub mod setup;
 pub mod shared_results;
+pub mod shared_setup;
 pub mod steps;
 pub mod vtu;
 pub mod write_problem;
 
 pub use error::LoadError;
-pub use setup::{load_file, load_str, resolve, Loaded};
+pub use setup::{load_file, load_str, read_problem, resolve, Loaded, ProblemFile};

@@ -57,7 +57,7 @@ use contactdd_ddm::{Gamma, Model, MonolithicSolution, Stop};
 pub use crate::atomic::write_atomic;
 use crate::fields::{contact_point_data, element_von_mises, principal, tensor, ContactPointData};
 use crate::number::format_f64 as num;
-use crate::reactions::reactions;
+use crate::reactions::{reactions, BodyReactions};
 use crate::result_set::{write_set, ResultSet};
 use crate::shared_results::{write_results_shared, Part};
 use crate::vtu::{write_vtu, Field, VtuData};
@@ -90,6 +90,12 @@ pub fn point_status(pair: &PairResult, i: usize) -> &'static str {
 
 /// `summary.json` of a DD solve (keys in the module docs).
 pub fn summary_json(model: &Model, sol: &Solution) -> Value {
+    summary_json_with(model, sol, &reactions(model, &sol.bodies, &sol.contact))
+}
+
+/// [`summary_json`] with the bodies' reactions given (a distributed solve gathers them from
+/// the processes that hold the fields).
+pub fn summary_json_with(model: &Model, sol: &Solution, reactions: &[BodyReactions]) -> Value {
     let history: Vec<Value> = sol
         .history
         .iter()
@@ -126,7 +132,7 @@ pub fn summary_json(model: &Model, sol: &Solution) -> Value {
         "enforcement": model.pairs.iter().map(|p| p.enforcement.to_string()).collect::<Vec<_>>(),
         "updates": sol.updates,
         "gap_tol": sol.gap_tol.map(json_number),
-        "reactions": reactions_json(model, &sol.bodies, &sol.contact),
+        "reactions": reactions_value(reactions),
         "timing_s": timing,
         "version": env!("CARGO_PKG_VERSION"),
     })
@@ -215,7 +221,11 @@ fn bodies_json(model: &Model) -> Value {
 /// The `reactions` of `summary.json`: per body `{body, supports: [{boundary, force}], total}`
 /// ([`reactions`]).
 pub fn reactions_json(model: &Model, bodies: &[BodyResult], contact: &[PairResult]) -> Value {
-    reactions(model, bodies, contact)
+    reactions_value(&reactions(model, bodies, contact))
+}
+
+fn reactions_value(reactions: &[BodyReactions]) -> Value {
+    reactions
         .iter()
         .map(|r| {
             let supports: Vec<Value> = r
@@ -347,7 +357,8 @@ pub fn write_results_noted(
     sol: &Solution,
     units: Option<&str>,
 ) -> std::io::Result<Vec<PathBuf>> {
-    write_results_shared(dir, model, sol, units, &Part::alone())
+    let reactions = reactions(model, &sol.bodies, &sol.contact);
+    write_results_shared(dir, model, sol, &reactions, units, &Part::alone())
 }
 
 /// Writes a monolithic solve's result folder as a set, like [`write_results`]: `contact.csv` and

@@ -33,8 +33,9 @@ pub struct BodyReactions {
     pub total: Vector,
 }
 
-/// The reactions of every body of `model`, from the per-body fields `bodies` (same order as
-/// `model.bodies`) and the contact results `contact` (same order as `model.pairs`).
+/// The reactions of every body of `model` whose field this process holds (every body in one
+/// process), from the per-body fields `bodies` (same order as `model.bodies`) and the contact
+/// results `contact` (same order as `model.pairs`).
 ///
 /// A boundary or node set counts as supported when every one of its nodes has a prescribed
 /// displacement component (or lies on an inclined `normal` support); its reaction sums the
@@ -45,37 +46,43 @@ pub fn reactions(
     bodies: &[BodyResult],
     contact: &[PairResult],
 ) -> Vec<BodyReactions> {
-    let contact_forces = nodal_contact_forces(model, contact);
-    model
-        .bodies
-        .iter()
-        .zip(bodies)
-        .zip(contact_forces)
-        .map(|((body, fields), fc)| {
-            let r = residual(&body.stiffness(), &fields.displacement, &body.load);
-            let reaction = |d: usize| r[d] - fc[d];
-            // A node of an inclined normal support counts with both components: its reaction
-            // lies along the normal.
-            let fixed = |d: usize| body.constraints.holds(d);
-            let mesh = &body.mesh;
-            let names = mesh.boundaries().keys().chain(mesh.node_sets().keys());
-            let supports = names
-                .filter_map(|name| {
-                    let nodes = mesh.boundary_nodes(name).ok()?;
-                    let held = |&v: &usize| (0..DIM).any(|c| fixed(dof(v, c)));
-                    (!nodes.is_empty() && nodes.iter().all(held)).then(|| SupportReaction {
-                        boundary: name.clone(),
-                        force: sum_fixed(nodes.iter().copied(), &fixed, &reaction),
-                    })
-                })
-                .collect();
-            BodyReactions {
-                body: body.name.clone(),
-                supports,
-                total: sum_fixed(0..mesh.num_nodes(), &fixed, &reaction),
-            }
-        })
+    (bodies.iter().enumerate())
+        .filter(|(_, fields)| fields.has_fields())
+        .map(|(b, fields)| body_reactions(model, b, fields, contact))
         .collect()
+}
+
+/// The reactions of body `b` from its field `fields` (see [`reactions`]).
+pub fn body_reactions(
+    model: &Model,
+    b: usize,
+    fields: &BodyResult,
+    contact: &[PairResult],
+) -> BodyReactions {
+    let body = &model.bodies[b];
+    let fc = nodal_contact_force(model, b, contact);
+    let r = residual(&body.stiffness(), &fields.displacement, &body.load);
+    let reaction = |d: usize| r[d] - fc[d];
+    // A node of an inclined normal support counts with both components: its reaction lies
+    // along the normal.
+    let fixed = |d: usize| body.constraints.holds(d);
+    let mesh = &body.mesh;
+    let names = mesh.boundaries().keys().chain(mesh.node_sets().keys());
+    let supports = names
+        .filter_map(|name| {
+            let nodes = mesh.boundary_nodes(name).ok()?;
+            let held = |&v: &usize| (0..DIM).any(|c| fixed(dof(v, c)));
+            (!nodes.is_empty() && nodes.iter().all(held)).then(|| SupportReaction {
+                boundary: name.clone(),
+                force: sum_fixed(nodes.iter().copied(), &fixed, &reaction),
+            })
+        })
+        .collect();
+    BodyReactions {
+        body: body.name.clone(),
+        supports,
+        total: sum_fixed(0..mesh.num_nodes(), &fixed, &reaction),
+    }
 }
 
 /// Σ over `nodes` and their prescribed components of `reaction(dof)`.
@@ -95,16 +102,15 @@ fn sum_fixed(
     sum
 }
 
-/// Per body, the nodal contact forces of the result (2 per node; w σ_n n for an own-side pair).
-fn nodal_contact_forces(model: &Model, contact: &[PairResult]) -> Vec<Vec<f64>> {
-    let mut forces: Vec<Vec<f64>> = model
-        .bodies
-        .iter()
-        .map(|b| vec![0.0; b.load.len()])
-        .collect();
+/// The nodal contact forces of the result on body `b` (2 per node; w σ_n n for an own-side
+/// pair).
+fn nodal_contact_force(model: &Model, b: usize, contact: &[PairResult]) -> Vec<f64> {
+    let mut f = vec![0.0; model.bodies[b].load.len()];
     for (pair, p) in model.pairs.iter().zip(contact) {
-        for i in 0..p.side.len() {
-            let f = &mut forces[pair.bodies[p.side[i]]];
+        if !pair.bodies.contains(&b) {
+            continue;
+        }
+        for i in (0..p.side.len()).filter(|&i| pair.bodies[p.side[i]] == b) {
             // A point without a partner has no force (NaN-free by construction, but be safe).
             if p.fx[i].is_finite() && p.fy[i].is_finite() {
                 f[dof(p.node[i], 0)] += p.fx[i];
@@ -112,5 +118,5 @@ fn nodal_contact_forces(model: &Model, contact: &[PairResult]) -> Vec<Vec<f64>> 
             }
         }
     }
-    forces
+    f
 }

@@ -35,10 +35,12 @@ use contactdd_core::{
 };
 
 use contactdd_core::gmsh::read_msh_surface;
+use contactdd_ddm::exchange::Exchange;
 use contactdd_ddm::iteration::ANDERSON_DEPTH;
 use contactdd_ddm::steps::{check_factors, equal_steps};
 use contactdd_ddm::{
-    Accelerator, CoarseMode, ContactPair, Gamma, GapProfile, Model, Penalty, Settings, SetupError,
+    Accelerator, CoarseMode, ContactPair, Gamma, GapProfile, Model, Penalty, Remote, Settings,
+    SetupError,
 };
 
 use crate::error::LoadError;
@@ -90,42 +92,89 @@ pub struct Monitor {
 /// Reads, parses and resolves a TOML problem file. Relative mesh paths resolve against the file's
 /// folder; the default problem name is the file stem.
 pub fn load_file(path: &Path) -> Result<Loaded, LoadError> {
-    let text = std::fs::read_to_string(path).map_err(|source| LoadError::Io {
-        path: path.display().to_string(),
-        source,
-    })?;
-    let base_dir = path.parent().unwrap_or(Path::new(""));
-    load_str(&text, &path.display().to_string(), base_dir)
+    read_problem(path)?.resolve()
 }
 
 /// Parses and resolves the text of a problem file. `source` names the file in messages (and its
 /// stem is the default problem name); relative mesh paths resolve against `base_dir`.
 pub fn load_str(text: &str, source: &str, base_dir: &Path) -> Result<Loaded, LoadError> {
+    parse_problem(text, source, base_dir)?.resolve()
+}
+
+/// A parsed problem file whose bodies are not built yet.
+#[derive(Clone, Debug)]
+pub struct ProblemFile {
+    /// The problem as read.
+    pub problem: Problem,
+    /// The file's name, for messages (its stem is the default problem name).
+    pub source: String,
+    /// The folder relative mesh paths resolve against.
+    pub base_dir: PathBuf,
+}
+
+/// Reads and parses a TOML problem file.
+pub fn read_problem(path: &Path) -> Result<ProblemFile, LoadError> {
+    let text = std::fs::read_to_string(path).map_err(|source| LoadError::Io {
+        path: path.display().to_string(),
+        source,
+    })?;
+    let base_dir = path.parent().unwrap_or(Path::new(""));
+    parse_problem(&text, &path.display().to_string(), base_dir)
+}
+
+fn parse_problem(text: &str, source: &str, base_dir: &Path) -> Result<ProblemFile, LoadError> {
     let problem: Problem = toml::from_str(text).map_err(|e| LoadError::Toml {
         file: source.to_string(),
         source: e,
     })?;
-    let stem = Path::new(source)
-        .file_stem()
-        .and_then(|s| s.to_str())
-        .filter(|s| !s.is_empty())
-        .unwrap_or("problem");
-    resolve_named(problem, base_dir, stem).map_err(|error| LoadError::InFile {
-        file: source.to_string(),
-        error: Box::new(error),
+    Ok(ProblemFile {
+        problem,
+        source: source.to_string(),
+        base_dir: base_dir.to_path_buf(),
     })
+}
+
+impl ProblemFile {
+    /// Builds the model and settings, every body in this process.
+    pub fn resolve(self) -> Result<Loaded, LoadError> {
+        self.resolve_with(None)
+    }
+
+    /// Builds the model and settings on one process of a distributed solve (docs/mpi.md): it
+    /// meshes only the bodies `exchange` gives it and holds the others as their contact skins
+    /// ([`contactdd_ddm::Remote`]). A collective; an error of any process is every process's.
+    pub fn resolve_on(self, exchange: &dyn Exchange) -> Result<Loaded, LoadError> {
+        self.resolve_with(Some(exchange))
+    }
+
+    fn resolve_with(self, exchange: Option<&dyn Exchange>) -> Result<Loaded, LoadError> {
+        let stem = Path::new(&self.source)
+            .file_stem()
+            .and_then(|s| s.to_str())
+            .filter(|s| !s.is_empty())
+            .unwrap_or("problem")
+            .to_string();
+        let source = self.source;
+        resolve_named(self.problem, &self.base_dir, &stem, exchange).map_err(|error| {
+            LoadError::InFile {
+                file: source,
+                error: Box::new(error),
+            }
+        })
+    }
 }
 
 /// Validates a parsed problem and builds the model and settings. Relative mesh paths resolve
 /// against `base_dir`; without a `name` the problem is called `"problem"`.
 pub fn resolve(problem: Problem, base_dir: &Path) -> Result<Loaded, LoadError> {
-    resolve_named(problem, base_dir, "problem")
+    resolve_named(problem, base_dir, "problem", None)
 }
 
 fn resolve_named(
     problem: Problem,
     base_dir: &Path,
     default_name: &str,
+    exchange: Option<&dyn Exchange>,
 ) -> Result<Loaded, LoadError> {
     let settings = settings(&problem.solver, &Settings::default())?;
     // Checked before the materials and bodies so that an empty file gets this message first.
@@ -144,9 +193,25 @@ fn resolve_named(
             problem.bodies[..i].iter().map(|b| b.name.as_str()),
         )?;
     }
-    for spec in &problem.bodies {
-        builder.add_body(spec, base_dir)?;
-    }
+    let Some(exchange) = exchange else {
+        for spec in &problem.bodies {
+            builder.add_body(spec, base_dir)?;
+        }
+        return finish(builder, problem, settings, default_name);
+    };
+    crate::shared_setup::add_bodies(&mut builder, &problem, base_dir, exchange)?;
+    // Each process checked the supports of its own bodies only: they agree on the outcome.
+    let rest = finish(builder, problem, settings, default_name);
+    crate::shared_setup::agreed(exchange, rest)
+}
+
+/// The pairs, the model and the settings that depend on it.
+fn finish(
+    mut builder: ModelBuilder,
+    problem: Problem,
+    settings: Settings,
+    default_name: &str,
+) -> Result<Loaded, LoadError> {
     for spec in &problem.contact {
         builder.add_pair(spec)?;
     }
@@ -262,6 +327,8 @@ pub struct ModelBuilder {
     materials: BTreeMap<String, Material>,
     bodies: Vec<ElasticBody>,
     pairs: Vec<ContactPair>,
+    /// Per body, its remote part where another process meshes it.
+    remote: Vec<Option<Remote>>,
 }
 
 impl ModelBuilder {
@@ -272,6 +339,7 @@ impl ModelBuilder {
             materials: BTreeMap::new(),
             bodies: Vec::new(),
             pairs: Vec::new(),
+            remote: Vec::new(),
         }
     }
 
@@ -283,6 +351,7 @@ impl ModelBuilder {
             materials,
             bodies: model.bodies,
             pairs: model.pairs,
+            remote: model.remote,
         }
     }
 
@@ -327,20 +396,33 @@ impl ModelBuilder {
     /// Adds a `[[bodies]]` entry: name, material, mesh (a relative Gmsh path resolves against
     /// `base_dir`), supports and loads.
     pub fn add_body(&mut self, spec: &BodySpec, base_dir: &Path) -> Result<(), LoadError> {
+        self.check_body_name(&spec.name)?;
+        let body = self.body(spec, base_dir)?;
+        self.push_body(body, None);
+        Ok(())
+    }
+
+    /// The body of a `[[bodies]]` entry, built but not added (its name is not checked).
+    pub fn body(&self, spec: &BodySpec, base_dir: &Path) -> Result<ElasticBody, LoadError> {
         let name = spec.name.as_str();
-        self.check_body_name(name)?;
         let material = self.material_of(name, &spec.material)?;
         let mesh = mesh(name, &spec.mesh, base_dir)?;
-        let body = body_on_mesh(
+        Ok(body_on_mesh(
             name,
             mesh,
             material,
             self.plane,
             &spec.supports,
             &spec.loads,
-        )?;
+        )?)
+    }
+
+    /// Adds a built body: a whole one, or the stand-in of a body another process meshes with
+    /// its remote part.
+    pub fn push_body(&mut self, body: ElasticBody, remote: Option<Remote>) {
+        self.remote.resize(self.bodies.len(), None);
         self.bodies.push(body);
-        Ok(())
+        self.remote.push(remote);
     }
 
     /// Adds a body on a mesh built by the caller (e.g. [`mesh_from_arrays`]), checked like a
@@ -356,7 +438,7 @@ impl ModelBuilder {
         self.check_body_name(name)?;
         let material = self.material_of(name, material)?;
         let body = body_on_mesh(name, mesh, material, self.plane, supports, loads)?;
-        self.bodies.push(body);
+        self.push_body(body, None);
         Ok(())
     }
 
@@ -383,7 +465,11 @@ impl ModelBuilder {
             plane: self.plane,
             bodies: self.bodies,
             pairs: self.pairs,
-            remote: Vec::new(),
+            // Empty unless some body is remote.
+            remote: match self.remote.iter().any(Option::is_some) {
+                true => self.remote,
+                false => Vec::new(),
+            },
         };
         check_floating(&model)?;
         Ok(model)

@@ -16,10 +16,14 @@ use serde_json::{json, Value};
 
 use contactdd_ddm::{Model, Solution};
 
-use crate::output::{contact_csv, history_csv, summary_json, vtu_paths, write_solution_vtus_of};
+use crate::output::{
+    contact_csv, history_csv, summary_json_with, vtu_paths, write_solution_vtus_of,
+};
+use crate::packed::{pack_reactions, unpack_reactions};
+use crate::reactions::{body_reactions, BodyReactions};
 use crate::result_set::ResultSet;
 use crate::setup::Monitor;
-use crate::steps::{steps_csv, steps_json};
+use crate::steps::{monitored_displacement, steps_csv, steps_json};
 
 /// How this process takes part in writing a shared result folder.
 pub struct Part<'a> {
@@ -29,6 +33,9 @@ pub struct Part<'a> {
     pub owns: Box<dyn Fn(usize) -> bool + 'a>,
     /// The collective that returns the first error of any process (the same on every process).
     pub agree: Box<dyn Fn(Option<String>) -> Option<String> + 'a>,
+    /// The collective that hands every process every body's values, given this process's own
+    /// bodies' in body order (`contactdd_ddm::exchange::Exchange::gather`).
+    pub gather: Box<dyn Fn(Vec<Vec<f64>>) -> Vec<Vec<f64>> + 'a>,
 }
 
 impl Part<'static> {
@@ -38,17 +45,53 @@ impl Part<'static> {
             root: true,
             owns: Box::new(|_| true),
             agree: Box::new(|error| error),
+            gather: Box::new(|own| own),
         }
     }
 }
 
-/// Writes this process's part of the result folder `dir` of `sol` (every process holds the whole
-/// solution). Returns the paths this process wrote (the root's list ends with `summary.json`);
-/// every process returns the same error if any failed.
+/// The reactions of every body, each computed by the process that holds its field and handed to
+/// every process (a collective).
+pub fn shared_reactions(
+    model: &Model,
+    sol: &Solution,
+    part: &Part<'_>,
+) -> std::io::Result<Vec<BodyReactions>> {
+    let own = (sol.bodies.iter().enumerate())
+        .filter(|(b, _)| (part.owns)(*b))
+        .map(|(b, fields)| pack_reactions(&body_reactions(model, b, fields, &sol.contact)))
+        .collect();
+    let all = (part.gather)(own);
+    all.iter()
+        .map(|v| unpack_reactions(v).map_err(Error::other))
+        .collect()
+}
+
+/// The mean displacement of the monitored boundary in `sol`, computed by the process that holds
+/// the body's field and handed to every process (a collective).
+pub fn shared_monitor(sol: &Solution, monitor: &Monitor, part: &Part<'_>) -> [f64; 2] {
+    let own = (0..sol.bodies.len())
+        .filter(|&b| (part.owns)(b))
+        .map(|b| match b == monitor.body {
+            true => monitored_displacement(&sol.bodies, monitor).to_vec(),
+            false => Vec::new(),
+        })
+        .collect();
+    let all = (part.gather)(own);
+    match all.get(monitor.body).map(Vec::as_slice) {
+        Some(&[ux, uy]) => [ux, uy],
+        _ => [f64::NAN; 2],
+    }
+}
+
+/// Writes this process's part of the result folder `dir` of `sol`, whose bodies' `reactions`
+/// every process holds ([`shared_reactions`]). Returns the paths this process wrote (the root's
+/// list ends with `summary.json`); every process returns the same error if any failed.
 pub fn write_results_shared(
     dir: &Path,
     model: &Model,
     sol: &Solution,
+    reactions: &[BodyReactions],
     units: Option<&str>,
     part: &Part<'_>,
 ) -> std::io::Result<Vec<PathBuf>> {
@@ -58,7 +101,7 @@ pub fn write_results_shared(
             ("history.csv", history_csv(sol)),
         ],
         vtus: vec![(1.0, String::new(), sol)],
-        summary: summary_json(model, sol),
+        summary: summary_json_with(model, sol, reactions),
     };
     write_shared(dir, model, contents, units, part)
 }
@@ -76,13 +119,20 @@ pub fn write_step_results_shared(
     let Some((_, last)) = steps.last() else {
         return Err(Error::new(ErrorKind::InvalidInput, "no load step to write"));
     };
-    let mut summary = summary_json(model, last);
-    summary["steps"] = steps_json(steps, monitor);
+    let reactions = shared_reactions(model, last, part)?;
+    let monitored = monitor.map(|m| {
+        (steps.iter())
+            .map(|(_, sol)| shared_monitor(sol, m, part))
+            .collect::<Vec<_>>()
+    });
+    let monitored = monitored.as_deref();
+    let mut summary = summary_json_with(model, last, &reactions);
+    summary["steps"] = steps_json(steps, monitored);
     let contents = Contents {
         files: vec![
             ("contact.csv", contact_csv(last)),
             ("history.csv", history_csv(last)),
-            ("steps.csv", steps_csv(model, steps, monitor)),
+            ("steps.csv", steps_csv(model, steps, monitored)),
         ],
         vtus: steps
             .iter()

@@ -39,9 +39,10 @@ impl PairStep {
     }
 }
 
-/// The mean displacement of the monitored boundary (NaN if it has no nodes).
+/// The mean displacement of the monitored boundary (NaN if it has no nodes, or if another
+/// process holds the body's field).
 pub fn monitored_displacement(bodies: &[BodyResult], monitor: &Monitor) -> [f64; 2] {
-    let Some(body) = bodies.get(monitor.body) else {
+    let Some(body) = bodies.get(monitor.body).filter(|b| b.has_fields()) else {
         return [f64::NAN; 2];
     };
     let nodes = body
@@ -61,8 +62,12 @@ pub fn monitored_displacement(bodies: &[BodyResult], monitor: &Monitor) -> [f64;
 
 /// `steps.csv`: `step,factor,converged,iterations`, then per pair `<pair>_force_x`,
 /// `<pair>_force_y` (on its first body), `<pair>_contact_length`, `<pair>_max_pressure`, and with a
-/// monitor `monitor_ux,monitor_uy`.
-pub fn steps_csv(model: &Model, steps: &[(f64, Solution)], monitor: Option<&Monitor>) -> String {
+/// monitor `monitor_ux,monitor_uy` (`monitored`: the monitored displacement of every step).
+pub fn steps_csv(
+    model: &Model,
+    steps: &[(f64, Solution)],
+    monitored: Option<&[[f64; 2]]>,
+) -> String {
     let mut head = vec![
         "step".to_string(),
         "factor".into(),
@@ -75,7 +80,7 @@ pub fn steps_csv(model: &Model, steps: &[(f64, Solution)], monitor: Option<&Moni
             head.push(format!("{name}_{what}"));
         }
     }
-    if monitor.is_some() {
+    if monitored.is_some() {
         head.extend(["monitor_ux".to_string(), "monitor_uy".into()]);
     }
     let mut rows = Vec::with_capacity(steps.len());
@@ -90,8 +95,8 @@ pub fn steps_csv(model: &Model, steps: &[(f64, Solution)], monitor: Option<&Moni
             let s = PairStep::new(pair);
             row.extend([s.force[0], s.force[1], s.contact_length, s.max_pressure].map(num));
         }
-        if let Some(m) = monitor {
-            row.extend(monitored_displacement(&sol.bodies, m).map(num));
+        if let Some(u) = monitored.and_then(|m| m.get(k)) {
+            row.extend(u.map(num));
         }
         rows.push(row);
     }
@@ -99,8 +104,9 @@ pub fn steps_csv(model: &Model, steps: &[(f64, Solution)], monitor: Option<&Moni
 }
 
 /// The `steps` array of `summary.json`: per step its number, factor, convergence, iterations,
-/// per pair the same values as `steps.csv`, and the monitored displacement.
-pub fn steps_json(steps: &[(f64, Solution)], monitor: Option<&Monitor>) -> Value {
+/// per pair the same values as `steps.csv`, and the monitored displacement (`monitored`, per
+/// step).
+pub fn steps_json(steps: &[(f64, Solution)], monitored: Option<&[[f64; 2]]>) -> Value {
     steps
         .iter()
         .enumerate()
@@ -124,7 +130,7 @@ pub fn steps_json(steps: &[(f64, Solution)], monitor: Option<&Monitor>) -> Value
                 "converged": sol.converged,
                 "iterations": sol.iterations,
                 "pairs": pairs,
-                "monitor": monitor.map(|m| monitored_displacement(&sol.bodies, m).map(json_number)),
+                "monitor": monitored.and_then(|m| m.get(k)).map(|u| u.map(json_number)),
             })
         })
         .collect()
