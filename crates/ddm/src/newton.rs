@@ -472,7 +472,7 @@ impl<'a> System<'a> {
             let residual = |x: &Mat<f64>| self.bordered_residual(chi, z, pins.as_deref(), r, x);
             let refine: Option<&dyn Fn(&Mat<f64>) -> Option<Mat<f64>>> =
                 pins.as_ref().map(|_| &residual as _);
-            sparse_solve(&trip, n, &mut rhs, cache, refine)?;
+            sparse_solve(trip, n, &mut rhs, cache, refine)?;
         }
         let mut delta: Vec<f64> = (0..m).map(|i| rhs[(i, 0)]).collect();
         if pins.is_some() {
@@ -626,14 +626,19 @@ impl<'a> System<'a> {
 /// With `refine` (the sparse path: the residual of the true system at a solution), iterative
 /// refinement follows, at most [`MAX_REFINE`] steps while each halves the residual. `cache` keeps
 /// the LU's analysis and buffers between calls.
+///
+/// The numeric factorisation is the peak of memory of a Newton step on the sparse path, so the
+/// triplets (consumed) and the last step's pattern are freed before it: only the matrix, the
+/// factor and faer's workspace are then alive.
 fn sparse_solve(
-    trip: &[Triplet<usize, usize, f64>],
+    trip: Vec<Triplet<usize, usize, f64>>,
     n: usize,
     rhs: &mut Mat<f64>,
     cache: Option<&Mutex<LuCache>>,
     refine: Option<&dyn Fn(&Mat<f64>) -> Option<Mat<f64>>>,
 ) -> Option<()> {
-    let a = SparseColMat::<usize, f64>::try_new_from_triplets(n, n, trip).ok()?;
+    let a = SparseColMat::<usize, f64>::try_new_from_triplets(n, n, &trip).ok()?;
+    drop(trip);
     // Dense blocks per body: the supernodal factorisation uses dense kernels on them.
     let params = LuSymbolicParams {
         supernodal_flop_ratio_threshold: SupernodalThreshold::FORCE_SUPERNODAL,
@@ -648,12 +653,15 @@ fn sparse_solve(
     let same = kept.pattern.as_ref().is_some_and(|p| {
         p.col_ptr() == a.symbolic().col_ptr() && p.row_idx() == a.symbolic().row_idx()
     });
+    // The matrix's own pattern replaces the kept one after the factorisation.
+    kept.pattern = None;
     if !same || kept.symbolic.is_none() {
         kept.symbolic = Some(factorize_symbolic_lu(a.symbolic(), params).ok()?);
-        kept.pattern = Some(a.symbolic().to_owned().ok()?);
     }
     let LuCache {
-        symbolic, numeric, ..
+        pattern,
+        symbolic,
+        numeric,
     } = kept;
     let symbolic = symbolic.as_ref()?;
     let mut mem = MemBuffer::try_new(
@@ -687,6 +695,7 @@ fn sparse_solve(
             rhs[(i, 0)] += r[(i, 0)];
         }
     }
+    *pattern = Some(a.into_parts().0);
     Some(())
 }
 
