@@ -625,11 +625,13 @@ impl<'a> System<'a> {
 ///
 /// With `refine` (the sparse path: the residual of the true system at a solution), iterative
 /// refinement follows, at most [`MAX_REFINE`] steps while each halves the residual. `cache` keeps
-/// the LU's analysis and buffers between calls.
+/// the LU's analysis between calls.
 ///
 /// The numeric factorisation is the peak of memory of a Newton step on the sparse path, so the
 /// triplets (consumed) and the last step's pattern are freed before it: only the matrix, the
-/// factor and faer's workspace are then alive.
+/// factor and faer's workspace are then alive. The factor's values are not kept for the next step
+/// either: alive while the next step's triplets and matrix are built, they made that moment the
+/// run's peak, and the pattern changes nothing in them but their buffers' capacity.
 fn sparse_solve(
     trip: Vec<Triplet<usize, usize, f64>>,
     n: usize,
@@ -658,19 +660,16 @@ fn sparse_solve(
     if !same || kept.symbolic.is_none() {
         kept.symbolic = Some(factorize_symbolic_lu(a.symbolic(), params).ok()?);
     }
-    let LuCache {
-        pattern,
-        symbolic,
-        numeric,
-    } = kept;
+    let LuCache { pattern, symbolic } = kept;
     let symbolic = symbolic.as_ref()?;
+    let mut numeric = NumericLu::new();
     let mut mem = MemBuffer::try_new(
         symbolic.factorize_numeric_lu_scratch::<f64>(Par::Seq, Default::default()),
     )
     .ok()?;
     let lu = symbolic
         .factorize_numeric_lu(
-            numeric,
+            &mut numeric,
             a.as_ref(),
             Par::Seq,
             MemStack::new(&mut mem),
@@ -731,22 +730,12 @@ fn dense_solve(trip: &[Triplet<usize, usize, f64>], n: usize, rhs: &mut Mat<f64>
     Some(())
 }
 
-/// The sparse LU of the last Newton step on the sparse path: its pattern, symbolic analysis and
-/// numeric buffers, reused while the pattern stays the same.
+/// What the sparse LU of the last Newton step on the sparse path leaves for the next: its pattern
+/// and symbolic analysis, reused while the pattern stays the same.
+#[derive(Default)]
 struct LuCache {
     pattern: Option<SymbolicSparseColMat<usize>>,
     symbolic: Option<SymbolicLu<usize>>,
-    numeric: NumericLu<usize, f64>,
-}
-
-impl Default for LuCache {
-    fn default() -> Self {
-        LuCache {
-            pattern: None,
-            symbolic: None,
-            numeric: NumericLu::new(),
-        }
-    }
 }
 
 /// One point per kernel vector where the vectors restricted to these points are regular:
