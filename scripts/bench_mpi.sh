@@ -11,7 +11,7 @@
 # Usage: bash scripts/bench_mpi.sh [RANKS...]     (default: 1 2)
 set -euo pipefail
 cd "$(dirname "$0")/.."
-bin=$(pwd)/target/mpi/contactdd
+bin=${CONTACTDD_BIN:-$(pwd)/target/mpi/contactdd}
 if [ ! -x "$bin" ]; then
   echo "no $bin: run scripts/test_mpi.sh first (it builds contactdd --features mpi)" >&2
   exit 1
