@@ -8,7 +8,8 @@
 #   in one process and under `mpirun -n 2` and `-n 3`, and compares every output file byte for
 #   byte (summary.json without its timings, contact.csv, history.csv, the VTU files): the numbers
 #   are written to the last bit, so equal files are equal bits; and the same for load steps (the
-#   recess with exact contact, the column in three steps: steps.csv, every step's VTU files);
+#   recess with exact contact, the column in three steps: steps.csv, every step's VTU files), and
+#   on the sparse condensation (forced, and chosen for a long contact zone);
 # - solves a column whose top block one rank cannot factorise (no support against sliding) and
 #   runs in which a body's Robin problem turns singular, and checks that every rank ends with the
 #   single process's exit code and the same one message, naming the body, without hanging; and
@@ -91,6 +92,17 @@ same notch-paper examples/notch.toml --method newton-kurchatov --gamma 0.5
 same stack-newton examples/stack.toml
 same stack-two-level examples/stack.toml --accelerator none
 same stack-anderson examples/stack.toml --accelerator anderson
+# The sparse condensation: forced on the notch and the column, and chosen by the cost model for
+# a long contact zone (1000 × 16 cells per body, 1001 contact points).
+sparse() { sed "s/^\[solver\]/[solver]\ncondensation = \"$2\"/" "$1"; }
+sparse examples/notch.toml sparse >"$work/notch_sparse.toml"
+sparse examples/stack.toml sparse >"$work/stack_sparse.toml"
+sed -e 's/nx = 32, ny = 16/nx = 1000, ny = 16/g' -e '/^method = /d' -e '/^gamma = /d' \
+  examples/notch.toml >"$work/strip.toml"
+same notch-sparse "$work/notch_sparse.toml"
+same stack-sparse "$work/stack_sparse.toml"
+same stack-sparse-anderson "$work/stack_sparse.toml" --accelerator anderson
+same strip-auto "$work/strip.toml"
 # Load steps: every step's VTU set, steps.csv and results.pvd, on two bodies with exact contact
 # (the recess) and on the column of eight floating blocks in three steps.
 same recess-steps examples/recess_steps.toml

@@ -69,6 +69,16 @@ impl Exchange for ThreadExchange {
 
 /// Solves `model` on `ranks` threads joined by the in-memory exchange; every rank's solution.
 fn distributed(model: &Model, settings: &Settings, ranks: usize) -> Vec<Solution> {
+    distributed_on(model, settings, ranks, Condensation::Auto)
+}
+
+/// [`distributed`] on the condensation path `condensation`.
+fn distributed_on(
+    model: &Model,
+    settings: &Settings,
+    ranks: usize,
+    condensation: Condensation,
+) -> Vec<Solution> {
     let cost: Vec<f64> = model
         .bodies
         .iter()
@@ -91,7 +101,7 @@ fn distributed(model: &Model, settings: &Settings, ranks: usize) -> Vec<Solution
                 let owner = owner.clone();
                 scope.spawn(move || {
                     let model = &seen_by(model, |b| owner[b] == rank);
-                    let prepared = prepare_on(model, Condensation::Auto, exchange).unwrap();
+                    let prepared = prepare_on(model, condensation, exchange).unwrap();
                     let owned = prepared.bodies.iter().flatten().count();
                     assert!(owned < model.bodies.len(), "rank {rank} owns every body");
                     let sol = solve(model, &prepared, settings, Hooks::default()).unwrap();
@@ -268,25 +278,27 @@ fn a_body_one_rank_cannot_factorise_fails_every_rank_with_its_message() {
 
 /// The sparse path couples every body in one sparse LU: forced on several ranks, it is refused
 /// with a message that says what to use instead, on every rank (the check needs no exchange).
+/// The sparse path on several ranks: every rank assembles the same coupled Newton system (the
+/// other ranks' sparse bodies replayed from their packed rows) and reproduces the single-process
+/// sparse solve bit for bit, with the interface Newton method and with Anderson's sweeps.
 #[test]
-fn the_sparse_path_is_refused_on_several_ranks() {
-    let model = cases::column(4, 0.5);
-    let owner = partition(&vec![1.0; model.bodies.len()], 2);
-    let shared = Arc::new(Shared {
-        barrier: Barrier::new(2),
-        values: Mutex::new(vec![Vec::new(); 2]),
-        errors: Mutex::new(vec![None; 2]),
-    });
-    for rank in 0..2 {
-        let exchange = Arc::new(ThreadExchange {
-            owner: owner.clone(),
-            rank,
-            shared: shared.clone(),
-        });
-        let error = prepare_on(&model, Condensation::Sparse, exchange)
-            .err()
-            .map(|e| e.to_string())
-            .unwrap_or_default();
-        assert!(error.contains("one process only"), "rank {rank}: {error}");
+fn the_sparse_path_on_two_and_three_ranks_is_the_single_process_solve_bit_for_bit() {
+    let notch = contactdd::ddm::benchmark::Notch::default().model().unwrap();
+    for (name, model) in [("notch", notch), ("column", cases::column(5, 0.5))] {
+        let prepared = prepare_with(&model, Condensation::Sparse).unwrap();
+        for (scheme, settings) in schemes().into_iter().filter(|(s, _)| *s != "paper") {
+            let settings = Settings {
+                max_iter: 60,
+                ..settings
+            };
+            let one = solve(&model, &prepared, &settings, Hooks::default()).unwrap();
+            for ranks in [2, 3] {
+                let all = distributed_on(&model, &settings, ranks, Condensation::Sparse);
+                for (rank, sol) in all.iter().enumerate() {
+                    let what = format!("{name} sparse {scheme}, rank {rank} of {ranks}");
+                    assert_same(&one, sol, &what);
+                }
+            }
+        }
     }
 }

@@ -30,6 +30,7 @@ pub mod newton;
 pub mod profile;
 pub mod relaxation;
 pub mod robin_sweep;
+pub mod shared_rows;
 pub mod solution;
 pub mod solver;
 pub mod sparse_body;

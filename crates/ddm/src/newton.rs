@@ -55,6 +55,7 @@ use crate::iteration::{
     contact_summary, relative_change, starting_values, Hooks, Outcome, Record, Settings, Stop,
 };
 use crate::robin_sweep::Breakdown;
+use crate::shared_rows::{body_parts, BodyPart};
 use crate::solver::Prepared;
 
 /// Accepted states whose worst ‖R‖ the line search compares with (Grippo, Lampariello & Lucidi's
@@ -101,10 +102,13 @@ struct System<'a> {
     /// The bodies this process owns.
     bodies: &'a [Option<CondensedBody>],
     exchange: &'a dyn Exchange,
-    /// B_b = C₀D₀ of every dense body (`None` on the sparse path, which runs in one process).
+    /// B_b = C₀D₀ of every dense body (`None` on the sparse path).
     response: Vec<Option<Mat<f64>>>,
     /// The reference springs D₀ of every point.
     d0: Vec<f64>,
+    /// How every body enters the Newton system (dense block, or sparse rows of its own or of
+    /// another process).
+    parts: Vec<BodyPart>,
     /// Per body on the sparse path, the first column of its reduced unknowns in the Newton
     /// system (after the m interface unknowns and the kernel multipliers).
     sparse_offset: Vec<Option<usize>>,
@@ -154,8 +158,8 @@ impl<'a> System<'a> {
     fn new(prepared: &'a Prepared, interface: &'a Interface) -> System<'a> {
         let (mode_range, modes) = prepared.coarse.floating_modes();
         let exchange = &*prepared.exchange;
-        // The dense bodies' responses B_b, shared between processes; sparse bodies have none
-        // (the sparse path runs in one process).
+        let parts = body_parts(&prepared.bodies, exchange);
+        // The dense bodies' responses B_b, shared between processes; sparse bodies have none.
         let dense: Vec<Mat<f64>> = prepared
             .bodies
             .par_iter()
@@ -167,8 +171,8 @@ impl<'a> System<'a> {
             .collect();
         let response: Vec<Option<Mat<f64>>> = share_matrices(exchange, dense)
             .into_iter()
-            .zip(&prepared.bodies)
-            .map(|(m, b)| (!b.as_ref().is_some_and(|b| b.sparse().is_some())).then_some(m))
+            .zip(&parts)
+            .map(|(m, part)| part.sparse_free().is_none().then_some(m))
             .collect();
         let mut d0 = vec![0.0; interface.len()];
         for (b, body) in prepared.bodies.iter().enumerate() {
@@ -182,7 +186,7 @@ impl<'a> System<'a> {
             .iter()
             .map(|p| p.role != Role::OwnSide)
             .collect();
-        let rho: Vec<f64> = response
+        let mut rho: Vec<f64> = response
             .iter()
             .zip(&prepared.bodies)
             .enumerate()
@@ -193,19 +197,23 @@ impl<'a> System<'a> {
                 (None, Some(body)) => body.sparse().map_or(vec![1.0; body.len()], |s| {
                     s.share_estimate(body.operator(), body.reference_springs())
                 }),
+                // Another process's sparse body: its owner's estimate is shared below.
                 (None, None) => vec![1.0; interface.body_range[b].len()],
             })
+            .collect();
+        share_slices(exchange, &interface.body_range, &mut rho);
+        let rho = rho
+            .into_iter()
             .zip(&balanced)
             .map(|(r, &b)| if b { 1.0 } else { r })
             .collect();
         let mut next = interface.len() + modes_bound(mode_range);
-        let sparse_offset = prepared
-            .bodies
+        let sparse_offset = parts
             .iter()
-            .map(|body| {
-                body.as_ref().filter(|b| b.sparse().is_some()).map(|body| {
+            .map(|part| {
+                part.sparse_free().map(|free| {
                     let offset = next;
-                    next += body.operator().num_free();
+                    next += free;
                     offset
                 })
             })
@@ -215,6 +223,7 @@ impl<'a> System<'a> {
             bodies: &prepared.bodies,
             exchange,
             response,
+            parts,
             sparse_offset,
             mode_range,
             modes,
@@ -403,18 +412,21 @@ impl<'a> System<'a> {
         let mut n = m + z.len();
         let mut trip = Vec::new();
         // Sparse bodies: their reduced unknowns δu and the rows K₀δu − N D₀ δτ = 0 stand for δU.
-        for (b, body) in self.bodies.iter().enumerate() {
-            let Some(body) = body else { continue };
-            if let (Some(offset), Some(s)) = (self.sparse_offset[b], body.sparse()) {
-                let start = self.range(b).start;
-                s.push_body_rows(
-                    body.operator(),
-                    body.reference_springs(),
-                    (offset, start),
-                    &mut trip,
-                );
-                n = n.max(offset + body.operator().num_free());
+        for (b, part) in self.parts.iter().enumerate() {
+            let (Some(offset), Some(free)) = (self.sparse_offset[b], part.sparse_free()) else {
+                continue;
+            };
+            let at = (offset, self.range(b).start);
+            match (part, self.bodies[b].as_ref()) {
+                (BodyPart::Remote(rows), _) => rows.replay(at, &mut trip),
+                (_, Some(body)) => {
+                    if let Some(s) = body.sparse() {
+                        s.push_body_rows(body.operator(), body.reference_springs(), at, &mut trip);
+                    }
+                }
+                (_, None) => {}
             }
+            n = n.max(offset + free);
         }
         let first_sparse = self.sparse_offset.iter().flatten().min().copied();
         for (j, p) in self.interface.points.iter().enumerate() {
@@ -497,14 +509,21 @@ impl<'a> System<'a> {
     ) -> Option<Mat<f64>> {
         let m = self.len();
         let delta: Vec<f64> = (0..m).map(|i| x[(i, 0)]).collect();
-        let bd: Vec<f64> = (0..self.bodies.len())
+        // Every process applies its own bodies' B; a failed solve shows as NaN on every process.
+        let mut bd: Vec<f64> = (0..self.bodies.len())
             .into_par_iter()
-            .map(|b| {
-                let body = self.bodies[b].as_ref()?;
-                body.apply_response(&delta[self.range(b)]).ok()
+            .flat_map_iter(|b| {
+                let range = self.range(b);
+                let applied = self.bodies[b]
+                    .as_ref()
+                    .and_then(|body| body.apply_response(&delta[range.clone()]).ok());
+                applied.unwrap_or_else(|| vec![f64::NAN; range.len()])
             })
-            .collect::<Option<Vec<Vec<f64>>>>()?
-            .concat();
+            .collect();
+        share_slices(self.exchange, &self.interface.body_range, &mut bd);
+        if !bd.iter().all(|v| v.is_finite()) {
+            return None;
+        }
         let mut res = Mat::<f64>::zeros(x.nrows(), 1);
         for (j, p) in self.interface.points.iter().enumerate() {
             let jd = if self.weightless[j] {
@@ -593,9 +612,13 @@ impl<'a> System<'a> {
         let range = self.range(b);
         let local = k - range.start;
         let Some(bm) = &self.response[b] else {
-            let sparse = self.bodies[b].as_ref().and_then(CondensedBody::sparse);
-            if let (Some(offset), Some(s)) = (self.sparse_offset[b], sparse) {
-                for &(r, n) in s.point_dofs(local) {
+            let dofs = match (&self.parts[b], self.bodies[b].as_ref()) {
+                (BodyPart::Remote(rows), _) => rows.point_dofs(local),
+                (_, Some(body)) => body.sparse().map_or(&[][..], |s| s.point_dofs(local)),
+                (_, None) => &[],
+            };
+            if let Some(offset) = self.sparse_offset[b] {
+                for &(r, n) in dofs {
                     trip.push(Triplet::new(j, offset + r, c * n));
                 }
             }

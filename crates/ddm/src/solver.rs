@@ -68,18 +68,6 @@ pub fn prepare_on(
     condensation: Condensation,
     exchange: Arc<dyn Exchange>,
 ) -> Result<Prepared, SetupError> {
-    // The sparse path's Newton step couples every body's rows in one sparse LU, which needs
-    // all bodies in one process (docs/sparse-path.md); distributed bodies are condensed densely.
-    let condensation =
-        match (exchange.is_local(), condensation) {
-            (true, c) => c,
-            (false, Condensation::Sparse) => return Err(SetupError::Solver(
-                "condensation = \"sparse\" runs in one process only; use \"dense\" or \"auto\" \
-                 on several MPI ranks (docs/mpi.md)"
-                    .into(),
-            )),
-            (false, _) => Condensation::Dense,
-        };
     let t = Instant::now();
     let interface = Interface::new(model)?;
     crate::contact_check::refuse(&crate::contact_check::check(model, &interface))?;
