@@ -14,7 +14,7 @@ use contactdd::cases;
 use contactdd::ddm::exchange::{factor_cost, partition, Exchange};
 use contactdd::ddm::{
     prepare, prepare_on, prepare_with, solve, Accelerator, CoarseMode, Condensation, Gamma, Hooks,
-    Method, Model, Remote, Settings, Solution,
+    Method, Model, Settings, Solution,
 };
 
 /// What the ranks deposit for one collective: per rank, its bodies' values or its error.
@@ -100,7 +100,7 @@ fn distributed_on(
                 });
                 let owner = owner.clone();
                 scope.spawn(move || {
-                    let model = &seen_by(model, |b| owner[b] == rank);
+                    let model = &model.as_seen_by(|b| owner[b] == rank);
                     let prepared = prepare_on(model, condensation, exchange).unwrap();
                     let owned = prepared.bodies.iter().flatten().count();
                     assert!(owned < model.bodies.len(), "rank {rank} owns every body");
@@ -151,19 +151,6 @@ fn assert_same(one: &Solution, other: &Solution, what: &str) {
             );
         }
     }
-}
-
-/// `model` as the rank that meshes only the bodies `owns` selects holds it: the others as their
-/// contact skins (what `contactdd solve` builds on each MPI rank).
-fn seen_by(model: &Model, owns: impl Fn(usize) -> bool) -> Model {
-    let mut seen = model.clone();
-    seen.remote = vec![None; model.bodies.len()];
-    for b in (0..model.bodies.len()).filter(|&b| !owns(b)) {
-        let (stand_in, part) = Remote::of(&model.bodies[b], &model.contact_boundaries(b));
-        seen.bodies[b] = stand_in;
-        seen.remote[b] = Some(part);
-    }
-    seen
 }
 
 fn schemes() -> Vec<(&'static str, Settings)> {

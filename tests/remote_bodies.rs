@@ -10,23 +10,11 @@ use std::path::Path;
 use contactdd::ddm::coarse::Coarse;
 use contactdd::ddm::contact::Interface;
 use contactdd::ddm::contact_check::check;
-use contactdd::ddm::{Model, Remote};
+use contactdd::ddm::Model;
 use contactdd::io::load_file;
 
-/// `model` as a process that meshes none of the bodies `remote` names holds it.
-fn seen_without(model: &Model, remote: &[usize]) -> Model {
-    let mut seen = model.clone();
-    seen.remote = vec![None; model.bodies.len()];
-    for &b in remote {
-        let (stand_in, part) = Remote::of(&model.bodies[b], &model.contact_boundaries(b));
-        seen.bodies[b] = stand_in;
-        seen.remote[b] = Some(part);
-    }
-    seen
-}
-
 fn same_as_whole(model: &Model, remote: &[usize]) {
-    let seen = seen_without(model, remote);
+    let seen = model.as_seen_by(|b| !remote.contains(&b));
     let whole = Interface::new(model).unwrap();
     let interface = Interface::new(&seen).unwrap();
     assert_eq!(interface, whole, "{}: contact geometry", model.name);

@@ -286,6 +286,12 @@ impl Mesh {
 
     /// Length of the bounding box diagonal (a length scale for tolerances).
     pub fn bounding_box_diameter(&self) -> f64 {
+        let (lo, hi) = self.bounding_box();
+        dist(lo, hi)
+    }
+
+    /// The lower and upper corners of the bounding box of the nodes.
+    pub fn bounding_box(&self) -> (Point, Point) {
         let (mut lo, mut hi) = ([f64::INFINITY; DIM], [f64::NEG_INFINITY; DIM]);
         for p in &self.nodes {
             for d in 0..DIM {
@@ -293,7 +299,7 @@ impl Mesh {
                 hi[d] = hi[d].max(p[d]);
             }
         }
-        dist(lo, hi)
+        (lo, hi)
     }
 
     /// Turns a P1 mesh into the P2 mesh on the same triangles by adding one node per edge

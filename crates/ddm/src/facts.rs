@@ -7,7 +7,7 @@ use contactdd_core::geometry::dot;
 use contactdd_core::loads::applied_load;
 use contactdd_core::mesh::dist;
 use contactdd_core::rigid::{free_modes, RigidBasis, NUM_MODES};
-use contactdd_core::{node_vector, ElasticBody, Order, Point, Vector, DIM};
+use contactdd_core::{node_vector, ElasticBody, Order, Point, Vector};
 
 /// The facts of one body.
 #[derive(Clone, Debug, PartialEq)]
@@ -38,13 +38,7 @@ impl BodyFacts {
     /// The facts of `body`.
     pub fn of(body: &ElasticBody) -> BodyFacts {
         let mesh = &body.mesh;
-        let (mut lo, mut hi) = ([f64::INFINITY; DIM], [f64::NEG_INFINITY; DIM]);
-        for p in mesh.nodes() {
-            for d in 0..DIM {
-                lo[d] = lo[d].min(p[d]);
-                hi[d] = hi[d].max(p[d]);
-            }
-        }
+        let (lo, hi) = mesh.bounding_box();
         let basis = RigidBasis::new(mesh);
         let free = free_modes(mesh, &body.constraints, &[]);
         let free_load = free

@@ -206,6 +206,21 @@ impl Model {
         names
     }
 
+    /// The model as a process that meshes only the bodies `owns` selects holds it: every other
+    /// body as its stand-in on its contact skin, with its remote part ([`Remote::of`]). A
+    /// distributed solve builds this directly, without meshing the others (`contactdd-io`);
+    /// this serves to compare the two.
+    pub fn as_seen_by(&self, owns: impl Fn(usize) -> bool) -> Model {
+        let mut seen = self.clone();
+        seen.remote = vec![None; self.bodies.len()];
+        for b in (0..self.bodies.len()).filter(|&b| !owns(b)) {
+            let (stand_in, remote) = Remote::of(&self.bodies[b], &self.contact_boundaries(b));
+            seen.bodies[b] = stand_in;
+            seen.remote[b] = Some(remote);
+        }
+        seen
+    }
+
     /// θ of every pair.
     pub fn thetas(&self) -> Vec<f64> {
         (0..self.pairs.len()).map(|p| self.theta(p)).collect()
