@@ -5,6 +5,7 @@
 # they are missing, and saying so), then:
 # - solves the notch and the column of blocks (examples/notch.toml, examples/stack.toml) with the
 #   interface Newton method, the paper's sweeps, the two-level sweeps and Anderson acceleration,
+#   and the Hertz example (Gmsh, a curved balanced pair),
 #   in one process and under `mpirun -n 2` and `-n 3`, and compares every output file byte for
 #   byte (summary.json without its timings, contact.csv, history.csv, the VTU files): the numbers
 #   are written to the last bit, so equal files are equal bits; and the same for load steps (the
@@ -92,6 +93,9 @@ same notch-paper examples/notch.toml --method newton-kurchatov --gamma 0.5
 same stack-newton examples/stack.toml
 same stack-two-level examples/stack.toml --accelerator none
 same stack-anderson examples/stack.toml --accelerator anderson
+# Gmsh meshes (their sizes estimated from the file's header) and a curved, non-matching
+# balanced pair, whose ranks pair from each other's contact skins.
+same hertz examples/hertz.toml
 # The sparse condensation: forced on the notch and the column, and chosen by the cost model for
 # a long contact zone (1000 × 16 cells per body, 1001 contact points).
 sparse() { sed "s/^\[solver\]/[solver]\ncondensation = \"$2\"/" "$1"; }
