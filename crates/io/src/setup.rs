@@ -199,9 +199,10 @@ fn resolve_named(
         }
         return finish(builder, problem, settings, default_name);
     };
-    crate::shared_setup::add_bodies(&mut builder, &problem, base_dir, exchange)?;
-    // Each process checked the supports of its own bodies only: they agree on the outcome.
-    let rest = finish(builder, problem, settings, default_name);
+    // Every process reaches the agreement below, whatever failed on it: each checked the
+    // supports of its own bodies only, and a body may arrive damaged on one process alone.
+    let rest = crate::shared_setup::add_bodies(&mut builder, &problem, base_dir, exchange)
+        .and_then(|()| finish(builder, problem, settings, default_name));
     crate::shared_setup::agreed(exchange, rest)
 }
 
