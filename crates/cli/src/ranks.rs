@@ -92,7 +92,7 @@ impl Ranks {
 
     /// The support reactions of every body, each computed by the rank that holds its field (a
     /// collective).
-    pub fn reactions(&self, model: &Model, sol: &Solution) -> std::io::Result<Vec<BodyReactions>> {
+    pub fn reactions(&self, model: &Model, sol: &Solution) -> Vec<BodyReactions> {
         shared_reactions(model, sol, &self.part())
     }
 

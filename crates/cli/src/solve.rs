@@ -217,15 +217,11 @@ pub fn solve(args: SolveArgs) -> Result<Exit> {
                     .insert(format!("communication_rank{r}"), u.communication);
             }
         }
+        let reactions = ranks.reactions(model, &sol);
+        let units = loaded.problem.units.as_deref();
         let written = ranks
-            .reactions(model, &sol)
-            .and_then(|reactions| {
-                let units = loaded.problem.units.as_deref();
-                let written = ranks.write_results(&out, model, &sol, &reactions, units)?;
-                Ok((written, reactions))
-            })
+            .write_results(&out, model, &sol, &reactions, units)
             .with_context(|| format!("cannot write the results to '{}'", out.display()))?;
-        let (written, reactions) = written;
         if !ranks.is_root() {
             // Rank 0 reports; every rank ends with the same exit code.
             return Ok(if sol.converged {

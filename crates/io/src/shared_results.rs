@@ -51,19 +51,22 @@ impl Part<'static> {
 }
 
 /// The reactions of every body, each computed by the process that holds its field and handed to
-/// every process (a collective).
-pub fn shared_reactions(
-    model: &Model,
-    sol: &Solution,
-    part: &Part<'_>,
-) -> std::io::Result<Vec<BodyReactions>> {
+/// every process (a collective). A body whose values arrive damaged (a bug, never an input) gets
+/// NaN reactions rather than an error that would stop this process alone.
+pub fn shared_reactions(model: &Model, sol: &Solution, part: &Part<'_>) -> Vec<BodyReactions> {
     let own = (sol.bodies.iter().enumerate())
         .filter(|(b, _)| (part.owns)(*b))
         .map(|(b, fields)| pack_reactions(&body_reactions(model, b, fields, &sol.contact)))
         .collect();
     let all = (part.gather)(own);
-    all.iter()
-        .map(|v| unpack_reactions(v).map_err(Error::other))
+    (all.iter().zip(&model.bodies))
+        .map(|(v, body)| {
+            unpack_reactions(v).unwrap_or_else(|_| BodyReactions {
+                body: body.name.clone(),
+                supports: Vec::new(),
+                total: [f64::NAN; 2],
+            })
+        })
         .collect()
 }
 
@@ -119,7 +122,7 @@ pub fn write_step_results_shared(
     let Some((_, last)) = steps.last() else {
         return Err(Error::new(ErrorKind::InvalidInput, "no load step to write"));
     };
-    let reactions = shared_reactions(model, last, part)?;
+    let reactions = shared_reactions(model, last, part);
     let monitored = monitor.map(|m| {
         (steps.iter())
             .map(|(_, sol)| shared_monitor(sol, m, part))
