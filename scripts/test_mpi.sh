@@ -107,6 +107,8 @@ same notch-sparse "$work/notch_sparse.toml"
 same stack-sparse "$work/stack_sparse.toml"
 same stack-sparse-anderson "$work/stack_sparse.toml" --accelerator anderson
 same strip-auto "$work/strip.toml"
+check "sparse: the cost model chose the sparse path for the strip's bodies" \
+  test "$(grep -c '"condensation": "sparse"' "$work/strip-auto-1/summary.json.cmp")" = 2
 # Load steps: every step's VTU set, steps.csv and results.pvd, on two bodies with exact contact
 # (the recess) and on the column of eight floating blocks in three steps.
 same recess-steps examples/recess_steps.toml

@@ -21,6 +21,8 @@ fn run(model: &Model, settings: &Settings, condensation: Condensation) -> Soluti
     let prepared = prepare_with(model, condensation).unwrap();
     let sol = solve(model, &prepared, settings, Hooks::default()).unwrap();
     assert!(sol.converged, "{condensation}: {:?}", sol.message);
+    // The solution reports the path every body took: the forced one.
+    assert!(sol.condensation.iter().all(|&p| p == condensation));
     sol
 }
 
@@ -128,6 +130,12 @@ fn the_cost_model_keeps_the_benchmark_dense_and_a_long_zone_sparse() {
         .iter()
         .flatten()
         .all(|b| b.sparse().is_some()));
+    // The choice is what the solution reports (`bodies[].condensation` in summary.json).
+    assert_eq!(prepared.paths, vec![Condensation::Sparse; 2]);
+    let sol = solve(&long, &prepared, &Settings::default(), Hooks::default()).unwrap();
+    assert_eq!(sol.condensation, vec![Condensation::Sparse; 2]);
+    let notch = prepare(&contactdd::ddm::benchmark::Notch::default().model().unwrap()).unwrap();
+    assert_eq!(notch.paths, vec![Condensation::Dense; 2]);
 }
 
 /// A body that loses all contact makes its Robin problem singular: both paths stop at the same

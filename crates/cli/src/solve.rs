@@ -12,7 +12,7 @@ use contactdd_ddm::contact::Interface;
 use contactdd_ddm::contact_check;
 use contactdd_ddm::monolithic::{solve_monolithic_with, MonolithicSettings, MonolithicStep};
 use contactdd_ddm::{
-    prepare_on, solve as dd_solve, Accelerator, CoarseMode, Gamma, Hooks, Model,
+    prepare_on, solve as dd_solve, Accelerator, CoarseMode, Condensation, Gamma, Hooks, Model,
     MonolithicSolution, Prepared, Record,
 };
 use contactdd_io::output::{safe_file_name, write_monolithic_results};
@@ -287,6 +287,13 @@ fn print_summary(
         say!("{line}");
     }
     say!("{}", applied_loads(model));
+    let sparse: Vec<&str> = (model.bodies.iter().zip(&sol.condensation))
+        .filter(|(_, &path)| path == Condensation::Sparse)
+        .map(|(b, _)| b.name.as_str())
+        .collect();
+    if !sparse.is_empty() {
+        say!("sparse condensation: {}", sparse.join(", "));
+    }
     for line in reaction_report(reactions) {
         say!("{line}");
     }

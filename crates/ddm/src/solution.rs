@@ -162,6 +162,8 @@ pub struct Solution {
     /// The final interface loads T of the contact points (a warm start for another solve of the
     /// same prepared model: [`crate::solver::solve_from`]).
     pub interface_loads: Vec<f64>,
+    /// The condensation path every body took (dense or sparse; `docs/sparse-path.md`).
+    pub condensation: Vec<crate::condensed::Condensation>,
     /// Wall time per phase, seconds.
     pub timing: BTreeMap<String, f64>,
 }

@@ -12,7 +12,7 @@ use crate::coarse::Coarse;
 use crate::condensed::{analyse_all, Condensation, CondensedBody, SetupTimes};
 use crate::contact::Interface;
 use crate::error::SetupError;
-use crate::exchange::{Exchange, Local};
+use crate::exchange::{share_vectors, Exchange, Local};
 use crate::iteration::{iterate_on, Hooks, Settings, Stop};
 use crate::model::Model;
 use crate::solution::{body_results, pair_results, stop_message, Solution};
@@ -24,6 +24,9 @@ pub struct Prepared {
     pub interface: Interface,
     /// Condensed bodies, those this process owns (`None`: another process's body).
     pub bodies: Vec<Option<CondensedBody>>,
+    /// The path every body took, dense or sparse (the cost model's choice under `auto`), the
+    /// same on every process.
+    pub paths: Vec<Condensation>,
     /// How the bodies' values reach the other processes ([`Local`]: there are none).
     pub exchange: Arc<dyn Exchange>,
     /// Per body, the displacement size beyond which an iteration counts as blown up.
@@ -92,6 +95,7 @@ pub fn prepare_on(
         }
     };
     let t_factor = t.elapsed().as_secs_f64();
+    let paths = taken_paths(&bodies, &*exchange);
     let sum = |f: fn(&SetupTimes) -> f64| times.iter().map(f).sum::<f64>();
     let scale = (0..model.bodies.len())
         .map(|b| 10.0 * model.facts(b).diameter())
@@ -100,6 +104,7 @@ pub fn prepare_on(
     Ok(Prepared {
         interface,
         bodies,
+        paths,
         exchange,
         scale,
         coarse,
@@ -113,6 +118,24 @@ pub fn prepare_on(
             ("condensation".into(), sum(|t| t.condensation)),
         ],
     })
+}
+
+/// The path each body took, from the processes that own them.
+fn taken_paths(bodies: &[Option<CondensedBody>], exchange: &dyn Exchange) -> Vec<Condensation> {
+    let own = bodies
+        .iter()
+        .map(|b| match b.as_ref().and_then(CondensedBody::sparse) {
+            Some(_) => vec![1.0],
+            None => vec![0.0],
+        })
+        .collect();
+    share_vectors(exchange, own)
+        .iter()
+        .map(|v| match v.first() == Some(&1.0) {
+            true => Condensation::Sparse,
+            false => Condensation::Dense,
+        })
+        .collect()
 }
 
 /// The bodies that `exchange` gives this process analysed, factorised and condensed, in
@@ -244,6 +267,7 @@ pub fn solve_from(
         gap_tol,
         tol: settings.tol,
         interface_loads: outcome.t_load,
+        condensation: prepared.paths.clone(),
         timing,
     })
 }

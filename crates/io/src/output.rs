@@ -26,7 +26,7 @@
 //! | `equilibrium` | per body, the equilibrium residual (contact forces of the fields against those of the pressures, relative to the total contact force) |
 //! | `accelerator`, `coarse` | the accelerator and coarse mode used                           |
 //! | `history`   | per iteration `{k, gamma, rel_change, active, normal_force}` (per body)    |
-//! | `bodies`    | per body `{name, nodes, elements, dofs, order, applied_load}`               |
+//! | `bodies`    | per body `{name, nodes, elements, dofs, order, applied_load, condensation}` |
 //! | `contact`   | per pair `{name, bodies, body, node, x, y, gap, pressure, status, weight, normal, force}` |
 //! | `reactions` | per body `{body, supports: [{boundary, force}], total}` ([`reactions_json`]) |
 //! | `timing_s`  | wall time per phase, seconds                                               |
@@ -34,7 +34,8 @@
 //! | `files`     | the manifest: the other files of the result set (written last, see below)  |
 //!
 //! `dofs` counts the unknowns (2 per node minus the prescribed ones); `applied_load` is the total
-//! applied force `[fx, fy]`. In `contact`, the arrays have one entry per contact point of both
+//! applied force `[fx, fy]`; `condensation` is the path the body took, `dense` or `sparse`
+//! (docs/sparse-path.md). In `contact`, the arrays have one entry per contact point of both
 //! sides; `status` is `closed` (d − s < 0, the point carries pressure), `open`, or `no-partner`
 //! (the normal ray misses the other body: infinite gap, written as `null`); `force` holds the total
 //! contact force `[fx, fy]` on each of the two bodies: the resultant Σ w σ_n n. `normal_force`
@@ -52,7 +53,7 @@ use serde_json::{json, Value};
 use contactdd_core::{num_dofs, Order};
 use contactdd_ddm::solution::{BodyResult, PairResult, Solution};
 use contactdd_ddm::sweep::SweepRun;
-use contactdd_ddm::{Gamma, Model, MonolithicSolution, Stop};
+use contactdd_ddm::{Condensation, Gamma, Model, MonolithicSolution, Stop};
 
 pub use crate::atomic::write_atomic;
 use crate::fields::{contact_point_data, element_von_mises, principal, tensor, ContactPointData};
@@ -127,7 +128,7 @@ pub fn summary_json_with(model: &Model, sol: &Solution, reactions: &[BodyReactio
         "accelerator": sol.accelerator.to_string(),
         "coarse": sol.coarse.to_string(),
         "history": history,
-        "bodies": bodies_json(model),
+        "bodies": with_paths(bodies_json(model), &sol.condensation),
         "contact": contact_json(&sol.contact),
         "enforcement": model.pairs.iter().map(|p| p.enforcement.to_string()).collect::<Vec<_>>(),
         "updates": sol.updates,
@@ -216,6 +217,16 @@ fn bodies_json(model: &Model) -> Value {
             })
         })
         .collect()
+}
+
+/// `bodies` with each body's condensation path.
+fn with_paths(mut bodies: Value, paths: &[Condensation]) -> Value {
+    if let Value::Array(list) = &mut bodies {
+        for (body, path) in list.iter_mut().zip(paths) {
+            body["condensation"] = Value::from(path.to_string());
+        }
+    }
+    bodies
 }
 
 /// The `reactions` of `summary.json`: per body `{body, supports: [{boundary, force}], total}`
