@@ -11,7 +11,7 @@ use pyo3::types::{PyDict, PyList, PyTuple, PyType};
 
 use contactdd_core::DIM;
 use contactdd_ddm::solution::{BodyResult, PairResult};
-use contactdd_ddm::{Model, MonolithicSolution, Solution};
+use contactdd_ddm::{Condensation, Model, MonolithicSolution, Solution};
 use contactdd_io::output::{point_status, stop_name};
 
 use crate::convert::{array1, array2, name_of};
@@ -54,9 +54,10 @@ impl<S> Origin<S> {
 }
 
 /// The attributes of a [`Body`], in its state dict.
-const BODY_STATE: [&str; 8] = [
+const BODY_STATE: [&str; 9] = [
     "name",
     "order",
+    "condensation",
     "nodes",
     "triangles",
     "displacement",
@@ -121,6 +122,11 @@ pub struct Body {
     /// Element order, ``"p1"`` or ``"p2"``.
     #[pyo3(get)]
     order: String,
+    /// How the solve condensed the body on its contact points, ``"dense"`` or ``"sparse"``
+    /// (the cost model's choice under ``condensation = "auto"``); ``None`` for the monolithic
+    /// reference, which does not condense.
+    #[pyo3(get)]
+    condensation: Option<String>,
     /// ``(n, 2)`` node coordinates (undeformed).
     #[pyo3(get)]
     nodes: Py<PyAny>,
@@ -154,6 +160,11 @@ impl Body {
         Ok(Body {
             name: get(state, "name")?.extract()?,
             order: get(state, "order")?.extract()?,
+            // Absent from results saved before it was reported.
+            condensation: match state.get_item("condensation")? {
+                Some(v) => v.extract()?,
+                None => None,
+            },
             nodes: get(state, "nodes")?.unbind(),
             triangles: get(state, "triangles")?.unbind(),
             displacement: get(state, "displacement")?.unbind(),
@@ -174,7 +185,7 @@ impl Body {
 }
 
 impl Body {
-    fn new(py: Python<'_>, b: &BodyResult) -> PyResult<Body> {
+    fn new(py: Python<'_>, b: &BodyResult, condensation: Option<String>) -> PyResult<Body> {
         let mesh = &b.mesh;
         let npc = mesh.order().nodes_per_cell();
         let nodes: Vec<f64> = mesh.nodes().iter().flatten().copied().collect();
@@ -183,6 +194,7 @@ impl Body {
         Ok(Body {
             name: b.name.clone(),
             order: name_of(&mesh.order()),
+            condensation,
             nodes: array2(py, nodes, DIM)?.unbind(),
             triangles: array2(py, cells, npc)?.unbind(),
             displacement: array2(py, b.displacement.clone(), DIM)?.unbind(),
@@ -325,10 +337,17 @@ impl Contact {
     }
 }
 
-fn bodies_list(py: Python<'_>, bodies: &[BodyResult]) -> PyResult<Py<PyList>> {
-    let items = bodies
-        .iter()
-        .map(|b| Py::new(py, Body::new(py, b)?))
+/// The bodies' results, each with its condensation path where the solve had one.
+fn bodies_list(
+    py: Python<'_>,
+    bodies: &[BodyResult],
+    paths: Option<&[Condensation]>,
+) -> PyResult<Py<PyList>> {
+    let items = (bodies.iter().enumerate())
+        .map(|(b, body)| {
+            let path = paths.and_then(|p| p.get(b)).map(ToString::to_string);
+            Py::new(py, Body::new(py, body, path)?)
+        })
         .collect::<PyResult<Vec<_>>>()?;
     Ok(PyList::new(py, items)?.unbind())
 }
@@ -437,7 +456,7 @@ impl SolveResult {
             gamma: gamma_to_py(py, sol.gamma)?,
             theta: sol.theta.clone(),
             history: history.unbind(),
-            bodies: bodies_list(py, &sol.bodies)?,
+            bodies: bodies_list(py, &sol.bodies, Some(&sol.condensation))?,
             contact: contact_list(py, &sol.contact)?,
             timing: timing.unbind(),
             updates: sol.updates,
@@ -571,7 +590,7 @@ impl MonolithicResult {
         Ok(MonolithicResult {
             newton_steps: sol.newton_steps,
             rigid_modes: sol.rigid_modes.clone(),
-            bodies: bodies_list(py, &sol.bodies)?,
+            bodies: bodies_list(py, &sol.bodies, None)?,
             contact: contact_list(py, &sol.contact)?,
             seconds: sol.seconds,
             origin: Origin::Solved {

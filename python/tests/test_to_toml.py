@@ -82,6 +82,12 @@ def test_condensation_is_kept_and_solves_alike(notch_toml, tmp_path):
     assert written.count('condensation = "sparse"') == 1
     a, b = contactdd.solve(dense), contactdd.solve(sparse)
     assert a.iterations == b.iterations
+    # Each result says which path its bodies took, also when read back from its folder.
+    assert [x.condensation for x in a.bodies] == ["dense", "dense"]
+    assert [x.condensation for x in b.bodies] == ["sparse", "sparse"]
+    b.write_vtu(tmp_path / "out")
+    back = contactdd.load_results(tmp_path / "out")
+    assert [x.condensation for x in back.bodies] == ["sparse", "sparse"]
     for ca, cb in zip(a.contact, b.contact):
         scale = abs(ca.pressure).max()
         assert abs(ca.pressure - cb.pressure).max() <= 1e-9 * scale

@@ -202,6 +202,10 @@ class Body:
     @property
     def order(self) -> Literal["p1", "p2"]: ...
     @property
+    def condensation(self) -> Literal["dense", "sparse"] | None:
+        """How the solve condensed the body on its contact points (the cost model's choice
+        under condensation = "auto"); None for the monolithic reference."""
+    @property
     def nodes(self) -> npt.NDArray[np.float64]:
         """(n, 2) node coordinates (undeformed)."""
     @property

@@ -166,6 +166,7 @@ def _parse_body(text: str, info: dict[str, Any]) -> Body:
     return Body._from_state({
         "name": info["name"],
         "order": info["order"],
+        "condensation": info.get("condensation"),
         "nodes": np.ascontiguousarray(_data_array(points)[:, :2]),
         "triangles": arrays["connectivity"].reshape(-1, per_cell),
         "displacement": np.ascontiguousarray(arrays["displacement"][:, :2]),
