@@ -129,7 +129,10 @@ pub fn check(model: &Model, interface: &Interface) -> Vec<Finding> {
         let thickness = pair
             .bodies
             .iter()
-            .map(|&b| model.facts(b).thickness())
+            .map(|&b| {
+                let (lo, hi) = model.bounds(b);
+                (hi[0] - lo[0]).min(hi[1] - lo[1])
+            })
             .fold(f64::INFINITY, f64::min);
         let overlap = -worst.gap;
         if overlap > WARNING_FRACTION * thickness {

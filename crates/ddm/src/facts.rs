@@ -5,7 +5,6 @@
 
 use contactdd_core::geometry::dot;
 use contactdd_core::loads::applied_load;
-use contactdd_core::mesh::dist;
 use contactdd_core::rigid::{free_modes, RigidBasis, NUM_MODES};
 use contactdd_core::{node_vector, ElasticBody, Order, Point, Vector};
 
@@ -63,15 +62,5 @@ impl BodyFacts {
             free_load,
             applied_load: applied_load(&body.load),
         }
-    }
-
-    /// The diagonal of the bounding box (as [`contactdd_core::Mesh::bounding_box_diameter`]).
-    pub fn diameter(&self) -> f64 {
-        dist(self.lo, self.hi)
-    }
-
-    /// The shorter side of the bounding box.
-    pub fn thickness(&self) -> f64 {
-        (self.hi[0] - self.lo[0]).min(self.hi[1] - self.lo[1])
     }
 }

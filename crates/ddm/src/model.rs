@@ -179,6 +179,15 @@ impl Model {
         }
     }
 
+    /// The bounding box of body `b`'s nodes (lower, upper corner): its own, or the one its
+    /// process sent. Cheaper than [`Model::facts`] where only the size is needed.
+    pub fn bounds(&self, b: usize) -> (Point, Point) {
+        match self.remote(b) {
+            Some(r) => (r.facts.lo, r.facts.hi),
+            None => self.bodies[b].mesh.bounding_box(),
+        }
+    }
+
     /// The position of node `node` (in the body's own numbering) of body `b` (NaN for a node a
     /// remote body's skin does not hold).
     pub fn position(&self, b: usize, node: usize) -> Point {

@@ -98,7 +98,10 @@ pub fn prepare_on(
     let paths = taken_paths(&bodies, &*exchange);
     let sum = |f: fn(&SetupTimes) -> f64| times.iter().map(f).sum::<f64>();
     let scale = (0..model.bodies.len())
-        .map(|b| 10.0 * model.facts(b).diameter())
+        .map(|b| {
+            let (lo, hi) = model.bounds(b);
+            10.0 * contactdd_core::mesh::dist(lo, hi)
+        })
         .collect();
     let coarse = Coarse::new(model, &interface);
     Ok(Prepared {

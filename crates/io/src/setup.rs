@@ -247,10 +247,10 @@ fn finish(
 /// The model's size: the longest side of the bounding box of every body's nodes.
 pub fn model_size(model: &Model) -> f64 {
     let (mut lo, mut hi) = ([f64::INFINITY; DIM], [f64::NEG_INFINITY; DIM]);
-    for f in (0..model.bodies.len()).map(|b| model.facts(b)) {
+    for (l, h) in (0..model.bodies.len()).map(|b| model.bounds(b)) {
         for d in 0..DIM {
-            lo[d] = lo[d].min(f.lo[d]);
-            hi[d] = hi[d].max(f.hi[d]);
+            lo[d] = lo[d].min(l[d]);
+            hi[d] = hi[d].max(h[d]);
         }
     }
     (hi[0] - lo[0]).max(hi[1] - lo[1])
