@@ -19,9 +19,10 @@
 //! e_j + Σ_k c_jk B_k· for a closed one (the point's own B row cancels). J is sparse by bodies:
 //! dense blocks of the size of one body's contact zone, coupled only across closed pairs.
 //!
-//! Each step solves J δ = −R by sparse LU and takes the full step unless ‖R̂‖ (R with closed rows
-//! scaled by ρ: the complementarity residual) exceeds the worst of the last few accepted states;
-//! then it backtracks. Two safeguards keep J regular:
+//! Each step solves J δ = −R by sparse LU and takes the full step. A watchdog keeps the last state
+//! whose ‖R̂‖ (R with closed rows scaled by ρ: the complementarity residual) a step decreased
+//! enough; when a few full steps in a row do not decrease it below that state's, the run returns
+//! there and backtracks along that state's step. Two safeguards keep J regular:
 //! - rigid motions that no closed contact resists (two floating bodies moving together) are in
 //!   the kernel of J; they are found from the bodies' free rigid modes, and the step is kept
 //!   orthogonal to them by a bordered system (their residual is left to the bodies' balance,
@@ -58,8 +59,8 @@ use crate::robin_sweep::Breakdown;
 use crate::shared_rows::{body_parts, BodyPart};
 use crate::solver::Prepared;
 
-/// Accepted states whose worst ‖R‖ the line search compares with (Grippo, Lampariello & Lucidi's
-/// non-monotone rule; 10 is their choice).
+/// Full steps the watchdog takes without a sufficient decrease of ‖R̂‖ before it returns to its
+/// checkpoint (the window of Grippo, Lampariello & Lucidi's non-monotone rule, 10).
 const WINDOW: usize = 10;
 /// Halvings of the step at most in the line search.
 const MAX_HALVINGS: usize = 12;
@@ -891,8 +892,20 @@ struct Run<'s, 'a> {
     tau: Vec<f64>,
     state: Evaluation,
     history: Vec<Record>,
-    /// ‖R‖ of the accepted states, for the non-monotone line search.
-    merits: Vec<f64>,
+}
+
+/// The watchdog's reference: the last state whose ‖R̂‖ a step decreased enough, with the closed
+/// set, kernel and Newton step taken from it.
+struct Checkpoint {
+    tau: Vec<f64>,
+    state: Evaluation,
+    /// ‖R̂‖ there, the value that full steps must fall below.
+    merit: f64,
+    chi: Vec<bool>,
+    z: Vec<Vec<f64>>,
+    delta: Vec<f64>,
+    /// Full steps taken since without that decrease.
+    steps: usize,
 }
 
 impl<'s, 'a> Run<'s, 'a> {
@@ -931,13 +944,11 @@ impl<'s, 'a> Run<'s, 'a> {
             tau,
             state,
             history: Vec::new(),
-            merits: Vec::new(),
         }
     }
 
     fn solve(&mut self, settings: &Settings, hooks: Hooks<'_>) -> (Stop, usize) {
-        // Consecutive steps whose line search found no decrease.
-        let mut failures = 0;
+        let mut watchdog: Option<Checkpoint> = None;
         for k in 1..=settings.max_iter {
             if hooks.cancel.is_some_and(|c| c.load(Ordering::Relaxed)) {
                 return (Stop::Interrupted, k - 1);
@@ -947,23 +958,47 @@ impl<'s, 'a> Run<'s, 'a> {
             let Some(delta) = self.system.step(&chi, &z, &self.state.r) else {
                 return (self.failure(k, Breakdown::Singular), k);
             };
-            self.merits.push(self.system.merit(&z, &self.state));
-            let (alpha, next, decreased) = self.line_search(&z, &delta);
-            failures = if decreased { 0 } else { failures + 1 };
-            if failures >= WINDOW {
-                return (self.failure(k, Breakdown::NoDescent), k);
-            }
-            if let Some((body, reason)) = self.check(&next.u) {
-                let iteration = k;
-                return (
-                    Stop::Diverged {
-                        body,
-                        iteration,
-                        reason,
-                    },
-                    k,
-                );
-            }
+            let mut checkpoint = watchdog.take().unwrap_or_else(|| Checkpoint {
+                tau: self.tau.clone(),
+                state: self.state.clone(),
+                merit: self.system.merit(&z, &self.state),
+                chi: chi.clone(),
+                z: z.clone(),
+                delta: delta.clone(),
+                steps: 0,
+            });
+            let full = (checkpoint.steps < WINDOW)
+                .then(|| self.system.evaluate(&self.along(&delta, 1.0)))
+                .filter(|next| self.check(&next.u).is_none());
+            let (alpha, chi, delta, next) = match full {
+                Some(next) => {
+                    if self.system.merit(&z, &next) > (1.0 - ARMIJO) * checkpoint.merit {
+                        checkpoint.steps += 1;
+                        watchdog = Some(checkpoint);
+                    }
+                    (1.0, chi, delta, next)
+                }
+                // Back to the checkpoint, and along its step as far as its ‖R̂‖ decreases.
+                None => {
+                    self.tau = checkpoint.tau;
+                    self.state = checkpoint.state;
+                    let Some((alpha, next)) =
+                        self.line_search(&checkpoint.z, &checkpoint.delta, checkpoint.merit)
+                    else {
+                        return (self.failure(k, Breakdown::NoDescent), k);
+                    };
+                    if let Some((body, reason)) = self.check(&next.u) {
+                        let iteration = k;
+                        let stop = Stop::Diverged {
+                            body,
+                            iteration,
+                            reason,
+                        };
+                        return (stop, k);
+                    }
+                    (alpha, checkpoint.chi, checkpoint.delta, next)
+                }
+            };
             let record = self.record(k, alpha, &next);
             if let Some(f) = hooks.on_iteration {
                 f(&record);
@@ -977,9 +1012,7 @@ impl<'s, 'a> Run<'s, 'a> {
             let converged =
                 alpha == 1.0 && (exact || record.rel_change.iter().all(|&r| r <= settings.tol));
             self.history.push(record);
-            for (t, d) in self.tau.iter_mut().zip(&delta) {
-                *t += alpha * d;
-            }
+            self.tau = self.along(&delta, alpha);
             self.state = next;
             if converged {
                 return (Stop::Converged, k);
@@ -988,35 +1021,29 @@ impl<'s, 'a> Run<'s, 'a> {
         (Stop::MaxIterations, settings.max_iter)
     }
 
-    /// Backtracks along δ until ‖R̂‖ decreases enough; returns the step length, the state there
-    /// and whether it decreased enough (if not, the shortest step tried).
-    fn line_search(&self, z: &[Vec<f64>], delta: &[f64]) -> (f64, Evaluation, bool) {
-        // Non-monotone: compare with the worst of the last few accepted states (the current one is
-        // the last entry), so that the full active-set steps, which may raise ‖R‖ for a step or
-        // two, are taken.
-        let reference = self
-            .merits
+    /// τ + α δ.
+    fn along(&self, delta: &[f64], alpha: f64) -> Vec<f64> {
+        self.tau
             .iter()
-            .rev()
-            .take(WINDOW)
-            .fold(0.0, |a: f64, &b| a.max(b));
-        let mut alpha = 1.0;
-        loop {
-            let trial: Vec<f64> = self
-                .tau
-                .iter()
-                .zip(delta)
-                .map(|(t, d)| t + alpha * d)
-                .collect();
-            let eval = self.system.evaluate(&trial);
+            .zip(delta)
+            .map(|(t, d)| t + alpha * d)
+            .collect()
+    }
+
+    /// Backtracks along δ from half a step until ‖R̂‖ falls enough below `merit` (the full step
+    /// was tried by the watchdog); the step length and the state there, or `None` when no step
+    /// length decreases it.
+    fn line_search(&self, z: &[Vec<f64>], delta: &[f64], merit: f64) -> Option<(f64, Evaluation)> {
+        let mut alpha = 0.5;
+        for _ in 1..=MAX_HALVINGS {
+            let eval = self.system.evaluate(&self.along(delta, alpha));
             let f = self.system.merit(z, &eval);
-            let halvings = (1.0 / alpha).log2().round() as usize;
-            let decreased = f <= (1.0 - ARMIJO * alpha) * reference;
-            if decreased || halvings >= MAX_HALVINGS || f.is_nan() {
-                return (alpha, eval, decreased);
+            if f <= (1.0 - ARMIJO * alpha) * merit {
+                return Some((alpha, eval));
             }
             alpha *= 0.5;
         }
+        None
     }
 
     /// The first body with non-finite or too large normal displacements.

@@ -242,7 +242,7 @@ fn unenforced_message(stop: &Stop) -> Option<String> {
         return None;
     };
     Some(format!(
-        "not enforced: after {updates} multiplier updates the contact still violates the Signorini conditions by {violation:.3e} at best (gap-tol {limit:.3e}, a length; the result is that best update's); on non-matching meshes with forces = \"own-side\" the two sides' nodes cannot all close exactly and the violation stops decreasing near the meshes' mismatch (balanced pairs, the default, do not have that limit): raise gap-tol to accept it; otherwise raise max-updates or use a smaller penalty θ, which makes the updates contract faster"
+        "not enforced: after {updates} multiplier updates the contact still violates the Signorini conditions by {violation:.3e} at best (gap-tol {limit:.3e}, a length; the result is that best update's); a tolerance near the rounding of the displacements cannot be reached, and with forces = \"own-side\" on curved non-matching meshes the violation can stop decreasing above it (balanced pairs, the default, do not): raise gap-tol to accept it; otherwise raise max-updates or use a smaller penalty θ, which makes the updates contract faster"
     ))
 }
 
