@@ -313,9 +313,67 @@ impl<'a> System<'a> {
         Evaluation { u, s, r, closed }
     }
 
+    /// R at the evaluated state with the points `chi` closed: the residual whose Jacobian the
+    /// Newton step uses. It is the state's own R where `chi` is its closed set; where the step
+    /// treats more points as closed (a floating body with no closed point), their penalty
+    /// forces count as linear in s, so that the step solves the equations of that closed set
+    /// (with the state's R the step would only move the body along the springs of points that
+    /// it then finds open again).
+    fn residual(&self, tau: &[f64], eval: &Evaluation, chi: &[bool]) -> Vec<f64> {
+        if chi == eval.closed {
+            return eval.r.clone();
+        }
+        let points = &self.interface.points;
+        let (u, s) = (&eval.u, &eval.s);
+        // The linear penalty force of point j where it counts as closed (F_j/w_j = (d − s)/θ).
+        let linear = |j: usize| {
+            let p = &points[j];
+            if chi[j] {
+                (p.penalty_gap() - s[j]) / p.theta
+            } else {
+                0.0
+            }
+        };
+        (0..u.len())
+            .map(|j| {
+                if self.weightless[j] {
+                    tau[j]
+                } else if self.balanced[j] {
+                    let force: f64 = self.interface.carried[j]
+                        .iter()
+                        .map(|&(k, a)| a * (points[k].weight * linear(k)))
+                        .sum();
+                    tau[j] - u[j] - force / self.d0[j]
+                } else if chi[j] {
+                    tau[j] - u[j] - (points[j].penalty_gap() - s[j])
+                } else {
+                    tau[j] - u[j]
+                }
+            })
+            .collect()
+    }
+
     /// The interface loads T = D₀τ.
     fn loads(&self, tau: &[f64]) -> Vec<f64> {
         tau.iter().zip(&self.d0).map(|(t, d)| t * d).collect()
+    }
+
+    /// The points whose pressure loads body `b`: its own, or the carriers facing it.
+    fn loaders(&self, b: usize) -> Vec<usize> {
+        self.range(b)
+            .flat_map(|q| self.interface.carried[q].iter().map(|&(j, _)| j))
+            .collect()
+    }
+
+    /// Whether a closed point in `closed` holds body `b` (or supports do: a body without free
+    /// rigid modes).
+    fn holds(&self, b: usize, closed: &[bool]) -> bool {
+        self.mode_range[b].is_empty() || self.loaders(b).iter().any(|&j| closed[j])
+    }
+
+    /// The first floating body none of whose loaders is closed in `closed`: nothing holds it.
+    fn unheld(&self, closed: &[bool]) -> Option<usize> {
+        (0..self.bodies.len()).find(|&b| !self.holds(b, closed))
     }
 
     /// The points treated as closed in J: the closed points, and every partnered point that loads
@@ -327,11 +385,7 @@ impl<'a> System<'a> {
             if self.mode_range[b].is_empty() {
                 continue;
             }
-            // The points whose pressure loads the body: its own, or the carriers facing it.
-            let loaders: Vec<usize> = self
-                .range(b)
-                .flat_map(|q| self.interface.carried[q].iter().map(|&(j, _)| j))
-                .collect();
+            let loaders = self.loaders(b);
             if !loaders.iter().any(|&j| chi[j]) {
                 for j in loaders {
                     chi[j] = points[j].has_partner();
@@ -635,7 +689,13 @@ impl<'a> System<'a> {
 
     /// ‖R‖ with the components along the kernel `z` removed (those are the bodies' balance,
     /// which no step along z changes).
+    /// Infinite where a floating body has no closed point: R leaves out its balance (the
+    /// kernel), and a state that nothing holds is no solution however small R is there (with the
+    /// starting value u⁰ = 0 and a stiff penalty it is tiny).
     fn merit(&self, z: &[Vec<f64>], eval: &Evaluation) -> f64 {
+        if self.unheld(&eval.closed).is_some() {
+            return f64::INFINITY;
+        }
         let mut r = eval.scaled_residual(&self.rho);
         for e in z {
             let d = dot(e, &r);
@@ -877,6 +937,12 @@ fn modes_bound(mode_range: &[Range<usize>]) -> usize {
     mode_range.iter().map(|r| r.end).max().unwrap_or(0)
 }
 
+/// Whether ‖R̂‖ = `f` after a step of length `alpha` falls enough below `reference` (Armijo); a
+/// state that nothing holds (infinite ‖R̂‖) never does.
+fn decreases(f: f64, reference: f64, alpha: f64) -> bool {
+    f.is_finite() && f <= (1.0 - ARMIJO * alpha) * reference
+}
+
 fn dot(a: &[f64], b: &[f64]) -> f64 {
     a.iter().zip(b).map(|(x, y)| x * y).sum()
 }
@@ -955,7 +1021,8 @@ impl<'s, 'a> Run<'s, 'a> {
             }
             let chi = self.system.jacobian_set(&self.state);
             let z = self.system.kernel(&chi);
-            let Some(delta) = self.system.step(&chi, &z, &self.state.r) else {
+            let r = self.system.residual(&self.tau, &self.state, &chi);
+            let Some(delta) = self.system.step(&chi, &z, &r) else {
                 return (self.failure(k, Breakdown::Singular), k);
             };
             let mut checkpoint = watchdog.take().unwrap_or_else(|| Checkpoint {
@@ -970,9 +1037,25 @@ impl<'s, 'a> Run<'s, 'a> {
             let full = (checkpoint.steps < WINDOW)
                 .then(|| self.system.evaluate(&self.along(&delta, 1.0)))
                 .filter(|next| self.check(&next.u).is_none());
+            // A body that nothing held, and that the step (which closed all its points) leaves
+            // held by none again, is pulled away from its partners.
+            let pulled = self.system.unheld(&self.state.closed).filter(|&b| {
+                full.as_ref()
+                    .is_some_and(|next| !self.system.holds(b, &next.closed))
+            });
+            if let Some(body) = pulled {
+                let reason = Breakdown::LostContact;
+                let iteration = k;
+                let stop = Stop::Diverged {
+                    body,
+                    iteration,
+                    reason,
+                };
+                return (stop, k);
+            }
             let (alpha, chi, delta, next) = match full {
                 Some(next) => {
-                    if self.system.merit(&z, &next) > (1.0 - ARMIJO) * checkpoint.merit {
+                    if !decreases(self.system.merit(&z, &next), checkpoint.merit, 1.0) {
                         checkpoint.steps += 1;
                         watchdog = Some(checkpoint);
                     }
@@ -1009,8 +1092,10 @@ impl<'s, 'a> Run<'s, 'a> {
             let exact = chi == self.state.closed
                 && next.closed == chi
                 && norm(&next.scaled_residual(&self.system.rho)) <= settings.tol * norm(&next.u);
-            let converged =
-                alpha == 1.0 && (exact || record.rel_change.iter().all(|&r| r <= settings.tol));
+            // A floating body that nothing holds has no determined position: never a solution.
+            let converged = alpha == 1.0
+                && (exact || record.rel_change.iter().all(|&r| r <= settings.tol))
+                && self.system.unheld(&next.closed).is_none();
             self.history.push(record);
             self.tau = self.along(&delta, alpha);
             self.state = next;
@@ -1038,7 +1123,7 @@ impl<'s, 'a> Run<'s, 'a> {
         for _ in 1..=MAX_HALVINGS {
             let eval = self.system.evaluate(&self.along(delta, alpha));
             let f = self.system.merit(z, &eval);
-            if f <= (1.0 - ARMIJO * alpha) * merit {
+            if decreases(f, merit, alpha) {
                 return Some((alpha, eval));
             }
             alpha *= 0.5;
@@ -1062,10 +1147,7 @@ impl<'s, 'a> Run<'s, 'a> {
 
     /// The first floating body without a closed point: it has lost its hold.
     fn unheld(&self) -> Option<usize> {
-        (0..self.system.bodies.len()).find(|&b| {
-            !self.system.mode_range[b].is_empty()
-                && !self.system.range(b).any(|j| self.state.closed[j])
-        })
+        self.system.unheld(&self.state.closed)
     }
 
     /// The stop when the steps make no progress or J is singular: a body that lost its hold, or
