@@ -5,7 +5,10 @@
 //! - [`column`]: a column of blocks on a frictionless floor, held only by their contacts;
 //! - [`recess`]: two large blocks pressed together over a shallow recess (the closed form of two
 //!   pressed half-planes applies);
-//! - [`non_matching_notch`]: the paper's notch with different meshes on the two sides.
+//! - [`non_matching_notch`]: the paper's notch with different meshes on the two sides;
+//! - [`wall`]: a wall of blocks in rows and columns, confined between two walls and pressed on
+//!   top (contacts across horizontal and vertical lines; closed forms for the penalty and the
+//!   exact contact).
 //!
 //! All are plane strain, in cm and N/cm², with the rod-model penalty θ = c·h·(1/E*₁ + 1/E*₂).
 
@@ -223,4 +226,75 @@ pub fn non_matching_notch(c: f64) -> Model {
         Some(("top", q)),
     );
     notch_pair("non-matching-notch", lower, upper, c)
+}
+
+/// Pressure on the top of [`wall`].
+pub const WALL_Q: f64 = 100.0;
+
+/// A wall of `columns` × `rows` unit blocks [i, i + 1] × [j, j + 1] (E = 2.1e5, ν = 0.3), the
+/// bottom row on a frictionless floor, the outer columns against frictionless side walls
+/// (u_x = 0), pressed by q = [`WALL_Q`] on top. The meshes alternate between 10 × 10 and 13 × 13
+/// cells like a checkerboard, so every interface is non-matching. Every pair, across horizontal
+/// and vertical lines, has the rod-model penalty with factor `c` and h = 1.
+///
+/// The stress is uniform: σ_yy = −q, and σ_xx follows from the confinement. The blocks overlap by
+/// θ p at each of the `columns − 1` vertical interfaces, so the lateral pressure is
+/// q ν/(1 − ν) / (1 + 2c (columns − 1)/columns) for the penalty, and q ν/(1 − ν) for the exact
+/// contact.
+pub fn wall(columns: usize, rows: usize, c: f64) -> Model {
+    let name = |i: usize, j: usize| format!("b{i}_{j}");
+    let mut bodies = Vec::new();
+    for j in 0..rows {
+        for i in 0..columns {
+            let n = if (i + j) % 2 == 0 { 10 } else { 13 };
+            let mut supports = Vec::new();
+            if j == 0 {
+                supports.push(("bottom", Component::Y));
+            }
+            if i == 0 {
+                supports.push(("left", Component::X));
+            }
+            if i + 1 == columns {
+                supports.push(("right", Component::X));
+            }
+            let (x, y) = (i as f64, j as f64);
+            bodies.push(body(
+                &name(i, j),
+                rectangle([x, x + 1.0], [y, y + 1.0], n, n, false),
+                2.1e5,
+                &supports,
+                (j + 1 == rows).then_some(("top", WALL_Q)),
+            ));
+        }
+    }
+    let index = |i: usize, j: usize| j * columns + i;
+    let mut pairs = Vec::new();
+    for j in 0..rows {
+        for i in 0..columns {
+            if j + 1 < rows {
+                let (a, b) = (index(i, j), index(i, j + 1));
+                pairs.push(top_bottom(
+                    &format!("{}-{}", name(i, j), name(i, j + 1)),
+                    a,
+                    b,
+                    c,
+                    1.0,
+                ));
+            }
+            if i + 1 < columns {
+                let mut pair =
+                    top_bottom(&format!("{}-{}", name(i, j), name(i + 1, j)), 0, 0, c, 1.0);
+                pair.bodies = [index(i, j), index(i + 1, j)];
+                pair.boundaries = ["right".into(), "left".into()];
+                pairs.push(pair);
+            }
+        }
+    }
+    Model {
+        name: format!("wall-{columns}x{rows}"),
+        plane: Plane::Strain,
+        bodies,
+        pairs,
+        remote: Vec::new(),
+    }
 }

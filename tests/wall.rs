@@ -1,0 +1,66 @@
+//! A wall of blocks confined between two frictionless side walls and pressed on top
+//! (`cases::wall`): many floating bodies, contact across horizontal and vertical lines at once,
+//! non-matching meshes on every interface. The reference is the closed form of the uniform stress
+//! (σ_yy = −q; the lateral pressure from the confinement, with the penalty's overlaps or without),
+//! independent of the solver.
+
+use contactdd::cases::{self, WALL_Q};
+use contactdd::ddm::{prepare, solve, Enforcement, Hooks, Model, Settings, Solution};
+
+const NU: f64 = 0.3;
+
+fn run(model: &Model) -> Solution {
+    let prepared = prepare(model).unwrap();
+    let settings = Settings {
+        tol: 1e-9,
+        ..Settings::default()
+    };
+    let sol = solve(model, &prepared, &settings, Hooks::default()).unwrap();
+    assert!(sol.converged, "{}: {:?}", model.name, sol.message);
+    sol
+}
+
+/// The largest deviation of the pressed points' pressures from −q on the horizontal interfaces
+/// and from −`lateral` on the vertical ones, relative to q.
+fn deviation(model: &Model, sol: &Solution, lateral: f64) -> f64 {
+    let mut worst = 0.0f64;
+    for (pair, result) in model.pairs.iter().zip(&sol.contact) {
+        let exact = if pair.boundaries[0] == "top" {
+            WALL_Q
+        } else {
+            lateral
+        };
+        for &p in result.pressure.iter().filter(|p| **p != 0.0) {
+            worst = worst.max((p + exact).abs() / WALL_Q);
+        }
+    }
+    worst
+}
+
+/// The penalty formulation: the lateral pressure q ν/(1 − ν) / (1 + 2c (n − 1)/n), softened by
+/// the overlaps of the n − 1 vertical interfaces.
+#[test]
+fn the_penalty_wall_has_the_closed_form_stress() {
+    for (columns, rows, c) in [(3, 3, 0.05), (4, 5, 0.5)] {
+        let model = cases::wall(columns, rows, c);
+        let sol = run(&model);
+        let n = columns as f64;
+        let lateral = WALL_Q * NU / (1.0 - NU) / (1.0 + 2.0 * c * (n - 1.0) / n);
+        let error = deviation(&model, &sol, lateral);
+        assert!(error <= 1e-8, "{}, c = {c}: {error:e}", model.name);
+    }
+}
+
+/// The exact contact (augmented Lagrangian): the lateral pressure q ν/(1 − ν), for any penalty.
+#[test]
+fn the_exact_wall_has_the_confined_stress() {
+    for c in [0.5, 0.005] {
+        let mut model = cases::wall(4, 3, c);
+        for pair in &mut model.pairs {
+            pair.enforcement = Enforcement::Augmented;
+        }
+        let sol = run(&model);
+        let error = deviation(&model, &sol, WALL_Q * NU / (1.0 - NU));
+        assert!(error <= 1e-6, "c = {c}: {error:e}");
+    }
+}
