@@ -937,6 +937,15 @@ fn modes_bound(mode_range: &[Range<usize>]) -> usize {
     mode_range.iter().map(|r| r.end).max().unwrap_or(0)
 }
 
+/// The stop of a solve that broke down at iteration `k` because of `body`.
+fn diverged(body: usize, k: usize, reason: Breakdown) -> Stop {
+    Stop::Diverged {
+        body,
+        iteration: k,
+        reason,
+    }
+}
+
 /// Whether ‖R̂‖ = `f` after a step of length `alpha` falls enough below `reference` (Armijo); a
 /// state that nothing holds (infinite ‖R̂‖) never does.
 fn decreases(f: f64, reference: f64, alpha: f64) -> bool {
@@ -972,6 +981,15 @@ struct Checkpoint {
     delta: Vec<f64>,
     /// Full steps taken since without that decrease.
     steps: usize,
+}
+
+/// One iteration's move: the step length, the closed set and Newton step it went along, and the
+/// state it reached.
+struct Step {
+    alpha: f64,
+    chi: Vec<bool>,
+    delta: Vec<f64>,
+    next: Evaluation,
 }
 
 impl<'s, 'a> Run<'s, 'a> {
@@ -1025,7 +1043,7 @@ impl<'s, 'a> Run<'s, 'a> {
             let Some(delta) = self.system.step(&chi, &z, &r) else {
                 return (self.failure(k, Breakdown::Singular), k);
             };
-            let mut checkpoint = watchdog.take().unwrap_or_else(|| Checkpoint {
+            let checkpoint = watchdog.take().unwrap_or_else(|| Checkpoint {
                 tau: self.tau.clone(),
                 state: self.state.clone(),
                 merit: self.system.merit(&z, &self.state),
@@ -1034,76 +1052,98 @@ impl<'s, 'a> Run<'s, 'a> {
                 delta: delta.clone(),
                 steps: 0,
             });
-            let full = (checkpoint.steps < WINDOW)
-                .then(|| self.system.evaluate(&self.along(&delta, 1.0)))
-                .filter(|next| self.check(&next.u).is_none());
-            // A body that nothing held, and that the step (which closed all its points) leaves
-            // held by none again, is pulled away from its partners.
-            let pulled = self.system.unheld(&self.state.closed).filter(|&b| {
-                full.as_ref()
-                    .is_some_and(|next| !self.system.holds(b, &next.closed))
-            });
-            if let Some(body) = pulled {
-                let reason = Breakdown::LostContact;
-                let iteration = k;
-                let stop = Stop::Diverged {
-                    body,
-                    iteration,
-                    reason,
-                };
-                return (stop, k);
-            }
-            let (alpha, chi, delta, next) = match full {
-                Some(next) => {
-                    if !decreases(self.system.merit(&z, &next), checkpoint.merit, 1.0) {
-                        checkpoint.steps += 1;
-                        watchdog = Some(checkpoint);
-                    }
-                    (1.0, chi, delta, next)
+            let step = match self.watch(k, checkpoint, chi, &z, delta) {
+                Ok((step, kept)) => {
+                    watchdog = kept;
+                    step
                 }
-                // Back to the checkpoint, and along its step as far as its ‖R̂‖ decreases.
-                None => {
-                    self.tau = checkpoint.tau;
-                    self.state = checkpoint.state;
-                    let Some((alpha, next)) =
-                        self.line_search(&checkpoint.z, &checkpoint.delta, checkpoint.merit)
-                    else {
-                        return (self.failure(k, Breakdown::NoDescent), k);
-                    };
-                    if let Some((body, reason)) = self.check(&next.u) {
-                        let iteration = k;
-                        let stop = Stop::Diverged {
-                            body,
-                            iteration,
-                            reason,
-                        };
-                        return (stop, k);
-                    }
-                    (alpha, checkpoint.chi, checkpoint.delta, next)
-                }
+                Err(stop) => return (stop, k),
             };
-            let record = self.record(k, alpha, &next);
+            let record = self.record(k, step.alpha, &step.next);
             if let Some(f) = hooks.on_iteration {
                 f(&record);
             }
-            // A full step that leaves the closed set as it was solved the (then linear) equations:
-            // the primal–dual active set method's own stopping rule, confirmed by the residual
-            // (it keeps any part along the kernel z). Otherwise the relative change decides.
-            let exact = chi == self.state.closed
-                && next.closed == chi
-                && norm(&next.scaled_residual(&self.system.rho)) <= settings.tol * norm(&next.u);
-            // A floating body that nothing holds has no determined position: never a solution.
-            let converged = alpha == 1.0
-                && (exact || record.rel_change.iter().all(|&r| r <= settings.tol))
-                && self.system.unheld(&next.closed).is_none();
+            let converged = self.converged(&step, &record, settings.tol);
             self.history.push(record);
-            self.tau = self.along(&delta, alpha);
-            self.state = next;
+            self.tau = self.along(&step.delta, step.alpha);
+            self.state = step.next;
             if converged {
                 return (Stop::Converged, k);
             }
         }
         (Stop::MaxIterations, settings.max_iter)
+    }
+
+    /// The watchdog's step `k` along `delta` (with closed set `chi` and kernel `z`): the full
+    /// step while `checkpoint` allows it, else back to the checkpoint and along its step. Also
+    /// returns the checkpoint to keep (`None` once a step decreased its ‖R̂‖ enough: the next
+    /// state is the next checkpoint), or the stop when a body is pulled away or the step fails.
+    fn watch(
+        &mut self,
+        k: usize,
+        mut checkpoint: Checkpoint,
+        chi: Vec<bool>,
+        z: &[Vec<f64>],
+        delta: Vec<f64>,
+    ) -> Result<(Step, Option<Checkpoint>), Stop> {
+        let full = (checkpoint.steps < WINDOW)
+            .then(|| self.system.evaluate(&self.along(&delta, 1.0)))
+            .filter(|next| self.check(&next.u).is_none());
+        // A body that nothing held, and that the step (which closed all its points) leaves held
+        // by none again, is pulled away from its partners.
+        let pulled = self.system.unheld(&self.state.closed).filter(|&b| {
+            full.as_ref()
+                .is_some_and(|next| !self.system.holds(b, &next.closed))
+        });
+        if let Some(body) = pulled {
+            return Err(diverged(body, k, Breakdown::LostContact));
+        }
+        if let Some(next) = full {
+            let kept =
+                (!decreases(self.system.merit(z, &next), checkpoint.merit, 1.0)).then(|| {
+                    checkpoint.steps += 1;
+                    checkpoint
+                });
+            let step = Step {
+                alpha: 1.0,
+                chi,
+                delta,
+                next,
+            };
+            return Ok((step, kept));
+        }
+        // Back to the checkpoint, and along its step as far as its ‖R̂‖ decreases.
+        self.tau = checkpoint.tau;
+        self.state = checkpoint.state;
+        let Some((alpha, next)) =
+            self.line_search(&checkpoint.z, &checkpoint.delta, checkpoint.merit)
+        else {
+            return Err(self.failure(k, Breakdown::NoDescent));
+        };
+        if let Some((body, reason)) = self.check(&next.u) {
+            return Err(diverged(body, k, reason));
+        }
+        let step = Step {
+            alpha,
+            chi: checkpoint.chi,
+            delta: checkpoint.delta,
+            next,
+        };
+        Ok((step, None))
+    }
+
+    /// Whether `step` ends the solve. A full step that leaves the closed set as it was solved the
+    /// (then linear) equations: the primal–dual active set method's own stopping rule, confirmed
+    /// by the residual (it keeps any part along the kernel). Otherwise the relative change
+    /// decides. A floating body that nothing holds has no determined position: never a solution.
+    fn converged(&self, step: &Step, record: &Record, tol: f64) -> bool {
+        let next = &step.next;
+        let exact = step.chi == self.state.closed
+            && next.closed == step.chi
+            && norm(&next.scaled_residual(&self.system.rho)) <= tol * norm(&next.u);
+        step.alpha == 1.0
+            && (exact || record.rel_change.iter().all(|&r| r <= tol))
+            && self.system.unheld(&next.closed).is_none()
     }
 
     /// τ + α δ.
@@ -1153,14 +1193,9 @@ impl<'s, 'a> Run<'s, 'a> {
     /// The stop when the steps make no progress or J is singular: a body that lost its hold, or
     /// `otherwise`.
     fn failure(&self, k: usize, otherwise: Breakdown) -> Stop {
-        let (body, reason) = match self.unheld() {
-            Some(b) => (b, Breakdown::LostContact),
-            None => (0, otherwise),
-        };
-        Stop::Diverged {
-            body,
-            iteration: k,
-            reason,
+        match self.unheld() {
+            Some(b) => diverged(b, k, Breakdown::LostContact),
+            None => diverged(0, k, otherwise),
         }
     }
 
