@@ -16,6 +16,8 @@
 //! normal displacement of the contact points). The result is that inner solve: its pressures and
 //! fields are consistent with each other, and its multipliers are the reported pressures.
 
+use std::time::Instant;
+
 use crate::anderson::Anderson;
 use crate::contact::Interface;
 use crate::iteration::{iterate_on, Hooks, Outcome, Record, Settings, Stop, ANDERSON_DEPTH};
@@ -46,6 +48,21 @@ pub struct Augmented {
 /// ask for it (the others keep λ = 0, the penalty formulation); the first inner solve starts from
 /// the interface loads `warm` when given.
 pub fn solve(
+    model: &Model,
+    prepared: &Prepared,
+    settings: &Settings,
+    hooks: Hooks<'_>,
+    warm: Option<&[f64]>,
+) -> Augmented {
+    let start = Instant::now();
+    let mut result = update_loop(model, prepared, settings, hooks, warm);
+    // The iteration's time is the whole loop's, every inner solve included.
+    result.outcome.seconds = start.elapsed().as_secs_f64();
+    result
+}
+
+/// The multiplier updates of [`solve`].
+fn update_loop(
     model: &Model,
     prepared: &Prepared,
     settings: &Settings,
