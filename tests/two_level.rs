@@ -47,7 +47,8 @@ fn columns_of_floating_blocks_converge_in_a_count_independent_of_their_length() 
 }
 
 /// The one-level iteration on the same 16-block column does not reach a solution: the coarse
-/// correction is what makes the difference.
+/// correction is what makes the difference. The message names the way out (the interface Newton
+/// method).
 #[test]
 fn the_one_level_iteration_fails_where_the_two_level_one_converges() {
     let model = cases::column(16, 0.5);
@@ -55,7 +56,10 @@ fn the_one_level_iteration_fails_where_the_two_level_one_converges() {
         coarse: CoarseMode::Off,
         ..Settings::two_level()
     };
-    assert!(!run(&model, &one_level).converged);
+    let sol = run(&model, &one_level);
+    assert!(!sol.converged);
+    let message = sol.message.unwrap_or_default();
+    assert!(message.contains("accelerator = \"newton\""), "{message}");
 }
 
 /// Every accelerator and coarse mode, and the interface Newton default, converges to the monolithic penalty solution.

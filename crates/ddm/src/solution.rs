@@ -188,7 +188,7 @@ pub fn stop_message(
         Stop::MaxIterations => {
             let worst = largest_change(history);
             Some(format!(
-                "not converged after {} iterations (largest relative change {worst:.3e} > tolerance {tol:.1e}); raise max-iter, try a smaller gamma, gamma = \"auto\" or another method",
+                "not converged after {} iterations (largest relative change {worst:.3e} > tolerance {tol:.1e}); raise max-iter, try a smaller gamma, gamma = \"auto\", another method, or the interface Newton method (accelerator = \"newton\"), whose count does not grow with the penalty's stiffness",
                 history.len()
             ))
         }
