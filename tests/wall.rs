@@ -5,16 +5,22 @@
 //! independent of the solver.
 
 use contactdd::cases::{self, WALL_Q};
-use contactdd::ddm::{prepare, solve, Enforcement, Hooks, Model, Settings, Solution};
+use contactdd::ddm::{prepare, solve, Enforcement, GapProfile, Hooks, Model, Settings, Solution};
 
 const NU: f64 = 0.3;
 
 fn run(model: &Model) -> Solution {
+    run_with(
+        model,
+        Settings {
+            tol: 1e-9,
+            ..Settings::default()
+        },
+    )
+}
+
+fn run_with(model: &Model, settings: Settings) -> Solution {
     let prepared = prepare(model).unwrap();
-    let settings = Settings {
-        tol: 1e-9,
-        ..Settings::default()
-    };
     let sol = solve(model, &prepared, &settings, Hooks::default()).unwrap();
     assert!(sol.converged, "{}: {:?}", model.name, sol.message);
     sol
@@ -37,16 +43,20 @@ fn deviation(model: &Model, sol: &Solution, lateral: f64) -> f64 {
     worst
 }
 
-/// The penalty formulation: the lateral pressure q ν/(1 − ν) / (1 + 2c (n − 1)/n), softened by
-/// the overlaps of the n − 1 vertical interfaces.
+/// The lateral pressure of the penalty wall with `columns` columns: q ν/(1 − ν) / (1 + 2c (n − 1)/n),
+/// softened by the overlaps of the n − 1 vertical interfaces.
+fn penalty_lateral(columns: usize, c: f64) -> f64 {
+    let n = columns as f64;
+    WALL_Q * NU / (1.0 - NU) / (1.0 + 2.0 * c * (n - 1.0) / n)
+}
+
+/// The penalty formulation has the closed-form stress.
 #[test]
 fn the_penalty_wall_has_the_closed_form_stress() {
     for (columns, rows, c) in [(3, 3, 0.05), (4, 5, 0.5)] {
         let model = cases::wall(columns, rows, c);
         let sol = run(&model);
-        let n = columns as f64;
-        let lateral = WALL_Q * NU / (1.0 - NU) / (1.0 + 2.0 * c * (n - 1.0) / n);
-        let error = deviation(&model, &sol, lateral);
+        let error = deviation(&model, &sol, penalty_lateral(columns, c));
         assert!(error <= 1e-8, "{}, c = {c}: {error:e}", model.name);
     }
 }
@@ -63,4 +73,28 @@ fn the_exact_wall_has_the_confined_stress() {
         let error = deviation(&model, &sol, WALL_Q * NU / (1.0 - NU));
         assert!(error <= 1e-6, "c = {c}: {error:e}");
     }
+}
+
+/// Rows that start 1e−3 apart, and a start with nothing closed (u⁰ = 0): the side walls and the
+/// neighbours hold every block sideways, but nothing holds a column of blocks against the load
+/// that pushes it down until the rows close. The uniform gaps change no stress.
+#[test]
+fn a_wall_held_only_sideways_at_the_start_closes() {
+    let lateral = penalty_lateral(4, 0.05);
+    let mut apart = cases::wall(4, 5, 0.05);
+    for pair in apart.pairs.iter_mut().filter(|p| p.boundaries[0] == "top") {
+        pair.profile = Some(GapProfile::Uniform { value: 1e-3 });
+    }
+    let error = deviation(&apart, &run(&apart), lateral);
+    assert!(error <= 1e-8, "rows apart: {error:e}");
+
+    let model = cases::wall(4, 5, 0.05);
+    let settings = Settings {
+        tol: 1e-9,
+        u0: 0.0,
+        u_prev: 0.0,
+        ..Settings::default()
+    };
+    let error = deviation(&model, &run_with(&model, settings), lateral);
+    assert!(error <= 1e-8, "u0 = 0: {error:e}");
 }

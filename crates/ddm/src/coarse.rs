@@ -103,6 +103,12 @@ impl Coarse {
         (&self.all.range, &self.all.rho)
     }
 
+    /// The work R_qᵀ f of the bodies' loads (at the load factor) along every mode of
+    /// [`Coarse::floating_modes`].
+    pub fn floating_loads(&self) -> &[f64] {
+        &self.all.load
+    }
+
     /// Moves the bodies that `mode` selects rigidly into balance in the state (`un`, `t`).
     /// Returns the number of Newton steps taken.
     pub fn correct(

@@ -46,7 +46,7 @@ use faer::sparse::linalg::{LuError, SupernodalThreshold};
 use faer::sparse::FaerError;
 use faer::sparse::{SparseColMat, SymbolicSparseColMat, Triplet};
 use faer::{Conj, Index, Mat, Par};
-use nalgebra::{DMatrix, SymmetricEigen};
+use nalgebra::{DMatrix, DVector, SymmetricEigen};
 use rayon::prelude::*;
 
 use crate::condensed::CondensedBody;
@@ -70,6 +70,10 @@ const ARMIJO: f64 = 1e-4;
 /// bodies in contact fill half of it or more, and then the sparse LU does about the dense flops
 /// with more overhead; a chain of bodies stays block-sparse, well below.
 const DENSE_FILL: f64 = 1.0 / 3.0;
+/// Work of the loads along a free rigid motion, relative to their work along all free modes, above
+/// which the motion is loaded: far above the rounding of loads that balance (the paper's notch,
+/// two bodies pressed from both sides), far below any imbalance a solution could leave.
+const WORK_TOL: f64 = 1e-8;
 /// Iterative refinement steps at most after a sparse-path LU solve.
 const MAX_REFINE: usize = 4;
 
@@ -116,6 +120,8 @@ struct System<'a> {
     /// Free rigid modes of the floating bodies: mode range per body, normal values per point.
     mode_range: &'a [Range<usize>],
     modes: &'a [Vec<f64>],
+    /// The work of the bodies' loads along every free mode.
+    mode_load: &'a [f64],
     /// Owning body of every point.
     body_of: Vec<usize>,
     /// ρ_j = 1 − B_jj ∈ (0, 1]: the share of the body in the stiffness of point j with its
@@ -228,6 +234,7 @@ impl<'a> System<'a> {
             sparse_offset,
             mode_range,
             modes,
+            mode_load: prepared.coarse.floating_loads(),
             body_of: interface.points.iter().map(|p| p.body).collect(),
             rho,
             weightless: d0.iter().map(|&d| d == 0.0).collect(),
@@ -392,28 +399,38 @@ impl<'a> System<'a> {
                 }
             }
         }
+        // Bodies that closed points hold, but not along a motion their loads push them in (a
+        // column of blocks held sideways by its neighbours, open below): the points that would
+        // resist the motion count as closed.
+        for _ in 0..self.bodies.len() {
+            let Some(v) = self.loaded_motion(&chi) else {
+                break;
+            };
+            let open: Vec<usize> = self
+                .resisting(&v)
+                .into_iter()
+                .filter(|&j| !chi[j])
+                .collect();
+            if open.is_empty() {
+                break;
+            }
+            open.into_iter().for_each(|j| chi[j] = true);
+        }
         chi
     }
 
-    /// An orthonormal basis of the rigid motions of floating bodies that the closed points `chi`
-    /// do not resist: motions of the whole interface that keep every closed pair sum.
-    fn kernel(&self, chi: &[bool]) -> Vec<Vec<f64>> {
-        let k = self.mode_range.iter().map(|r| r.end).max().unwrap_or(0);
+    /// The rigid motions of floating bodies that the closed points `chi` do not resist, as
+    /// weights of the free modes: the null space of the Gram matrix of the closed pair sums'
+    /// change per mode.
+    fn free_motions(&self, chi: &[bool]) -> Vec<DVector<f64>> {
+        let k = modes_bound(self.mode_range);
         if k == 0 {
             return Vec::new();
         }
-        // Gram matrix of the closed pair sums' change per mode.
         let mut gram = DMatrix::<f64>::zeros(k, k);
         let mut row = vec![0.0; k];
-        for (j, p) in self.interface.points.iter().enumerate() {
-            if !chi[j] {
-                continue;
-            }
-            row.iter_mut().for_each(|v| *v = 0.0);
-            self.add_modes(j, 1.0, &mut row);
-            for &(q, c) in &p.partner {
-                self.add_modes(q, c, &mut row);
-            }
+        for j in (0..self.len()).filter(|&j| chi[j]) {
+            self.sum_change(j, &mut row);
             for a in 0..k {
                 if row[a] != 0.0 {
                     for b in 0..k {
@@ -424,12 +441,28 @@ impl<'a> System<'a> {
         }
         let scale = (0..k).map(|a| gram[(a, a)]).fold(0.0, f64::max);
         let eig = SymmetricEigen::new(gram);
+        eig.eigenvalues
+            .iter()
+            .enumerate()
+            .filter(|(_, &lambda)| lambda <= 1e-10 * scale)
+            .map(|(q, _)| eig.eigenvectors.column(q).into_owned())
+            .collect()
+    }
+
+    /// The change of point j's pair sum per free mode, in `row`.
+    fn sum_change(&self, j: usize, row: &mut [f64]) {
+        row.iter_mut().for_each(|v| *v = 0.0);
+        self.add_modes(j, 1.0, row);
+        for &(q, c) in &self.interface.points[j].partner {
+            self.add_modes(q, c, row);
+        }
+    }
+
+    /// An orthonormal basis of the rigid motions of floating bodies that the closed points `chi`
+    /// do not resist: motions of the whole interface that keep every closed pair sum.
+    fn kernel(&self, chi: &[bool]) -> Vec<Vec<f64>> {
         let mut basis: Vec<Vec<f64>> = Vec::new();
-        for (q, &lambda) in eig.eigenvalues.iter().enumerate() {
-            if lambda > 1e-10 * scale {
-                continue;
-            }
-            let v = eig.eigenvectors.column(q);
+        for v in self.free_motions(chi) {
             let mut z: Vec<f64> = (0..self.len())
                 .map(|j| {
                     let b = self.body_of[j];
@@ -451,6 +484,53 @@ impl<'a> System<'a> {
             }
         }
         basis
+    }
+
+    /// A rigid motion that the closed points `chi` leave free and along which the loads do work:
+    /// no state with these closed points balances them.
+    fn loaded_motion(&self, chi: &[bool]) -> Option<DVector<f64>> {
+        let total = norm(self.mode_load);
+        if total == 0.0 {
+            return None;
+        }
+        self.free_motions(chi).into_iter().find(|v| {
+            let work: f64 = v.iter().zip(self.mode_load).map(|(a, f)| a * f).sum();
+            work.abs() > WORK_TOL * total
+        })
+    }
+
+    /// The body that nothing holds in `closed`: one none of whose loaders is closed, else the
+    /// body that moves most along a loaded motion that `closed` leaves free.
+    fn stranded(&self, closed: &[bool]) -> Option<usize> {
+        if let Some(b) = self.unheld(closed) {
+            return Some(b);
+        }
+        let v = self.loaded_motion(closed)?;
+        let share = |b: usize| self.mode_range[b].clone().map(|m| v[m] * v[m]).sum::<f64>();
+        (0..self.bodies.len()).max_by(|&a, &b| share(a).total_cmp(&share(b)))
+    }
+
+    /// The points that can close (partnered, weighted, and carriers on balanced pairs) and whose
+    /// pair sum the rigid motion `v` changes: closed, they would resist it.
+    fn resisting(&self, v: &DVector<f64>) -> Vec<usize> {
+        let points = &self.interface.points;
+        let mut row = vec![0.0; v.len()];
+        let change: Vec<(usize, f64)> = (0..self.len())
+            .filter(|&j| {
+                let p = &points[j];
+                p.has_partner() && !self.weightless[j] && (!self.balanced[j] || p.carries())
+            })
+            .map(|j| {
+                self.sum_change(j, &mut row);
+                (j, row.iter().zip(v.iter()).map(|(a, b)| a * b).sum::<f64>())
+            })
+            .collect();
+        let largest = change.iter().fold(0.0f64, |m, &(_, c)| m.max(c.abs()));
+        change
+            .into_iter()
+            .filter(|&(_, c)| c.abs() > 1e-8 * largest)
+            .map(|(j, _)| j)
+            .collect()
     }
 
     /// Adds c·ρ_j (the modes of point j's body) to `row`.
@@ -693,7 +773,7 @@ impl<'a> System<'a> {
     /// kernel), and a state that nothing holds is no solution however small R is there (with the
     /// starting value u⁰ = 0 and a stiff penalty it is tiny).
     fn merit(&self, z: &[Vec<f64>], eval: &Evaluation) -> f64 {
-        if self.unheld(&eval.closed).is_some() {
+        if self.stranded(&eval.closed).is_some() {
             return f64::INFINITY;
         }
         let mut r = eval.scaled_residual(&self.rho);
@@ -1091,9 +1171,9 @@ impl<'s, 'a> Run<'s, 'a> {
             .filter(|next| self.check(&next.u).is_none());
         // A body that nothing held, and that the step (which closed all its points) leaves held
         // by none again, is pulled away from its partners.
-        let pulled = self.system.unheld(&self.state.closed).filter(|&b| {
+        let pulled = self.system.stranded(&self.state.closed).filter(|&b| {
             full.as_ref()
-                .is_some_and(|next| !self.system.holds(b, &next.closed))
+                .is_some_and(|next| self.system.stranded(&next.closed) == Some(b))
         });
         if let Some(body) = pulled {
             return Err(diverged(body, k, Breakdown::LostContact));
@@ -1143,7 +1223,7 @@ impl<'s, 'a> Run<'s, 'a> {
             && norm(&next.scaled_residual(&self.system.rho)) <= tol * norm(&next.u);
         step.alpha == 1.0
             && (exact || record.rel_change.iter().all(|&r| r <= tol))
-            && self.system.unheld(&next.closed).is_none()
+            && self.system.stranded(&next.closed).is_none()
     }
 
     /// τ + α δ.
@@ -1187,7 +1267,7 @@ impl<'s, 'a> Run<'s, 'a> {
 
     /// The first floating body without a closed point: it has lost its hold.
     fn unheld(&self) -> Option<usize> {
-        self.system.unheld(&self.state.closed)
+        self.system.stranded(&self.state.closed)
     }
 
     /// The stop when the steps make no progress or J is singular: a body that lost its hold, or

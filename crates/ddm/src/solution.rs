@@ -277,7 +277,7 @@ fn newton_message(stop: &Stop, model: &Model, history: &[Record], tol: f64) -> O
             reason,
         } => Some(match reason {
             Breakdown::LostContact => format!(
-                "diverged: body '{}' has no closed contact point at Newton step {iteration} and nothing else holds it: check that its loads press it against its partners",
+                "diverged: nothing holds body '{}' at Newton step {iteration}: no closed contact point resists the rigid motion its loads push it in: check that its loads press it against its partners",
                 body(*b)
             ),
             Breakdown::NoDescent => format!(
