@@ -5,7 +5,9 @@
 //! independent of the solver.
 
 use contactdd::cases::{self, WALL_Q};
-use contactdd::ddm::{prepare, solve, Enforcement, GapProfile, Hooks, Model, Settings, Solution};
+use contactdd::ddm::{
+    prepare, solve, solve_monolithic, Enforcement, GapProfile, Hooks, Model, Settings, Solution,
+};
 
 const NU: f64 = 0.3;
 
@@ -78,13 +80,19 @@ fn the_exact_wall_has_the_confined_stress() {
 /// Rows that start 1e−3 apart, and a start with nothing closed (u⁰ = 0): the side walls and the
 /// neighbours hold every block sideways, but nothing holds a column of blocks against the load
 /// that pushes it down until the rows close. The uniform gaps change no stress.
+/// The 4 × 5 wall (c = 0.05) with its rows 1e−3 apart.
+fn rows_apart() -> Model {
+    let mut model = cases::wall(4, 5, 0.05);
+    for pair in model.pairs.iter_mut().filter(|p| p.boundaries[0] == "top") {
+        pair.profile = Some(GapProfile::Uniform { value: 1e-3 });
+    }
+    model
+}
+
 #[test]
 fn a_wall_held_only_sideways_at_the_start_closes() {
     let lateral = penalty_lateral(4, 0.05);
-    let mut apart = cases::wall(4, 5, 0.05);
-    for pair in apart.pairs.iter_mut().filter(|p| p.boundaries[0] == "top") {
-        pair.profile = Some(GapProfile::Uniform { value: 1e-3 });
-    }
+    let apart = rows_apart();
     let error = deviation(&apart, &run(&apart), lateral);
     assert!(error <= 1e-8, "rows apart: {error:e}");
 
@@ -97,4 +105,23 @@ fn a_wall_held_only_sideways_at_the_start_closes() {
     };
     let error = deviation(&model, &run_with(&model, settings), lateral);
     assert!(error <= 1e-8, "u0 = 0: {error:e}");
+}
+
+/// The monolithic reference, which shares no solver code with the decomposition, solves the wall
+/// whose rows start apart too, to the same pressures.
+#[test]
+fn the_monolithic_reference_agrees_on_the_wall_with_rows_apart() {
+    let model = rows_apart();
+    let dd = run(&model);
+    let reference = solve_monolithic(&model).unwrap();
+    assert!(reference.converged, "{:?}", reference.message);
+    for (a, b) in dd.contact.iter().zip(&reference.contact) {
+        for (p, q) in a.pressure.iter().zip(&b.pressure) {
+            assert!(
+                (p - q).abs() <= 1e-8 * WALL_Q,
+                "{}: {p} against {q}",
+                a.name
+            );
+        }
+    }
 }

@@ -453,7 +453,59 @@ fn jacobian_set(system: &System, modes: &[Mode], eval: &Evaluation) -> Vec<bool>
             chi[j] = true;
         }
     }
+    // A body held by closed points, but not along a motion its loads push it in (a column of
+    // blocks held sideways by its neighbours, open below): the points that would resist the
+    // motion, of smallest gap, count as closed, until no such motion is left free.
+    for _ in 0..modes.len() {
+        let Some(resisting) = loaded_motion(modes, &chi).map(|w| resisting(system, modes, &w))
+        else {
+            break;
+        };
+        let open: Vec<usize> = resisting.into_iter().filter(|&j| !chi[j]).collect();
+        let gap = |j: usize| points[j].penalty_gap() - eval.s[j];
+        let Some(least) = open.iter().map(|&j| gap(j)).min_by(f64::total_cmp) else {
+            break;
+        };
+        let size = system.size.iter().fold(0.0f64, |a, &b| a.max(b));
+        let tie = 1e-9 * (least.abs() + size);
+        for j in open.into_iter().filter(|&j| gap(j) <= least + tie) {
+            chi[j] = true;
+        }
+    }
     chi
+}
+
+/// Work of the loads along a free motion, relative to their work along all free modes, above
+/// which the motion is loaded (far above the rounding of loads that balance).
+const WORK_TOL: f64 = 1e-8;
+
+/// The weights of a rigid motion that the closed points `chi` leave free and along which the
+/// applied loads do work.
+fn loaded_motion(modes: &[Mode], chi: &[bool]) -> Option<Vec<f64>> {
+    let total = modes.iter().map(|m| m.work * m.work).sum::<f64>().sqrt();
+    if total == 0.0 {
+        return None;
+    }
+    modes::kernel(modes, chi).weights.into_iter().find(|w| {
+        let work: f64 = w.iter().zip(modes).map(|(c, m)| c * m.work).sum();
+        work.abs() > WORK_TOL * total
+    })
+}
+
+/// The points that can carry a force (partnered, own-side or carriers) and whose pair sum the
+/// motion with mode weights `w` changes.
+fn resisting(system: &System, modes: &[Mode], w: &[f64]) -> Vec<usize> {
+    let points = &system.interface.points;
+    let change: Vec<(usize, f64)> = (0..points.len())
+        .filter(|&j| points[j].has_partner() && points[j].carries())
+        .map(|j| (j, w.iter().zip(modes).map(|(c, m)| c * m.on_s[j]).sum()))
+        .collect();
+    let largest = change.iter().fold(0.0f64, |a, &(_, c)| a.max(c.abs()));
+    change
+        .into_iter()
+        .filter(|&(_, c)| c.abs() > 1e-8 * largest)
+        .map(|(j, _)| j)
+        .collect()
 }
 
 /// ‖(F, Φ)‖ with F's part along the unresisted motions `z` removed (no step changes that part;

@@ -25,6 +25,8 @@ pub(super) struct Mode {
     pub on_x: Vec<f64>,
     /// Its change of every contact point's pair sum.
     pub on_s: Vec<f64>,
+    /// The work of the body's applied loads along it.
+    pub work: f64,
 }
 
 /// A kernel motion: a combination of modes, orthonormal on x.
@@ -92,11 +94,21 @@ pub(super) fn free_rigid_modes(model: &Model, system: &System) -> Vec<Mode> {
                 .iter()
                 .map(|a| a.terms.iter().map(|&(i, c)| c * on_x[i]).sum())
                 .collect();
+            let dofs: Vec<usize> = (0..body.load.len())
+                .filter(|&d| body.constraints.get(d).is_none())
+                .collect();
+            let motion = motion_on(body, &v, &dofs);
+            let work = dofs
+                .iter()
+                .zip(&motion)
+                .map(|(&d, m)| m * body.load[d])
+                .sum();
             modes.push(Mode {
                 body: b,
                 coefficients: v,
                 on_x,
                 on_s,
+                work,
             });
         }
     }
