@@ -144,6 +144,10 @@ struct Evaluation {
     r: Vec<f64>,
     /// The points the complementarity rule counts as closed.
     closed: Vec<bool>,
+    /// The rigid motions of floating bodies that the closed points leave free (weights of the
+    /// free modes), and the body that nothing holds there, if any.
+    free: Vec<DVector<f64>>,
+    stranded: Option<usize>,
 }
 
 impl Evaluation {
@@ -317,7 +321,16 @@ impl<'a> System<'a> {
                 }
             })
             .collect();
-        Evaluation { u, s, r, closed }
+        let free = self.free_motions(&closed);
+        let stranded = self.stranded(&closed, &free);
+        Evaluation {
+            u,
+            s,
+            r,
+            closed,
+            free,
+            stranded,
+        }
     }
 
     /// R at the evaluated state with the points `chi` closed: the residual whose Jacobian the
@@ -403,7 +416,12 @@ impl<'a> System<'a> {
         // column of blocks held sideways by its neighbours, open below): the points that would
         // resist the motion count as closed.
         for _ in 0..self.bodies.len() {
-            let Some(v) = self.loaded_motion(&chi) else {
+            let free = if chi == eval.closed {
+                eval.free.clone()
+            } else {
+                self.free_motions(&chi)
+            };
+            let Some(v) = self.loaded_motion(&free) else {
                 break;
             };
             let open: Vec<usize> = self
@@ -458,11 +476,11 @@ impl<'a> System<'a> {
         }
     }
 
-    /// An orthonormal basis of the rigid motions of floating bodies that the closed points `chi`
-    /// do not resist: motions of the whole interface that keep every closed pair sum.
-    fn kernel(&self, chi: &[bool]) -> Vec<Vec<f64>> {
+    /// An orthonormal basis, on the contact points, of the rigid motions `free` (those some closed
+    /// points do not resist): motions of the whole interface that keep every closed pair sum.
+    fn kernel(&self, free: &[DVector<f64>]) -> Vec<Vec<f64>> {
         let mut basis: Vec<Vec<f64>> = Vec::new();
-        for v in self.free_motions(chi) {
+        for v in free {
             let mut z: Vec<f64> = (0..self.len())
                 .map(|j| {
                     let b = self.body_of[j];
@@ -486,26 +504,28 @@ impl<'a> System<'a> {
         basis
     }
 
-    /// A rigid motion that the closed points `chi` leave free and along which the loads do work:
-    /// no state with these closed points balances them.
-    fn loaded_motion(&self, chi: &[bool]) -> Option<DVector<f64>> {
+    /// A rigid motion among `free` (the motions some closed points leave free) along which the
+    /// loads do work: no state with these closed points balances them.
+    fn loaded_motion(&self, free: &[DVector<f64>]) -> Option<DVector<f64>> {
         let total = norm(self.mode_load);
         if total == 0.0 {
             return None;
         }
-        self.free_motions(chi).into_iter().find(|v| {
-            let work: f64 = v.iter().zip(self.mode_load).map(|(a, f)| a * f).sum();
-            work.abs() > WORK_TOL * total
-        })
+        free.iter()
+            .find(|v| {
+                let work: f64 = v.iter().zip(self.mode_load).map(|(a, f)| a * f).sum();
+                work.abs() > WORK_TOL * total
+            })
+            .cloned()
     }
 
-    /// The body that nothing holds in `closed`: one none of whose loaders is closed, else the
-    /// body that moves most along a loaded motion that `closed` leaves free.
-    fn stranded(&self, closed: &[bool]) -> Option<usize> {
+    /// The body that nothing holds in `closed` (whose free motions are `free`): one none of whose
+    /// loaders is closed, else the body that moves most along a loaded free motion.
+    fn stranded(&self, closed: &[bool], free: &[DVector<f64>]) -> Option<usize> {
         if let Some(b) = self.unheld(closed) {
             return Some(b);
         }
-        let v = self.loaded_motion(closed)?;
+        let v = self.loaded_motion(free)?;
         let share = |b: usize| self.mode_range[b].clone().map(|m| v[m] * v[m]).sum::<f64>();
         (0..self.bodies.len()).max_by(|&a, &b| share(a).total_cmp(&share(b)))
     }
@@ -773,7 +793,7 @@ impl<'a> System<'a> {
     /// kernel), and a state that nothing holds is no solution however small R is there (with the
     /// starting value u⁰ = 0 and a stiff penalty it is tiny).
     fn merit(&self, z: &[Vec<f64>], eval: &Evaluation) -> f64 {
-        if self.stranded(&eval.closed).is_some() {
+        if eval.stranded.is_some() {
             return f64::INFINITY;
         }
         let mut r = eval.scaled_residual(&self.rho);
@@ -1118,7 +1138,12 @@ impl<'s, 'a> Run<'s, 'a> {
                 return (Stop::Interrupted, k - 1);
             }
             let chi = self.system.jacobian_set(&self.state);
-            let z = self.system.kernel(&chi);
+            let free = if chi == self.state.closed {
+                self.state.free.clone()
+            } else {
+                self.system.free_motions(&chi)
+            };
+            let z = self.system.kernel(&free);
             let r = self.system.residual(&self.tau, &self.state, &chi);
             let Some(delta) = self.system.step(&chi, &z, &r) else {
                 return (self.failure(k, Breakdown::Singular), k);
@@ -1171,10 +1196,10 @@ impl<'s, 'a> Run<'s, 'a> {
             .filter(|next| self.check(&next.u).is_none());
         // A body that nothing held, and that the step (which closed all its points) leaves held
         // by none again, is pulled away from its partners.
-        let pulled = self.system.stranded(&self.state.closed).filter(|&b| {
-            full.as_ref()
-                .is_some_and(|next| self.system.stranded(&next.closed) == Some(b))
-        });
+        let pulled = self
+            .state
+            .stranded
+            .filter(|&b| full.as_ref().is_some_and(|next| next.stranded == Some(b)));
         if let Some(body) = pulled {
             return Err(diverged(body, k, Breakdown::LostContact));
         }
@@ -1223,7 +1248,7 @@ impl<'s, 'a> Run<'s, 'a> {
             && norm(&next.scaled_residual(&self.system.rho)) <= tol * norm(&next.u);
         step.alpha == 1.0
             && (exact || record.rel_change.iter().all(|&r| r <= tol))
-            && self.system.stranded(&next.closed).is_none()
+            && next.stranded.is_none()
     }
 
     /// τ + α δ.
@@ -1267,7 +1292,7 @@ impl<'s, 'a> Run<'s, 'a> {
 
     /// The first floating body without a closed point: it has lost its hold.
     fn unheld(&self) -> Option<usize> {
-        self.system.stranded(&self.state.closed)
+        self.state.stranded
     }
 
     /// The stop when the steps make no progress or J is singular: a body that lost its hold, or
