@@ -27,8 +27,10 @@
 //!   the kernel of J; they are found from the bodies' free rigid modes, and the step is kept
 //!   orthogonal to them by a bordered system (their residual is left to the bodies' balance,
 //!   which the solver checks);
-//! - a floating body with no closed point uses all its partnered points as closed in J, which
-//!   moves it towards its partners.
+//! - a floating body with no closed point uses all its partnered points as closed in J and in
+//!   the step's residual, which moves it towards its partners; so do the points that would
+//!   resist a free rigid motion along which the loads do work (a body held sideways but pushed
+//!   down). Such "stranded" states never count as progress or as converged.
 //!
 //! The bodies' responses B_b τ_b are evaluated in parallel; the factorisation is sequential, so
 //! the result does not depend on the number of threads. A process evaluates only the bodies it
