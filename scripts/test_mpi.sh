@@ -4,8 +4,9 @@
 # Builds `contactdd` with `--features mpi` (installing OpenMPI and libclang with apt-get first if
 # they are missing, and saying so), then:
 # - solves the notch and the column of blocks (examples/notch.toml, examples/stack.toml) with the
-#   interface Newton method, the paper's sweeps, the two-level sweeps and Anderson acceleration,
-#   and the Hertz example (Gmsh, a curved balanced pair),
+#   interface Newton method (also from a start with nothing closed), the paper's sweeps, the
+#   two-level sweeps and Anderson acceleration, and the Hertz example (Gmsh, a curved balanced
+#   pair),
 #   in one process and under `mpirun -n 2` and `-n 3`, and compares every output file byte for
 #   byte (summary.json without its timings, contact.csv, history.csv, the VTU files): the numbers
 #   are written to the last bit, so equal files are equal bits; and the same for load steps (the
@@ -93,6 +94,9 @@ same notch-paper examples/notch.toml --method newton-kurchatov --gamma 0.5
 same stack-newton examples/stack.toml
 same stack-two-level examples/stack.toml --accelerator none
 same stack-anderson examples/stack.toml --accelerator anderson
+# A start with nothing closed (u0 = 0): every block is stranded, glued for the first step.
+sed 's/^max-iter = 10000$/max-iter = 10000\nu0 = 0.0\nu-prev = 0.0/' examples/stack.toml >"$work/stack_u0.toml"
+same stack-u0 "$work/stack_u0.toml"
 # Gmsh meshes (their sizes estimated from the file's header) and a curved, non-matching
 # balanced pair, whose ranks pair from each other's contact skins.
 same hertz examples/hertz.toml
