@@ -122,8 +122,9 @@ struct System<'a> {
     /// Free rigid modes of the floating bodies: mode range per body, normal values per point.
     mode_range: &'a [Range<usize>],
     modes: &'a [Vec<f64>],
-    /// The work of the bodies' loads along every free mode.
+    /// The work of the bodies' loads along every free mode, and its norm.
     mode_load: &'a [f64],
+    mode_load_norm: f64,
     /// Owning body of every point.
     body_of: Vec<usize>,
     /// ρ_j = 1 − B_jj ∈ (0, 1]: the share of the body in the stiffness of point j with its
@@ -241,6 +242,7 @@ impl<'a> System<'a> {
             mode_range,
             modes,
             mode_load: prepared.coarse.floating_loads(),
+            mode_load_norm: norm(prepared.coarse.floating_loads()),
             body_of: interface.points.iter().map(|p| p.body).collect(),
             rho,
             weightless: d0.iter().map(|&d| d == 0.0).collect(),
@@ -308,21 +310,9 @@ impl<'a> System<'a> {
                 q + self.rho[j] * (s[j] - p.penalty_gap() - q) > 0.0
             })
             .collect();
-        let r = (0..u.len())
-            .map(|j| {
-                if self.weightless[j] {
-                    tau[j]
-                } else if self.balanced[j] {
-                    // A carrier closes exactly where its overlap is negative (ρ = 1), so the
-                    // penalty force is that of the closed set.
-                    tau[j] - u[j] - self.interface.force(j, &s) / self.d0[j]
-                } else if closed[j] {
-                    tau[j] - u[j] - (points[j].penalty_gap() - s[j])
-                } else {
-                    tau[j] - u[j]
-                }
-            })
-            .collect();
+        // A carrier closes exactly where its overlap is negative (ρ = 1), so its linear penalty
+        // force on the closed set is its penalty force.
+        let r = self.residual_on(tau, &u, &s, &closed);
         let free = self.free_motions(&closed);
         let stranded = self.stranded(&closed, &free);
         Evaluation {
@@ -337,17 +327,20 @@ impl<'a> System<'a> {
 
     /// R at the evaluated state with the points `chi` closed: the residual whose Jacobian the
     /// Newton step uses. It is the state's own R where `chi` is its closed set; where the step
-    /// treats more points as closed (a floating body with no closed point), their penalty
-    /// forces count as linear in s, so that the step solves the equations of that closed set
-    /// (with the state's R the step would only move the body along the springs of points that
-    /// it then finds open again).
+    /// treats more points as closed (a stranded body), their penalty forces count as linear in
+    /// s, so that the step solves the equations of that closed set (with the state's R the step
+    /// would only move the body along the springs of points that it then finds open again).
     fn residual(&self, tau: &[f64], eval: &Evaluation, chi: &[bool]) -> Vec<f64> {
         if chi == eval.closed {
             return eval.r.clone();
         }
+        self.residual_on(tau, &eval.u, &eval.s, chi)
+    }
+
+    /// R(τ) for the displacements `u`, pair sums `s` and the points `chi` closed, their penalty
+    /// forces linear in s (F_j/w_j = (d − s)/θ).
+    fn residual_on(&self, tau: &[f64], u: &[f64], s: &[f64], chi: &[bool]) -> Vec<f64> {
         let points = &self.interface.points;
-        let (u, s) = (&eval.u, &eval.s);
-        // The linear penalty force of point j where it counts as closed (F_j/w_j = (d − s)/θ).
         let linear = |j: usize| {
             let p = &points[j];
             if chi[j] {
@@ -418,12 +411,14 @@ impl<'a> System<'a> {
         // column of blocks held sideways by its neighbours, open below): the points that would
         // resist the motion count as closed.
         for _ in 0..self.bodies.len() {
+            let found;
             let free = if chi == eval.closed {
-                eval.free.clone()
+                &eval.free
             } else {
-                self.free_motions(&chi)
+                found = self.free_motions(&chi);
+                &found
             };
-            let Some(v) = self.loaded_motion(&free) else {
+            let Some(v) = self.loaded_motion(free) else {
                 break;
             };
             let open: Vec<usize> = self
@@ -509,7 +504,7 @@ impl<'a> System<'a> {
     /// A rigid motion among `free` (the motions some closed points leave free) along which the
     /// loads do work: no state with these closed points balances them.
     fn loaded_motion(&self, free: &[DVector<f64>]) -> Option<DVector<f64>> {
-        let total = norm(self.mode_load);
+        let total = self.mode_load_norm;
         if total == 0.0 {
             return None;
         }
@@ -1140,12 +1135,14 @@ impl<'s, 'a> Run<'s, 'a> {
                 return (Stop::Interrupted, k - 1);
             }
             let chi = self.system.jacobian_set(&self.state);
+            let found;
             let free = if chi == self.state.closed {
-                self.state.free.clone()
+                &self.state.free
             } else {
-                self.system.free_motions(&chi)
+                found = self.system.free_motions(&chi);
+                &found
             };
-            let z = self.system.kernel(&free);
+            let z = self.system.kernel(free);
             let r = self.system.residual(&self.tau, &self.state, &chi);
             let Some(delta) = self.system.step(&chi, &z, &r) else {
                 return (self.failure(k, Breakdown::Singular), k);
@@ -1292,15 +1289,15 @@ impl<'s, 'a> Run<'s, 'a> {
         })
     }
 
-    /// The first floating body without a closed point: it has lost its hold.
-    fn unheld(&self) -> Option<usize> {
+    /// The body that nothing holds in the current state, if any.
+    fn stranded(&self) -> Option<usize> {
         self.state.stranded
     }
 
     /// The stop when the steps make no progress or J is singular: a body that lost its hold, or
     /// `otherwise`.
     fn failure(&self, k: usize, otherwise: Breakdown) -> Stop {
-        match self.unheld() {
+        match self.stranded() {
             Some(b) => diverged(b, k, Breakdown::LostContact),
             None => diverged(0, k, otherwise),
         }
