@@ -5,7 +5,7 @@
 # they are missing, and saying so), then:
 # - solves the notch and the column of blocks (examples/notch.toml, examples/stack.toml) with the
 #   interface Newton method (also from a start with nothing closed), the paper's sweeps, the
-#   two-level sweeps and Anderson acceleration, and the Hertz example (Gmsh, a curved balanced
+#   two-level sweeps, Aitken's sweeps without coarse correction and Anderson acceleration, and the Hertz example (Gmsh, a curved balanced
 #   pair),
 #   in one process and under `mpirun -n 2` and `-n 3`, and compares every output file byte for
 #   byte (summary.json without its timings, contact.csv, history.csv, the VTU files): the numbers
@@ -93,6 +93,9 @@ same notch-newton examples/notch.toml --accelerator newton
 same notch-paper examples/notch.toml --method newton-kurchatov --gamma 0.5
 same stack-newton examples/stack.toml
 same stack-two-level examples/stack.toml --accelerator none
+# Aitken's γ without coarse correction: the sweeps' values go point to point between the ranks of
+# neighbouring blocks, and Aitken's dot products are summed per body in body order.
+same stack-aitken examples/stack.toml --accelerator none --coarse off --gamma auto --max-iter 300
 same stack-anderson examples/stack.toml --accelerator anderson
 # A start with nothing closed (u0 = 0): every block is stranded, glued for the first step.
 sed 's/^max-iter = 10000$/max-iter = 10000\nu0 = 0.0\nu-prev = 0.0/' examples/stack.toml >"$work/stack_u0.toml"
@@ -160,6 +163,31 @@ material = "steel"
 mesh = { kind = "rectangle", x = [3.0, 4.0], y = [0.0, 1.0], nx = 4, ny = 4 }
 TOML
 fails_alike loose "$work/loose.toml" "loose"
+
+# The paper's sweeps send a rank only its neighbours' values: on the column of 8 blocks over 2
+# ranks a sweep brings each rank one block's points (point to point) and 4 checks per body,
+# where gathering the sweeps' outputs (2 values per point of the other rank, as before) would
+# bring each rank about M values per sweep;
+# Anderson's least squares read every point, so it gathers them and sends nothing point to point.
+traffic() {
+  local name=$1
+  shift
+  "${mpirun[@]}" -n 2 "$bin" solve examples/stack.toml --out "$work/$name" "$@" >"$work/$name.txt" 2>/dev/null || true
+  points=$(($(wc -l <"$work/$name/contact.csv") - 1))
+  sweeps=$(($(wc -l <"$work/$name/history.csv") - 1))
+  sed -n 's/^ranks: //p' "$work/$name.txt" | tr ';' '\n' |
+    sed -n 's/.*received \([0-9]*\) values gathered, \([0-9]*\) point to point.*/\1 \2/p' >"$work/$name.received"
+}
+traffic paper-traffic --method newton-kurchatov --gamma 0.5 --max-iter 100
+check "paper's sweeps: both ranks receive point to point" \
+  test "$(awk '$2 > 0' "$work/paper-traffic.received" | wc -l)" = 2
+check "paper's sweeps: each rank receives under M/4 values per sweep point to point ($points points, $sweeps sweeps)" \
+  test "$(awk -v m="$points" -v k="$sweeps" '$2 < k * m / 4' "$work/paper-traffic.received" | wc -l)" = 2
+check "paper's sweeps: each rank receives in all under half of what gathering the sweeps' outputs would" \
+  test "$(awk -v m="$points" -v k="$sweeps" '$1 + $2 < k * m / 2' "$work/paper-traffic.received" | wc -l)" = 2
+traffic anderson-traffic --accelerator anderson
+check "anderson: nothing point to point" \
+  test "$(awk '$2 == 0 && $1 > 0' "$work/anderson-traffic.received" | wc -l)" = 2
 
 # The console report (rank 0's) carries every body's applied load and reactions, also those
 # of the bodies other ranks hold.

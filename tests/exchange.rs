@@ -8,7 +8,8 @@
 //! interface Newton method, the paper's sweeps, the two-level sweeps and Anderson acceleration.
 //! `scripts/test_mpi.sh` checks the same through `mpirun` and the real MPI exchange.
 
-use std::sync::{Arc, Barrier, Mutex};
+use std::collections::{HashMap, VecDeque};
+use std::sync::{Arc, Barrier, Condvar, Mutex};
 
 use contactdd::cases;
 use contactdd::ddm::exchange::{factor_cost, partition, Exchange};
@@ -22,6 +23,24 @@ struct Shared {
     barrier: Barrier,
     values: Mutex<Vec<Vec<Vec<f64>>>>,
     errors: Mutex<Vec<Option<String>>>,
+    /// Point-to-point messages in flight per (from, to), oldest first.
+    mail: Mutex<HashMap<(usize, usize), VecDeque<Vec<f64>>>>,
+    arrived: Condvar,
+    /// Values received point to point, per rank.
+    received: Mutex<Vec<usize>>,
+}
+
+impl Shared {
+    fn new(ranks: usize) -> Arc<Shared> {
+        Arc::new(Shared {
+            barrier: Barrier::new(ranks),
+            values: Mutex::new(vec![Vec::new(); ranks]),
+            errors: Mutex::new(vec![None; ranks]),
+            mail: Mutex::new(HashMap::new()),
+            arrived: Condvar::new(),
+            received: Mutex::new(vec![0; ranks]),
+        })
+    }
 }
 
 /// One rank's end of the in-memory exchange.
@@ -65,6 +84,25 @@ impl Exchange for ThreadExchange {
         self.shared.barrier.wait();
         first
     }
+    fn swap(&self, sends: Vec<(usize, Vec<f64>)>, from: &[usize]) -> Vec<Vec<f64>> {
+        let mut mail = self.shared.mail.lock().unwrap();
+        for (to, v) in sends {
+            mail.entry((self.rank, to)).or_default().push_back(v);
+        }
+        self.shared.arrived.notify_all();
+        let mut out = Vec::with_capacity(from.len());
+        for &r in from {
+            loop {
+                if let Some(v) = mail.get_mut(&(r, self.rank)).and_then(VecDeque::pop_front) {
+                    self.shared.received.lock().unwrap()[self.rank] += v.len();
+                    out.push(v);
+                    break;
+                }
+                mail = self.shared.arrived.wait(mail).unwrap();
+            }
+        }
+        out
+    }
 }
 
 /// Solves `model` on `ranks` threads joined by the in-memory exchange; every rank's solution.
@@ -79,17 +117,23 @@ fn distributed_on(
     ranks: usize,
     condensation: Condensation,
 ) -> Vec<Solution> {
+    distributed_traffic(model, settings, ranks, condensation).0
+}
+
+/// [`distributed_on`], with the number of values every rank received point to point.
+fn distributed_traffic(
+    model: &Model,
+    settings: &Settings,
+    ranks: usize,
+    condensation: Condensation,
+) -> (Vec<Solution>, Vec<usize>) {
     let cost: Vec<f64> = model
         .bodies
         .iter()
         .map(|b| factor_cost(2 * b.mesh.num_nodes()))
         .collect();
     let owner = partition(&cost, ranks);
-    let shared = Arc::new(Shared {
-        barrier: Barrier::new(ranks),
-        values: Mutex::new(vec![Vec::new(); ranks]),
-        errors: Mutex::new(vec![None; ranks]),
-    });
+    let shared = Shared::new(ranks);
     std::thread::scope(|scope| {
         let handles: Vec<_> = (0..ranks)
             .map(|rank| {
@@ -112,7 +156,8 @@ fn distributed_on(
                 })
             })
             .collect();
-        handles.into_iter().map(|h| h.join().unwrap()).collect()
+        let solutions = handles.into_iter().map(|h| h.join().unwrap()).collect();
+        (solutions, shared.received.lock().unwrap().clone())
     })
 }
 
@@ -234,11 +279,7 @@ fn a_body_one_rank_cannot_factorise_fails_every_rank_with_its_message() {
     );
     let owner = partition(&vec![1.0; model.bodies.len()], 2);
     assert_ne!(owner[last], 0, "the failing body is not on the first rank");
-    let shared = Arc::new(Shared {
-        barrier: Barrier::new(2),
-        values: Mutex::new(vec![Vec::new(); 2]),
-        errors: Mutex::new(vec![None; 2]),
-    });
+    let shared = Shared::new(2);
     let errors: Vec<String> = std::thread::scope(|scope| {
         let handles: Vec<_> = (0..2)
             .map(|rank| {
@@ -286,6 +327,55 @@ fn the_sparse_path_on_two_and_three_ranks_is_the_single_process_solve_bit_for_bi
                     assert_same(&one, sol, &what);
                 }
             }
+        }
+    }
+}
+
+/// The paper's sweeps exchange point to point: on a column of blocks, whose body b touches only
+/// b − 1 and b + 1, a rank receives per sweep only the normal displacements of the two blocks
+/// next to its run of bodies (one message from each neighbouring rank, with its length first),
+/// and still reproduces the single-process solve bit for bit, with a constant γ and with
+/// Aitken's (whose dot products are summed per body in body order).
+#[test]
+fn sweeps_send_a_rank_only_the_blocks_next_to_its_own() {
+    let model = cases::column(9, 0.5);
+    let prepared = prepare_with(&model, Condensation::Dense).unwrap();
+    let points: Vec<usize> = prepared
+        .interface
+        .body_range
+        .iter()
+        .map(|r| r.len())
+        .collect();
+    for gamma in [Gamma::Constant(0.5), Gamma::Auto] {
+        let settings = Settings {
+            max_iter: 40,
+            ..Settings::paper(Method::NewtonKurchatov, gamma)
+        };
+        let one = solve(&model, &prepared, &settings, Hooks::default()).unwrap();
+        let ranks = 3;
+        let (all, received) = distributed_traffic(&model, &settings, ranks, Condensation::Dense);
+        let cost: Vec<f64> = model
+            .bodies
+            .iter()
+            .map(|b| factor_cost(2 * b.mesh.num_nodes()))
+            .collect();
+        let owner = partition(&cost, ranks);
+        for (rank, sol) in all.iter().enumerate() {
+            assert_same(&one, sol, &format!("column {gamma}, rank {rank}"));
+            let own: Vec<usize> = (0..owner.len()).filter(|&b| owner[b] == rank).collect();
+            let (first, last) = (own[0], own[own.len() - 1]);
+            let ghosts: Vec<usize> = [first.checked_sub(1), Some(last + 1)]
+                .into_iter()
+                .flatten()
+                .filter(|&g| g < owner.len())
+                .collect();
+            let per_sweep: usize = ghosts.iter().map(|&g| points[g] + 1).sum();
+            assert_eq!(
+                received[rank],
+                one.iterations * per_sweep,
+                "column {gamma}, rank {rank}: ghosts {ghosts:?}, {} sweeps",
+                one.iterations
+            );
         }
     }
 }

@@ -1,5 +1,6 @@
-//! The MPI exchange (`--features mpi`): the bodies' values travel between ranks by
-//! `MPI_Allgatherv`, whole, so every rank holds the same bits as a single process would
+//! The MPI exchange (`--features mpi`): the bodies' values travel between ranks whole, by
+//! `MPI_Allgatherv` to every rank or by point-to-point messages to the ranks of neighbouring
+//! bodies, so every rank holds the same bits as a single process would
 //! (`contactdd_ddm::exchange`, `docs/mpi.md`).
 
 use std::sync::atomic::{AtomicU64, Ordering};
@@ -7,7 +8,7 @@ use std::time::Instant;
 
 use mpi::datatype::PartitionMut;
 use mpi::topology::SimpleCommunicator;
-use mpi::traits::{Communicator, CommunicatorCollectives, Equivalence};
+use mpi::traits::{Communicator, CommunicatorCollectives, Destination, Equivalence, Source};
 use mpi::Count;
 
 use contactdd_ddm::exchange::{partition, Exchange};
@@ -31,8 +32,11 @@ pub struct MpiExchange {
     owner: Vec<usize>,
     rank: usize,
     size: usize,
-    /// Nanoseconds spent in collectives.
+    /// Nanoseconds spent in collectives and point-to-point exchanges.
     nanos: AtomicU64,
+    /// Values received from other ranks: by all-gathers, and point to point.
+    gathered: AtomicU64,
+    swapped: AtomicU64,
 }
 
 impl MpiExchange {
@@ -50,6 +54,8 @@ impl MpiExchange {
             rank: world.rank() as usize,
             size,
             nanos: AtomicU64::new(0),
+            gathered: AtomicU64::new(0),
+            swapped: AtomicU64::new(0),
         })
     }
 
@@ -58,20 +64,29 @@ impl MpiExchange {
         self.size
     }
 
-    /// Every rank's communication time and peak memory, given this rank's peak (a collective).
+    /// Every rank's communication time, values received and peak memory, given this rank's
+    /// peak (a collective).
     pub fn usage(&self, peak_mib: f64) -> Vec<RankUse> {
-        let own = [self.nanos.load(Ordering::Relaxed) as f64 * 1e-9, peak_mib];
-        let mut all = vec![0.0; 2 * self.size];
+        let load = |a: &AtomicU64| a.load(Ordering::Relaxed) as f64;
+        let own = [
+            load(&self.nanos) * 1e-9,
+            load(&self.gathered),
+            load(&self.swapped),
+            peak_mib,
+        ];
+        let mut all = vec![0.0; own.len() * self.size];
         SimpleCommunicator::world().all_gather_into(&own[..], &mut all[..]);
-        all.chunks(2)
+        all.chunks(own.len())
             .map(|c| RankUse {
                 communication: c[0],
-                peak_mib: c[1],
+                gathered: c[1],
+                point_to_point: c[2],
+                peak_mib: c[3],
             })
             .collect()
     }
 
-    /// Runs a collective, adding its wall time to the communication time.
+    /// Runs an exchange, adding its wall time to the communication time.
     fn timed<R>(&self, f: impl FnOnce(&SimpleCommunicator) -> R) -> R {
         let start = Instant::now();
         let out = f(&SimpleCommunicator::world());
@@ -112,6 +127,8 @@ impl Exchange for MpiExchange {
                 data_counts.push(next.by_ref().take(bodies.len()).sum::<Count>());
             }
             let data = all_gather_varcount(world, &flat, &data_counts);
+            let others = data.len().saturating_sub(flat.len()) as u64;
+            self.gathered.fetch_add(others, Ordering::Relaxed);
             let mut out = vec![Vec::new(); self.owner.len()];
             let (mut lens, mut at) = (all_lens.iter(), 0usize);
             for &b in by_rank.iter().flatten() {
@@ -145,6 +162,39 @@ impl Exchange for MpiExchange {
             None
         })
     }
+
+    fn swap(&self, sends: Vec<(usize, Vec<f64>)>, from: &[usize]) -> Vec<Vec<f64>> {
+        self.timed(|world| {
+            // Non-blocking sends, so that two ranks that send to each other do not wait for each
+            // other's receive; the messages keep their order between two ranks (MPI's
+            // non-overtaking rule), which matches successive swaps.
+            mpi::request::scope(|scope| {
+                let sent: Vec<_> = sends
+                    .iter()
+                    .map(|(to, v)| {
+                        world
+                            .process_at_rank(rank(*to))
+                            .immediate_send(scope, &v[..])
+                    })
+                    .collect();
+                let received: Vec<Vec<f64>> = from
+                    .iter()
+                    .map(|&r| world.process_at_rank(rank(r)).receive_vec::<f64>().0)
+                    .collect();
+                let values = received.iter().map(Vec::len).sum::<usize>() as u64;
+                self.swapped.fetch_add(values, Ordering::Relaxed);
+                for request in sent {
+                    request.wait();
+                }
+                received
+            })
+        })
+    }
+}
+
+/// A rank as MPI numbers it (ranks fit in its `int`: they come from it).
+fn rank(r: usize) -> mpi::Rank {
+    mpi::Rank::try_from(r).unwrap_or(mpi::Rank::MAX)
 }
 
 /// `MPI_Allgatherv`: the concatenation of every rank's `send`, whose lengths are `counts`.

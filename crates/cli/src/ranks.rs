@@ -29,6 +29,10 @@ pub struct Ranks {
 pub struct RankUse {
     /// Seconds in the exchanges (including waiting for the other ranks).
     pub communication: f64,
+    /// Values received from the other ranks by all-gathers.
+    pub gathered: f64,
+    /// Values received from the other ranks point to point.
+    pub point_to_point: f64,
     /// Peak resident memory, MiB (0 where the system does not say).
     pub peak_mib: f64,
 }
@@ -143,6 +147,8 @@ impl Ranks {
     pub fn usage(&self) -> Vec<RankUse> {
         let own = RankUse {
             communication: 0.0,
+            gathered: 0.0,
+            point_to_point: 0.0,
             peak_mib: peak_mib(),
         };
         #[cfg(feature = "mpi")]

@@ -312,15 +312,17 @@ fn outcome(converged: bool, done: String, message: Option<&str>) -> String {
     }
 }
 
-/// One line on the ranks of a distributed run: communication time and peak memory of each.
+/// One line on the ranks of a distributed run: communication time, values received (gathered,
+/// point to point) and peak memory of each.
 fn rank_report(usage: &[RankUse]) -> String {
     let ranks: Vec<String> = usage
         .iter()
         .enumerate()
         .map(|(r, u)| {
             format!(
-                "rank {r} communication {:.3} s, peak memory {:.0} MiB",
-                u.communication, u.peak_mib
+                "rank {r} communication {:.3} s (received {} values gathered, {} point to point), \
+                 peak memory {:.0} MiB",
+                u.communication, u.gathered, u.point_to_point, u.peak_mib
             )
         })
         .collect();

@@ -332,6 +332,35 @@ impl Interface {
             out[j] = un[j] + p.partner.iter().map(|&(k, c)| c * un[k]).sum::<f64>();
         }
     }
+
+    /// Per body, the other bodies whose normal displacements a Robin sweep of the body and its
+    /// contact summary read: those of its points' partners (the pair sums s_j), and for the
+    /// unknowns of a balanced pair those of the points that load them and of their partners.
+    pub fn reads(&self) -> Vec<Vec<usize>> {
+        let partners = |j: usize| self.points[j].partner.iter().map(|&(k, _)| k);
+        self.body_range
+            .iter()
+            .enumerate()
+            .map(|(b, range)| {
+                let mut points: Vec<usize> = Vec::new();
+                for j in range.clone() {
+                    points.extend(partners(j));
+                    for &(i, _) in &self.carried[j] {
+                        points.push(i);
+                        points.extend(partners(i));
+                    }
+                }
+                let mut bodies: Vec<usize> = points
+                    .into_iter()
+                    .map(|k| self.points[k].body)
+                    .filter(|&c| c != b)
+                    .collect();
+                bodies.sort_unstable();
+                bodies.dedup();
+                bodies
+            })
+            .collect()
+    }
 }
 
 /// The mortar integrals of one point normalised by ∫ ψ: the coefficients over the partner's

@@ -1,12 +1,19 @@
 //! The communication seam: how the per-body results of one process reach the others.
 //!
-//! Every process keeps the whole interface state (one value per contact point: small) and runs
-//! the same iteration on it. Only the bodies' own computations — the Robin solves, the responses
-//! of the interface Newton method, the initial loads, the recovered fields — are split: each
-//! process computes the bodies it *owns* and an [`Exchange`] fills in the others' values. No
-//! floating-point sum ever crosses processes: every reduction (norms, dot products, the
-//! accelerators' least squares, the coarse problem) runs on the full vectors in the same order
-//! as in one process, so a distributed run reproduces the single-process one bit for bit.
+//! Only the bodies' own computations — the Robin solves, the responses of the interface Newton
+//! method, the initial loads, the recovered fields — are split: each process computes the bodies
+//! it *owns*, and an [`Exchange`] brings their values to the processes that need them:
+//! - to every process ([`Exchange::gather`], a collective), where the iteration reads the whole
+//!   interface: the interface Newton system, Anderson's least squares, the coarse problem, the
+//!   per-body checks every process must agree on;
+//! - to the processes of neighbouring bodies only ([`Exchange::swap`], point to point, planned by
+//!   [`Neighbours`]), after each Robin sweep of the relaxed iteration: a body's sweep reads only
+//!   its own points and their partners.
+//!
+//! No floating-point sum ever mixes the processes' partial results in an order of their own: a
+//! reduction runs either on full vectors in the single process's order, or on per-body partial
+//! sums added in body order, as one process adds them. So a distributed run reproduces the
+//! single-process one bit for bit.
 //!
 //! [`Local`] is the in-process exchange (one process owns every body; rayon parallelises over
 //! them); the command line's MPI exchange (`--features mpi`, `docs/mpi.md`) is the other.
@@ -28,6 +35,10 @@ pub trait Exchange: Send + Sync {
     fn gather(&self, own: Vec<Vec<f64>>) -> Vec<Vec<f64>>;
     /// The first error of any process (by rank), the same on every process. A collective.
     fn agree(&self, error: Option<String>) -> Option<String>;
+    /// Point to point: sends every `(rank, values)` of `sends` to that rank and returns what the
+    /// ranks `from` send to this one, in the order of `from`. Only the ranks named take part, and
+    /// two ranks receive each other's messages in the order they were sent.
+    fn swap(&self, sends: Vec<(usize, Vec<f64>)>, from: &[usize]) -> Vec<Vec<f64>>;
 
     /// Whether this process computes body `b`.
     fn owns(&self, b: usize) -> bool {
@@ -66,6 +77,108 @@ impl Exchange for Local {
     }
     fn agree(&self, error: Option<String>) -> Option<String> {
         error
+    }
+    fn swap(&self, _sends: Vec<(usize, Vec<f64>)>, from: &[usize]) -> Vec<Vec<f64>> {
+        // One process has no neighbours: nothing is ever sent here.
+        vec![Vec::new(); from.len()]
+    }
+}
+
+/// Who sends which bodies' values to whom when only neighbours exchange: a process receives the
+/// values of the other processes' bodies that its own bodies read, and sends its own bodies'
+/// values to the processes whose bodies read them. Every process holds then its own bodies'
+/// values and those of their neighbours, and nothing else is current.
+#[derive(Clone, Debug, Default)]
+pub struct Neighbours {
+    /// Per process this one sends to: the own bodies it sends, in increasing order.
+    send: Vec<(usize, Vec<usize>)>,
+    /// Per process this one receives from: the bodies it receives, in increasing order.
+    recv: Vec<(usize, Vec<usize>)>,
+}
+
+impl Neighbours {
+    /// The plan for bodies where body b reads the values of the bodies `reads[b]`.
+    pub fn new(exchange: &dyn Exchange, reads: &[Vec<usize>]) -> Neighbours {
+        let (owner, me) = (exchange.owner(), exchange.rank());
+        let ranks = owner.iter().max().map_or(1, |r| r + 1).max(me + 1);
+        let mut send = vec![Vec::new(); ranks];
+        let mut recv = vec![Vec::new(); ranks];
+        for (b, read) in reads.iter().enumerate() {
+            for &c in read {
+                let (reader, holder) = (owner[b], owner[c]);
+                if reader == me && holder != me {
+                    recv[holder].push(c);
+                }
+                if holder == me && reader != me {
+                    send[reader].push(c);
+                }
+            }
+        }
+        let tidy = |lists: Vec<Vec<usize>>| -> Vec<(usize, Vec<usize>)> {
+            lists
+                .into_iter()
+                .enumerate()
+                .filter(|(_, l)| !l.is_empty())
+                .map(|(r, mut l)| {
+                    l.sort_unstable();
+                    l.dedup();
+                    (r, l)
+                })
+                .collect()
+        };
+        Neighbours {
+            send: tidy(send),
+            recv: tidy(recv),
+        }
+    }
+
+    /// The bodies whose values this process receives.
+    pub fn received(&self) -> impl Iterator<Item = usize> + '_ {
+        self.recv
+            .iter()
+            .flat_map(|(_, bodies)| bodies.iter().copied())
+    }
+
+    /// Fills the slices `ranges[b]` of every buffer in `values` of the bodies this process
+    /// receives with their owners' values (point to point).
+    pub fn share(
+        &self,
+        exchange: &dyn Exchange,
+        ranges: &[Range<usize>],
+        values: &mut [&mut [f64]],
+    ) {
+        if self.send.is_empty() && self.recv.is_empty() {
+            return;
+        }
+        // Per message: its length first (never an empty buffer), then per body its slice of
+        // each buffer.
+        let sends = self
+            .send
+            .iter()
+            .map(|(rank, bodies)| {
+                let mut v = vec![0.0];
+                for &b in bodies {
+                    for buf in values.iter() {
+                        v.extend_from_slice(&buf[ranges[b].clone()]);
+                    }
+                }
+                v[0] = (v.len() - 1) as f64;
+                (*rank, v)
+            })
+            .collect();
+        let from: Vec<usize> = self.recv.iter().map(|(r, _)| *r).collect();
+        for ((_, bodies), message) in self.recv.iter().zip(exchange.swap(sends, &from)) {
+            let mut at = 1;
+            for &b in bodies {
+                for buf in values.iter_mut() {
+                    let range = ranges[b].clone();
+                    if let Some(v) = message.get(at..at + range.len()) {
+                        buf[range.clone()].copy_from_slice(v);
+                    }
+                    at += range.len();
+                }
+            }
+        }
     }
 }
 
@@ -163,7 +276,7 @@ fn owned(exchange: &dyn Exchange, bodies: usize) -> impl Iterator<Item = usize> 
 }
 
 /// A status as a number (exact in f64).
-fn encode(status: &Result<(), Breakdown>) -> f64 {
+pub(crate) fn encode(status: &Result<(), Breakdown>) -> f64 {
     match status {
         Ok(()) => 0.0,
         Err(Breakdown::LostContact) => 1.0,
@@ -174,7 +287,7 @@ fn encode(status: &Result<(), Breakdown>) -> f64 {
     }
 }
 
-fn decode(code: f64) -> Result<(), Breakdown> {
+pub(crate) fn decode(code: f64) -> Result<(), Breakdown> {
     match code as i64 {
         0 => Ok(()),
         1 => Err(Breakdown::LostContact),

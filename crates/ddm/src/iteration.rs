@@ -27,6 +27,7 @@ use crate::relaxation::{Gamma, Relaxation};
 pub use crate::robin_sweep::Breakdown;
 use crate::robin_sweep::RobinSweep;
 use crate::solver::Prepared;
+use crate::sweep_sharing::{BodyChecks, BodySums, Sharing};
 
 /// How the iterates of the Robin sweeps are combined.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -326,37 +327,37 @@ pub(crate) fn relative_change(interface: &Interface, a: &[f64], b: &[f64]) -> Ve
     interface
         .body_range
         .iter()
-        .map(|range| {
-            let (mut diff, mut norm) = (0.0, 0.0);
-            for j in range.clone() {
-                diff += (a[j] - b[j]).powi(2);
-                norm += a[j] * a[j];
-            }
-            if norm > 0.0 {
-                (diff / norm).sqrt()
-            } else {
-                diff.sqrt()
-            }
-        })
+        .map(|range| body_change(range.clone(), a, b))
         .collect()
 }
 
-/// The first body whose sweep failed or whose new values are non-finite or too large.
-fn first_breakdown(
-    interface: &Interface,
-    swept: Vec<Result<(), Breakdown>>,
-    values: &[f64],
-    scale: &[f64],
-) -> Option<(usize, Breakdown)> {
-    swept.into_iter().enumerate().find_map(|(b, res)| {
-        let v = &values[interface.body_range[b].clone()];
-        match res {
-            Err(reason) => Some((b, reason)),
-            Ok(()) if !v.iter().all(|x| x.is_finite()) => Some((b, Breakdown::NonFinite)),
-            Ok(()) if v.iter().any(|x| x.abs() > scale[b]) => Some((b, Breakdown::Growth)),
-            Ok(()) => None,
-        }
-    })
+/// ‖a − b‖/‖a‖ over the points `range` (‖a − b‖ if a = 0).
+pub(crate) fn body_change(range: Range<usize>, a: &[f64], b: &[f64]) -> f64 {
+    let (mut diff, mut norm) = (0.0, 0.0);
+    for j in range {
+        diff += (a[j] - b[j]).powi(2);
+        norm += a[j] * a[j];
+    }
+    if norm > 0.0 {
+        (diff / norm).sqrt()
+    } else {
+        diff.sqrt()
+    }
+}
+
+/// Why a body's sweep, with its new values `v`, broke down: its own failure, non-finite values,
+/// or values beyond the body's `scale`.
+pub(crate) fn body_breakdown(
+    swept: Result<(), Breakdown>,
+    v: &[f64],
+    scale: f64,
+) -> Option<Breakdown> {
+    match swept {
+        Err(reason) => Some(reason),
+        Ok(()) if !v.iter().all(|x| x.is_finite()) => Some(Breakdown::NonFinite),
+        Ok(()) if v.iter().any(|x| x.abs() > scale) => Some(Breakdown::Growth),
+        Ok(()) => None,
+    }
 }
 
 /// Closed points and total normal contact force Σ w |σ_n| per body for the pair sums `s` (on the
@@ -366,15 +367,21 @@ pub(crate) fn contact_summary(
     s: &[f64],
     nb: usize,
 ) -> (Vec<usize>, Vec<f64>) {
-    let (mut active, mut force) = (vec![0usize; nb], vec![0.0; nb]);
-    for (j, p) in interface.points.iter().enumerate() {
+    (0..nb).map(|b| body_contact(interface, s, b)).unzip()
+}
+
+/// Closed points and total normal contact force of body `b` (see [`contact_summary`]).
+pub(crate) fn body_contact(interface: &Interface, s: &[f64], b: usize) -> (usize, f64) {
+    let (mut active, mut force) = (0usize, 0.0);
+    for j in interface.body_range[b].clone() {
+        let p = &interface.points[j];
         if p.overlap(s[j]) < 0.0 {
-            active[p.body] += 1;
+            active += 1;
         }
         if p.carries() && p.overlap(s[j]) < 0.0 {
-            force[p.body] -= p.weight * p.pressure(s[j]);
+            force -= p.weight * p.pressure(s[j]);
         } else if p.role == Role::Follower {
-            force[p.body] += interface.force(j, s).abs();
+            force += interface.force(j, s).abs();
         }
     }
     (active, force)
@@ -458,10 +465,11 @@ impl Update {
         u: &[f64],
         t: &mut [f64],
         buf: &mut Buffers,
+        sums: &BodySums<'_>,
     ) -> bool {
         match self {
             Update::Relax(relax) => {
-                relax.update(u, &buf.next);
+                relax.update(u, &buf.next, &sums.own, &|own| sums.total(own));
                 for j in 0..t.len() {
                     t[j] = gamma * buf.t_tilde[j] + (1.0 - gamma) * t[j];
                 }
@@ -514,15 +522,12 @@ fn sweeps(
     hooks: Hooks<'_>,
 ) -> Outcome {
     let start = Instant::now();
-    let (m, nb) = (interface.len(), prepared.bodies.len());
+    let (m, exchange) = (interface.len(), &*prepared.exchange);
+    let ranges = &interface.body_range;
     let accelerated = settings.accelerator != Accelerator::None;
-    let mut sweep = RobinSweep::new(
-        interface,
-        &prepared.bodies,
-        &*prepared.exchange,
-        settings.method,
-        accelerated,
-    );
+    let mut sweep = RobinSweep::new(interface, &prepared.bodies, settings.method, accelerated);
+    let sharing = Sharing::new(settings, exchange, interface);
+    let sums = BodySums::new(exchange, ranges);
     let mut update = Update::new(settings);
     let mut state = State::initial(prepared, interface, settings);
     let mut buf = Buffers {
@@ -546,6 +551,8 @@ fn sweeps(
         buf.input.copy_from_slice(&state.u);
         buf.input_t.copy_from_slice(&state.t);
         if settings.coarse != CoarseMode::Off {
+            // The coarse problem reads every floating body's points: its collective.
+            sharing.everywhere(exchange, ranges, &mut state.u);
             prepared
                 .coarse
                 .correct(settings.coarse, interface, &mut state.u, &mut state.t);
@@ -558,9 +565,20 @@ fn sweeps(
             &mut buf.tilde,
             &mut buf.t_tilde,
         );
+        let swept = sharing.outputs(exchange, ranges, &mut buf.tilde, &mut buf.t_tilde, swept);
         let gamma = update.propose(&state.u, &mut buf);
-        if let Some((body, reason)) = first_breakdown(interface, swept, &buf.next, &prepared.scale)
-        {
+        interface.sum_normal(&buf.next, &mut buf.s_next);
+        let (next, before) = (&buf.next, &buf.input);
+        let checks = BodyChecks::new(
+            interface,
+            exchange,
+            swept,
+            &prepared.scale,
+            next,
+            before,
+            &buf.s_next,
+        );
+        if let Some((body, reason)) = checks.breakdown {
             if let Update::Relax(relax) = &mut update {
                 if relax.restart() {
                     // Start over from the initial values with a smaller γ cap.
@@ -575,20 +593,18 @@ fn sweeps(
             };
             break;
         }
-        interface.sum_normal(&buf.next, &mut buf.s_next);
-        let (active, contact_force) = contact_summary(interface, &buf.s_next, nb);
         let record = Record {
             k,
             gamma,
-            rel_change: relative_change(interface, &buf.next, &buf.input),
-            active,
-            contact_force,
+            rel_change: checks.rel_change,
+            active: checks.active,
+            contact_force: checks.contact_force,
         };
         if let Some(f) = hooks.on_iteration {
             f(&record);
         }
         let converged = update.converged(&record, settings.tol);
-        if !update.commit(gamma, converged, &state.u, &mut state.t, &mut buf) {
+        if !update.commit(gamma, converged, &state.u, &mut state.t, &mut buf, &sums) {
             interface.sum_normal(&buf.next, &mut buf.s_next);
         }
         history.push(record);
@@ -598,6 +614,9 @@ fn sweeps(
             break;
         }
     }
+    // The result holds every body's values on every process.
+    sharing.everywhere(exchange, ranges, &mut state.u);
+    sharing.everywhere(exchange, ranges, &mut state.t);
     Outcome {
         stop,
         iterations,

@@ -36,6 +36,7 @@ pub mod solver;
 pub mod sparse_body;
 pub mod steps;
 pub mod sweep;
+mod sweep_sharing;
 
 pub use condensed::Condensation;
 pub use error::SetupError;

@@ -16,6 +16,10 @@
 //!   small step cannot pass for convergence.
 
 use std::fmt;
+use std::ops::Range;
+
+/// Sums per-body partial sums over every body in body order, given this process's bodies' ones.
+pub type Total<'a> = dyn Fn(Vec<[f64; 4]>) -> [f64; 4] + 'a;
 
 /// A relaxation parameter choice.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -95,21 +99,38 @@ impl Relaxation {
         }
     }
 
-    /// Learns from an iteration that went from `u` to `u_next` with the current γ.
-    pub fn update(&mut self, u: &[f64], u_next: &[f64]) {
+    /// Learns from an iteration that went from `u` to `u_next` with the current γ. `own` are the
+    /// points of this process's bodies, body by body in increasing order, the only values it
+    /// reads; `total` sums the per-body partial sums of every body (its own first computed from
+    /// them) in body order, so that any number of processes adds the same numbers in the same
+    /// order.
+    pub fn update(&mut self, u: &[f64], u_next: &[f64], own: &[Range<usize>], total: &Total) {
         if let Gamma::Constant(_) = self.rule {
             return;
         }
         let g = self.gamma;
         let r: Vec<f64> = u.iter().zip(u_next).map(|(a, b)| (b - a) / g).collect();
         if let Some(prev) = &self.last_update {
-            let norm = |v: &[f64]| v.iter().map(|x| x * x).sum::<f64>().sqrt();
-            let dr: Vec<f64> = r.iter().zip(prev).map(|(a, b)| a - b).collect();
-            let dd: f64 = dr.iter().map(|x| x * x).sum();
-            let next = if norm(&r) > 2.0 * norm(prev) {
+            // Per body: ‖r‖², ‖r_prev‖², ‖Δr‖², r_prev · Δr.
+            let partial = own
+                .iter()
+                .map(|range| {
+                    let mut sums = [0.0; 4];
+                    for j in range.clone() {
+                        let dr = r[j] - prev[j];
+                        sums[0] += r[j] * r[j];
+                        sums[1] += prev[j] * prev[j];
+                        sums[2] += dr * dr;
+                        sums[3] += prev[j] * dr;
+                    }
+                    sums
+                })
+                .collect();
+            let [rr, pp, dd, pd] = total(partial);
+            let next = if rr.sqrt() > 2.0 * pp.sqrt() {
                 0.5 * g
             } else if dd > 0.0 {
-                -g * prev.iter().zip(&dr).map(|(a, b)| a * b).sum::<f64>() / dd
+                -g * pd / dd
             } else {
                 GAMMA_START
             };

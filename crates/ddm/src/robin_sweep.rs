@@ -8,13 +8,12 @@
 //!
 //! The bodies run in parallel with rayon; each body's arithmetic is sequential and touches only
 //! its own slices, so the result does not depend on the number of threads. A process solves only
-//! the bodies it owns; the [`Exchange`] fills in the others' outputs (`crate::exchange`).
+//! the bodies it owns; the iteration shares their outputs (`crate::exchange`).
 
 use rayon::prelude::*;
 
 use crate::condensed::{CondensedBody, RobinCache};
 use crate::contact::{Interface, Role};
-use crate::exchange::{share_outputs, Exchange};
 use crate::method::Method;
 
 /// Why a body's Robin solve failed.
@@ -45,7 +44,6 @@ pub struct RobinSweep<'a> {
     interface: &'a Interface,
     /// The bodies this process owns (`None`: another process solves it).
     bodies: &'a [Option<CondensedBody>],
-    exchange: &'a dyn Exchange,
     method: Method,
     /// Retry a singular body with φ = 1 on its partnered points (the accelerated default only).
     safeguard: bool,
@@ -59,7 +57,6 @@ impl<'a> RobinSweep<'a> {
     pub fn new(
         interface: &'a Interface,
         bodies: &'a [Option<CondensedBody>],
-        exchange: &'a dyn Exchange,
         method: Method,
         safeguard: bool,
     ) -> RobinSweep<'a> {
@@ -75,7 +72,6 @@ impl<'a> RobinSweep<'a> {
         RobinSweep {
             interface,
             bodies,
-            exchange,
             method,
             safeguard,
             scratch,
@@ -83,8 +79,9 @@ impl<'a> RobinSweep<'a> {
     }
 
     /// Solves every body's Robin problem for the state `un` = U^k with sums `s` = s^k and
-    /// `s_prev` = s^{k−1}; writes Ũ to `un_out` and T̃ to `t_out`. Returns, per body, whether its
-    /// Robin problem could be solved.
+    /// `s_prev` = s^{k−1}; writes Ũ to `un_out` and T̃ to `t_out` for the bodies this process
+    /// owns. Returns, per body, whether its Robin problem could be solved (`Ok` for the bodies of
+    /// other processes).
     pub fn apply(
         &mut self,
         un: &[f64],
@@ -96,8 +93,7 @@ impl<'a> RobinSweep<'a> {
         let (interface, bodies, method, safeguard) =
             (self.interface, self.bodies, self.method, self.safeguard);
         let outputs = split(interface, &mut *un_out, &mut *t_out);
-        let status = self
-            .scratch
+        self.scratch
             .par_iter_mut()
             .zip(outputs)
             .enumerate()
@@ -135,13 +131,7 @@ impl<'a> RobinSweep<'a> {
                     Breakdown::Singular
                 })
             })
-            .collect();
-        share_outputs(
-            self.exchange,
-            &interface.body_range,
-            &mut [un_out, t_out],
-            status,
-        )
+            .collect()
     }
 }
 
