@@ -331,11 +331,12 @@ fn the_sparse_path_on_two_and_three_ranks_is_the_single_process_solve_bit_for_bi
     }
 }
 
-/// The paper's sweeps exchange point to point: on a column of blocks, whose body b touches only
+/// The relaxed sweeps exchange point to point: on a column of blocks, whose body b touches only
 /// b − 1 and b + 1, a rank receives per sweep only the normal displacements of the two blocks
 /// next to its run of bodies (one message from each neighbouring rank, with its length first),
-/// and still reproduces the single-process solve bit for bit, with a constant γ and with
-/// Aitken's (whose dot products are summed per body in body order).
+/// and still reproduces the single-process solve bit for bit: with a constant γ, with Aitken's
+/// (whose dot products are summed per body in body order), and in the two-level sweeps (whose
+/// coarse problem is summed from per-body parts the same way).
 #[test]
 fn sweeps_send_a_rank_only_the_blocks_next_to_its_own() {
     let model = cases::column(9, 0.5);
@@ -346,10 +347,15 @@ fn sweeps_send_a_rank_only_the_blocks_next_to_its_own() {
         .iter()
         .map(|r| r.len())
         .collect();
-    for gamma in [Gamma::Constant(0.5), Gamma::Auto] {
+    let paper = |gamma| Settings::paper(Method::NewtonKurchatov, gamma);
+    for (name, settings) in [
+        ("gamma 0.5", paper(Gamma::Constant(0.5))),
+        ("gamma auto", paper(Gamma::Auto)),
+        ("two-level", Settings::two_level()),
+    ] {
         let settings = Settings {
             max_iter: 40,
-            ..Settings::paper(Method::NewtonKurchatov, gamma)
+            ..settings
         };
         let one = solve(&model, &prepared, &settings, Hooks::default()).unwrap();
         let ranks = 3;
@@ -361,7 +367,7 @@ fn sweeps_send_a_rank_only_the_blocks_next_to_its_own() {
             .collect();
         let owner = partition(&cost, ranks);
         for (rank, sol) in all.iter().enumerate() {
-            assert_same(&one, sol, &format!("column {gamma}, rank {rank}"));
+            assert_same(&one, sol, &format!("column {name}, rank {rank}"));
             let own: Vec<usize> = (0..owner.len()).filter(|&b| owner[b] == rank).collect();
             let (first, last) = (own[0], own[own.len() - 1]);
             let ghosts: Vec<usize> = [first.checked_sub(1), Some(last + 1)]
@@ -373,7 +379,7 @@ fn sweeps_send_a_rank_only_the_blocks_next_to_its_own() {
             assert_eq!(
                 received[rank],
                 one.iterations * per_sweep,
-                "column {gamma}, rank {rank}: ghosts {ghosts:?}, {} sweeps",
+                "column {name}, rank {rank}: ghosts {ghosts:?}, {} sweeps",
                 one.iterations
             );
         }

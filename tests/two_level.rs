@@ -146,9 +146,13 @@ fn the_coarse_correction_balances_floating_bodies_and_keeps_the_state_consistent
     for (b, body) in prepared.bodies.iter().flatten().enumerate() {
         t.extend(body.initial_load(&un[iface.body_range[b].clone()]));
     }
-    let steps = prepared
-        .coarse
-        .correct(CoarseMode::Chains, iface, &mut un, &mut t);
+    let steps = prepared.coarse.correct(
+        CoarseMode::Chains,
+        iface,
+        &*prepared.exchange,
+        &mut un,
+        &mut t,
+    );
     assert!(steps >= 1);
     let mut s = vec![0.0; m];
     iface.sum_normal(&un, &mut s);

@@ -27,6 +27,7 @@ use std::ops::Range;
 use faer::{Mat, Side};
 
 use crate::contact::Interface;
+use crate::exchange::{share_vectors, Exchange};
 use crate::facts::BodyFacts;
 use crate::model::Model;
 
@@ -111,17 +112,27 @@ impl Coarse {
 
     /// Moves the bodies that `mode` selects rigidly into balance in the state (`un`, `t`).
     /// Returns the number of Newton steps taken.
+    ///
+    /// A process reads only its own bodies' points and their partners' values (all it holds
+    /// current in the relaxed sweeps); the balance and its Jacobian are sums of per-body parts
+    /// that `exchange` shares and every process adds in body order, so every process takes the
+    /// same steps as one process would (a collective).
     pub fn correct(
         &self,
         mode: CoarseMode,
         interface: &Interface,
+        exchange: &dyn Exchange,
         un: &mut [f64],
         t: &mut [f64],
     ) -> usize {
+        let shared = Shared {
+            interface,
+            exchange,
+        };
         match mode {
             CoarseMode::Off => 0,
-            CoarseMode::Chains => self.chains.correct(interface, un, t),
-            CoarseMode::All => self.all.correct(interface, un, t),
+            CoarseMode::Chains => self.chains.correct(&shared, un, t),
+            CoarseMode::All => self.all.correct(&shared, un, t),
         }
     }
 }
@@ -139,6 +150,9 @@ struct FloatingModes {
     load: Vec<f64>,
     /// R_qᵀ f at load factor 1.
     load_full: Vec<f64>,
+    /// Per body, the coarse unknowns its points' balance and Jacobian entries involve (its own
+    /// and its points' partners' bodies'), in increasing order.
+    near: Vec<Vec<usize>>,
 }
 
 impl FloatingModes {
@@ -176,12 +190,28 @@ impl FloatingModes {
                     .collect()
             })
             .collect();
+        let near = interface
+            .body_range
+            .iter()
+            .enumerate()
+            .map(|(b, points)| {
+                let mut bodies = vec![b];
+                for j in points.clone() {
+                    let partners = &interface.points[j].partner;
+                    bodies.extend(partners.iter().map(|&(k, _)| interface.points[k].body));
+                }
+                bodies.sort_unstable();
+                bodies.dedup();
+                bodies.iter().flat_map(|&c| range[c].clone()).collect()
+            })
+            .collect();
         FloatingModes {
             range,
             body: interface.points.iter().map(|p| p.body).collect(),
             rho,
             load_full: load.clone(),
             load,
+            near,
         }
     }
 
@@ -194,22 +224,23 @@ impl FloatingModes {
     }
 
     /// Moves the bodies rigidly into balance; returns the number of Newton steps.
-    fn correct(&self, interface: &Interface, un: &mut [f64], t: &mut [f64]) -> usize {
+    fn correct(&self, shared: &Shared<'_>, un: &mut [f64], t: &mut [f64]) -> usize {
         if self.load.is_empty() {
             return 0;
         }
+        let interface = shared.interface;
         let mut s = vec![0.0; un.len()];
         interface.sum_normal(un, &mut s);
         let mut c = vec![0.0; self.len()];
-        let mut f = self.residual(interface, &s, &c);
-        let scale = self.force_scale(interface, &s);
+        let mut f = self.residual(shared, &s, &c);
+        let scale = self.force_scale(shared, &s);
         let mut steps = 0;
         while steps < MAX_NEWTON && norm(&f) > BALANCE_TOL * scale {
             steps += 1;
-            let Some(delta) = self.newton_step(interface, &s, &c, &f) else {
+            let Some(delta) = self.newton_step(shared, &s, &c, &f) else {
                 break;
             };
-            let Some((c_new, f_new)) = self.line_search(interface, &s, &c, &f, &delta) else {
+            let Some((c_new, f_new)) = self.line_search(shared, &s, &c, &f, &delta) else {
                 break;
             };
             (c, f) = (c_new, f_new);
@@ -239,46 +270,58 @@ impl FloatingModes {
     }
 
     /// F(c), one entry per coarse unknown.
-    fn residual(&self, interface: &Interface, s: &[f64], c: &[f64]) -> Vec<f64> {
+    fn residual(&self, shared: &Shared<'_>, s: &[f64], c: &[f64]) -> Vec<f64> {
+        let interface = shared.interface;
         let mut f = self.load.clone();
-        for (j, p) in interface.points.iter().enumerate() {
-            if !p.has_partner() {
-                continue;
-            }
-            let force = p.weight * p.pressure(s[j] + self.shift(interface, j, c));
-            // The point's force on every unknown it loads (its own alone for an own-side point).
-            for (u, a) in p.load_row(j) {
-                let r = self.range[self.body[u]].clone();
-                for (q, &rho) in r.zip(&self.rho[u]) {
-                    f[q] += a * force * rho;
+        shared.add_parts(&mut f, |b| {
+            let mut part = Part::vector(&self.near[b]);
+            for j in interface.body_range[b].clone() {
+                let p = &interface.points[j];
+                if !p.has_partner() {
+                    continue;
+                }
+                let force = p.weight * p.pressure(s[j] + self.shift(interface, j, c));
+                // The point's force on every unknown it loads (its own alone for an own-side
+                // point).
+                for (u, a) in p.load_row(j) {
+                    let r = self.range[self.body[u]].clone();
+                    for (q, &rho) in r.zip(&self.rho[u]) {
+                        part.add(q, a * force * rho);
+                    }
                 }
             }
-        }
+            part.entries(1)
+        });
         f
     }
 
     /// Size of the forces involved: applied loads and contact forces of the floating bodies.
-    fn force_scale(&self, interface: &Interface, s: &[f64]) -> f64 {
-        let contact: f64 = interface
-            .points
-            .iter()
-            .enumerate()
-            .filter(|(_, p)| !self.range[p.body].is_empty())
-            .map(|(j, p)| (p.weight * p.pressure(s[j])).abs())
-            .sum();
-        norm(&self.load) + contact + f64::MIN_POSITIVE
+    fn force_scale(&self, shared: &Shared<'_>, s: &[f64]) -> f64 {
+        let interface = shared.interface;
+        let mut contact = [0.0];
+        shared.add_parts(&mut contact, |b| {
+            if self.range[b].is_empty() {
+                return Vec::new();
+            }
+            let sum = interface.body_range[b]
+                .clone()
+                .map(|j| (interface.points[j].weight * interface.points[j].pressure(s[j])).abs())
+                .sum::<f64>();
+            vec![0.0, sum]
+        });
+        norm(&self.load) + contact[0] + f64::MIN_POSITIVE
     }
 
     /// The minimum-norm Newton step J δ = −F for the generalised Jacobian at `c`.
     fn newton_step(
         &self,
-        interface: &Interface,
+        shared: &Shared<'_>,
         s: &[f64],
         c: &[f64],
         f: &[f64],
     ) -> Option<Vec<f64>> {
         let n = self.len();
-        let jac = self.jacobian(interface, s, c);
+        let jac = self.jacobian(shared, s, c);
         // Column scaling, then (ĴᵀĴ + μI) y = −ĴᵀF, δ = S y.
         let col: Vec<f64> = (0..n)
             .map(|i| {
@@ -303,54 +346,67 @@ impl FloatingModes {
     }
 
     /// ∂F/∂c on the closed points (all partnered points for a body with none closed).
-    fn jacobian(&self, interface: &Interface, s: &[f64], c: &[f64]) -> Mat<f64> {
-        let n = self.len();
-        let closed: Vec<bool> = interface
-            .points
-            .iter()
-            .enumerate()
-            .map(|(j, p)| p.overlap(s[j] + self.shift(interface, j, c)) < 0.0)
+    fn jacobian(&self, shared: &Shared<'_>, s: &[f64], c: &[f64]) -> Mat<f64> {
+        let (interface, n) = (shared.interface, self.len());
+        // Of this process's bodies' points (the only ones it reads).
+        let closed: Vec<bool> = (0..interface.len())
+            .map(|j| {
+                let p = &interface.points[j];
+                shared.exchange.owns(p.body) && p.overlap(s[j] + self.shift(interface, j, c)) < 0.0
+            })
             .collect();
-        // A body is held once a closed point loads it (its own, or a carrier facing it).
-        let mut any_closed = vec![false; self.range.len()];
-        for (j, p) in interface.points.iter().enumerate() {
-            for (u, _) in p.load_row(j) {
-                any_closed[self.body[u]] |= closed[j];
+        // A body is held once a closed point loads it (its own, or a carrier facing it): count
+        // the closed points that load each body.
+        let mut held = vec![0.0; self.range.len()];
+        shared.add_parts(&mut held, |b| {
+            let mut bodies: Vec<usize> = Vec::new();
+            for j in interface.body_range[b].clone().filter(|&j| closed[j]) {
+                bodies.extend(interface.points[j].load_row(j).map(|(u, _)| self.body[u]));
             }
-        }
-        let mut jac = Mat::<f64>::zeros(n, n);
-        for (j, p) in interface.points.iter().enumerate() {
-            let loose = p.load_row(j).any(|(u, _)| !any_closed[self.body[u]]);
-            let used = closed[j] || (loose && p.has_partner());
-            if !used {
-                continue;
+            bodies.sort_unstable();
+            let mut counts: Vec<f64> = Vec::new();
+            for run in bodies.chunk_by(|x, y| x == y) {
+                counts.extend([run[0] as f64, run.len() as f64]);
             }
-            let k = p.weight / p.theta;
-            // ∂Δs_j/∂c: own modes, then the partner points' modes.
-            let mut grad: Vec<(usize, f64)> = self.range[p.body]
-                .clone()
-                .zip(self.rho[j].iter().copied())
-                .collect();
-            for &(pk, ck) in &p.partner {
-                let cols = self.range[self.body[pk]].clone();
-                grad.extend(cols.zip(self.rho[pk].iter().map(|r| ck * r)));
-            }
-            for (u, a) in p.load_row(j) {
-                let rows = self.range[self.body[u]].clone();
-                for (row, &rho) in rows.zip(&self.rho[u]) {
-                    for &(col, g) in &grad {
-                        jac[(row, col)] -= a * k * rho * g;
+            counts
+        });
+        let mut jac = vec![0.0; n * n];
+        shared.add_parts(&mut jac, |b| {
+            let mut part = Part::matrix(&self.near[b]);
+            for j in interface.body_range[b].clone() {
+                let p = &interface.points[j];
+                let loose = p.load_row(j).any(|(u, _)| held[self.body[u]] == 0.0);
+                if !(closed[j] || (loose && p.has_partner())) {
+                    continue;
+                }
+                let k = p.weight / p.theta;
+                // ∂Δs_j/∂c: own modes, then the partner points' modes.
+                let mut grad: Vec<(usize, f64)> = self.range[p.body]
+                    .clone()
+                    .zip(self.rho[j].iter().copied())
+                    .collect();
+                for &(pk, ck) in &p.partner {
+                    let cols = self.range[self.body[pk]].clone();
+                    grad.extend(cols.zip(self.rho[pk].iter().map(|r| ck * r)));
+                }
+                for (u, a) in p.load_row(j) {
+                    let rows = self.range[self.body[u]].clone();
+                    for (row, &rho) in rows.zip(&self.rho[u]) {
+                        for &(col, g) in &grad {
+                            part.add_at(row, col, -(a * k * rho * g));
+                        }
                     }
                 }
             }
-        }
-        jac
+            part.entries(n)
+        });
+        Mat::from_fn(n, n, |row, col| jac[row + n * col])
     }
 
     /// Backtracking on ‖F‖ along `delta`; None if no step length decreases it.
     fn line_search(
         &self,
-        interface: &Interface,
+        shared: &Shared<'_>,
         s: &[f64],
         c: &[f64],
         f: &[f64],
@@ -360,13 +416,107 @@ impl FloatingModes {
         let mut alpha = 1.0;
         for _ in 0..40 {
             let trial: Vec<f64> = c.iter().zip(delta).map(|(x, d)| x + alpha * d).collect();
-            let ft = self.residual(interface, s, &trial);
+            let ft = self.residual(shared, s, &trial);
             if norm(&ft) < (1.0 - 1e-4 * alpha) * f0 {
                 return Some((trial, ft));
             }
             alpha *= 0.5;
         }
         None
+    }
+}
+
+/// The interface and the exchange of one correction.
+struct Shared<'a> {
+    interface: &'a Interface,
+    exchange: &'a dyn Exchange,
+}
+
+impl Shared<'_> {
+    /// Adds to `total` every body's part, in body order: this process computes its own bodies'
+    /// parts with `part(b)` (pairs of an index of `total` and a value), a collective shares them.
+    fn add_parts(&self, total: &mut [f64], part: impl Fn(usize) -> Vec<f64>) {
+        let per_body = (0..self.interface.body_range.len())
+            .map(|b| match self.exchange.owns(b) {
+                true => part(b),
+                false => Vec::new(),
+            })
+            .collect();
+        for entries in share_vectors(self.exchange, per_body) {
+            for pair in entries.chunks_exact(2) {
+                if let Some(t) = total.get_mut(pair[0] as usize) {
+                    *t += pair[1];
+                }
+            }
+        }
+    }
+}
+
+/// One body's part of the balance (a vector over the coarse unknowns) or of its Jacobian (a
+/// matrix), over the unknowns `near` the body involves: a small dense buffer in which every
+/// entry sums its terms in the order added.
+struct Part<'a> {
+    near: &'a [usize],
+    /// A matrix (else a vector).
+    square: bool,
+    values: Vec<f64>,
+    used: Vec<bool>,
+}
+
+impl<'a> Part<'a> {
+    fn vector(near: &'a [usize]) -> Part<'a> {
+        Part::sized(near, false)
+    }
+
+    fn matrix(near: &'a [usize]) -> Part<'a> {
+        Part::sized(near, true)
+    }
+
+    fn sized(near: &'a [usize], square: bool) -> Part<'a> {
+        let len = if square { near.len() } else { 1 } * near.len();
+        Part {
+            near,
+            square,
+            values: vec![0.0; len],
+            used: vec![false; len],
+        }
+    }
+
+    fn local(&self, q: usize) -> Option<usize> {
+        self.near.binary_search(&q).ok()
+    }
+
+    fn add_local(&mut self, l: usize, v: f64) {
+        self.used[l] = true;
+        self.values[l] += v;
+    }
+
+    /// Adds `v` to the vector's entry `q`.
+    fn add(&mut self, q: usize, v: f64) {
+        if let Some(l) = self.local(q) {
+            self.add_local(l, v);
+        }
+    }
+
+    /// Adds `v` to the matrix's entry (`row`, `col`).
+    fn add_at(&mut self, row: usize, col: usize, v: f64) {
+        if let (Some(r), Some(c)) = (self.local(row), self.local(col)) {
+            self.add_local(r + self.near.len() * c, v);
+        }
+    }
+
+    /// The entries as pairs (index, value) of a vector, or of a column-major n × n matrix.
+    fn entries(&self, n: usize) -> Vec<f64> {
+        let len = self.near.len();
+        let global = |l: usize| match self.square {
+            false => self.near[l],
+            true => self.near[l % len] + n * self.near[l / len],
+        };
+        let mut out = Vec::with_capacity(2 * self.values.len());
+        for l in (0..self.values.len()).filter(|&l| self.used[l]) {
+            out.extend([global(l) as f64, self.values[l]]);
+        }
+        out
     }
 }
 

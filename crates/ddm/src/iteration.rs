@@ -551,11 +551,10 @@ fn sweeps(
         buf.input.copy_from_slice(&state.u);
         buf.input_t.copy_from_slice(&state.t);
         if settings.coarse != CoarseMode::Off {
-            // The coarse problem reads every floating body's points: its collective.
-            sharing.everywhere(exchange, ranges, &mut state.u);
+            let (u, t) = (&mut state.u, &mut state.t);
             prepared
                 .coarse
-                .correct(settings.coarse, interface, &mut state.u, &mut state.t);
+                .correct(settings.coarse, interface, exchange, u, t);
             interface.sum_normal(&state.u, &mut state.s);
         }
         let swept = sweep.apply(

@@ -5,9 +5,9 @@
 //! processes whose bodies read them, point to point ([`Neighbours`]); what every process must
 //! agree on travels in collectives: per body its status, relative change, closed points and
 //! contact force ([`BodyChecks`]), Aitken's dot products as per-body partial sums added in body
-//! order ([`BodySums`]), and the whole state before a coarse correction, whose rigid-body problem
-//! reads every floating body. Anderson's least squares read the whole interface vector, so with
-//! Anderson every process receives every body's values (an all-gather), as before.
+//! order ([`BodySums`]), and the coarse correction's balance and Jacobian, likewise summed from
+//! per-body parts (`crate::coarse`). Anderson's least squares read the whole interface vector, so
+//! with Anderson every process receives every body's values (an all-gather), as before.
 //!
 //! Every value a process computes is computed as in one process, and every sum adds the same
 //! numbers in the same order, so the iteration is the single process's to the bit.
