@@ -339,49 +339,72 @@ fn the_sparse_path_on_two_and_three_ranks_is_the_single_process_solve_bit_for_bi
 /// coarse problem is summed from per-body parts the same way).
 #[test]
 fn sweeps_send_a_rank_only_the_blocks_next_to_its_own() {
-    let model = cases::column(9, 0.5);
-    let prepared = prepare_with(&model, Condensation::Dense).unwrap();
-    let points: Vec<usize> = prepared
-        .interface
-        .body_range
-        .iter()
-        .map(|r| r.len())
-        .collect();
     let paper = |gamma| Settings::paper(Method::NewtonKurchatov, gamma);
     for (name, settings) in [
         ("gamma 0.5", paper(Gamma::Constant(0.5))),
         ("gamma auto", paper(Gamma::Auto)),
         ("two-level", Settings::two_level()),
     ] {
-        let settings = Settings {
-            max_iter: 40,
-            ..settings
-        };
-        let one = solve(&model, &prepared, &settings, Hooks::default()).unwrap();
-        let ranks = 3;
-        let (all, received) = distributed_traffic(&model, &settings, ranks, Condensation::Dense);
-        let cost: Vec<f64> = model
-            .bodies
-            .iter()
-            .map(|b| factor_cost(2 * b.mesh.num_nodes()))
-            .collect();
-        let owner = partition(&cost, ranks);
-        for (rank, sol) in all.iter().enumerate() {
-            assert_same(&one, sol, &format!("column {name}, rank {rank}"));
-            let own: Vec<usize> = (0..owner.len()).filter(|&b| owner[b] == rank).collect();
-            let (first, last) = (own[0], own[own.len() - 1]);
-            let ghosts: Vec<usize> = [first.checked_sub(1), Some(last + 1)]
-                .into_iter()
-                .flatten()
-                .filter(|&g| g < owner.len())
-                .collect();
-            let per_sweep: usize = ghosts.iter().map(|&g| points[g] + 1).sum();
-            assert_eq!(
-                received[rank],
-                one.iterations * per_sweep,
-                "column {name}, rank {rank}: ghosts {ghosts:?}, {} sweeps",
-                one.iterations
-            );
+        neighbour_traffic(&format!("column {name}"), &cases::column(9, 0.5), settings, 3);
+    }
+}
+
+/// The same on a wall of 3 × 3 blocks, where a block touches up to four others across
+/// horizontal and vertical non-matching interfaces, and the ranks' runs of bodies cut its rows.
+#[test]
+fn sweeps_on_a_wall_send_a_rank_only_the_blocks_that_touch_its_own() {
+    let wall = cases::wall(3, 3, 0.05);
+    for ranks in [2, 3] {
+        neighbour_traffic("wall", &wall, Settings::two_level(), ranks);
+    }
+}
+
+/// Solves `model` in one process and on `ranks` ranks (at most 40 sweeps), checks that every
+/// rank reproduces the single process bit for bit, and that each sweep brings a rank, point to
+/// point, the contact points of exactly the other ranks' bodies that share a contact pair with
+/// its own, plus one length per message (one message per neighbouring rank).
+fn neighbour_traffic(what: &str, model: &Model, settings: Settings, ranks: usize) {
+    let settings = Settings {
+        max_iter: 40,
+        ..settings
+    };
+    let prepared = prepare_with(model, Condensation::Dense).unwrap();
+    let points: Vec<usize> = prepared
+        .interface
+        .body_range
+        .iter()
+        .map(|r| r.len())
+        .collect();
+    let one = solve(model, &prepared, &settings, Hooks::default()).unwrap();
+    let (all, received) = distributed_traffic(model, &settings, ranks, Condensation::Dense);
+    let cost: Vec<f64> = model
+        .bodies
+        .iter()
+        .map(|b| factor_cost(2 * b.mesh.num_nodes()))
+        .collect();
+    let owner = partition(&cost, ranks);
+    for (rank, sol) in all.iter().enumerate() {
+        assert_same(&one, sol, &format!("{what} on {ranks} ranks, rank {rank}"));
+        let mut ghosts: Vec<usize> = Vec::new();
+        for pair in &model.pairs {
+            let [a, b] = pair.bodies;
+            for (mine, other) in [(a, b), (b, a)] {
+                if owner[mine] == rank && owner[other] != rank {
+                    ghosts.push(other);
+                }
+            }
         }
+        ghosts.sort_unstable();
+        ghosts.dedup();
+        let mut senders: Vec<usize> = ghosts.iter().map(|&g| owner[g]).collect();
+        senders.sort_unstable();
+        senders.dedup();
+        let per_sweep = ghosts.iter().map(|&g| points[g]).sum::<usize>() + senders.len();
+        assert_eq!(
+            received[rank],
+            one.iterations * per_sweep,
+            "{what} on {ranks} ranks, rank {rank}: ghosts {ghosts:?}, {} sweeps",
+            one.iterations
+        );
     }
 }
