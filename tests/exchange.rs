@@ -345,7 +345,12 @@ fn sweeps_send_a_rank_only_the_blocks_next_to_its_own() {
         ("gamma auto", paper(Gamma::Auto)),
         ("two-level", Settings::two_level()),
     ] {
-        neighbour_traffic(&format!("column {name}"), &cases::column(9, 0.5), settings, 3);
+        neighbour_traffic(
+            &format!("column {name}"),
+            &cases::column(9, 0.5),
+            settings,
+            3,
+        );
     }
 }
 
