@@ -105,6 +105,16 @@ impl Exchange for ThreadExchange {
     }
 }
 
+/// The owner of every body of `model` on `ranks` ranks, as the command line partitions them.
+fn owners(model: &Model, ranks: usize) -> Vec<usize> {
+    let cost: Vec<f64> = model
+        .bodies
+        .iter()
+        .map(|b| factor_cost(2 * b.mesh.num_nodes()))
+        .collect();
+    partition(&cost, ranks)
+}
+
 /// Solves `model` on `ranks` threads joined by the in-memory exchange; every rank's solution.
 fn distributed(model: &Model, settings: &Settings, ranks: usize) -> Vec<Solution> {
     distributed_on(model, settings, ranks, Condensation::Auto)
@@ -127,12 +137,7 @@ fn distributed_traffic(
     ranks: usize,
     condensation: Condensation,
 ) -> (Vec<Solution>, Vec<usize>) {
-    let cost: Vec<f64> = model
-        .bodies
-        .iter()
-        .map(|b| factor_cost(2 * b.mesh.num_nodes()))
-        .collect();
-    let owner = partition(&cost, ranks);
+    let owner = owners(model, ranks);
     let shared = Shared::new(ranks);
     std::thread::scope(|scope| {
         let handles: Vec<_> = (0..ranks)
@@ -382,12 +387,7 @@ fn neighbour_traffic(what: &str, model: &Model, settings: Settings, ranks: usize
         .collect();
     let one = solve(model, &prepared, &settings, Hooks::default()).unwrap();
     let (all, received) = distributed_traffic(model, &settings, ranks, Condensation::Dense);
-    let cost: Vec<f64> = model
-        .bodies
-        .iter()
-        .map(|b| factor_cost(2 * b.mesh.num_nodes()))
-        .collect();
-    let owner = partition(&cost, ranks);
+    let owner = owners(model, ranks);
     for (rank, sol) in all.iter().enumerate() {
         assert_same(&one, sol, &format!("{what} on {ranks} ranks, rank {rank}"));
         let mut ghosts: Vec<usize> = Vec::new();
