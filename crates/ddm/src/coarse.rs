@@ -128,6 +128,9 @@ impl Coarse {
         let shared = Shared {
             interface,
             exchange,
+            owned: (0..interface.body_range.len())
+                .map(|b| exchange.owns(b))
+                .collect(),
         };
         match mode {
             CoarseMode::Off => 0,
@@ -254,12 +257,14 @@ impl FloatingModes {
     }
 
     /// ρ_j · c_{b(j)}: the normal motion of point j.
+    #[inline(always)]
     fn own_shift(&self, j: usize, c: &[f64]) -> f64 {
         let cb = &c[self.range[self.body[j]].clone()];
         self.rho[j].iter().zip(cb).map(|(r, x)| r * x).sum()
     }
 
     /// Δs_j(c).
+    #[inline(always)]
     fn shift(&self, interface: &Interface, j: usize, c: &[f64]) -> f64 {
         self.own_shift(j, c)
             + interface.points[j]
@@ -284,9 +289,9 @@ impl FloatingModes {
                 // The point's force on every unknown it loads (its own alone for an own-side
                 // point).
                 for (u, a) in p.load_row(j) {
-                    let r = self.range[self.body[u]].clone();
+                    let r = part.locals(self.range[self.body[u]].clone());
                     for (q, &rho) in r.zip(&self.rho[u]) {
-                        part.add(q, a * force * rho);
+                        part.add_local(q, a * force * rho);
                     }
                 }
             }
@@ -352,7 +357,7 @@ impl FloatingModes {
         let closed: Vec<bool> = (0..interface.len())
             .map(|j| {
                 let p = &interface.points[j];
-                shared.exchange.owns(p.body) && p.overlap(s[j] + self.shift(interface, j, c)) < 0.0
+                shared.owned[p.body] && p.overlap(s[j] + self.shift(interface, j, c)) < 0.0
             })
             .collect();
         // A body is held once a closed point loads it (its own, or a carrier facing it): count
@@ -380,20 +385,20 @@ impl FloatingModes {
                     continue;
                 }
                 let k = p.weight / p.theta;
-                // ∂Δs_j/∂c: own modes, then the partner points' modes.
-                let mut grad: Vec<(usize, f64)> = self.range[p.body]
-                    .clone()
+                // ∂Δs_j/∂c: own modes, then the partner points' modes (as the part's columns).
+                let mut grad: Vec<(usize, f64)> = part
+                    .locals(self.range[p.body].clone())
                     .zip(self.rho[j].iter().copied())
                     .collect();
                 for &(pk, ck) in &p.partner {
-                    let cols = self.range[self.body[pk]].clone();
+                    let cols = part.locals(self.range[self.body[pk]].clone());
                     grad.extend(cols.zip(self.rho[pk].iter().map(|r| ck * r)));
                 }
                 for (u, a) in p.load_row(j) {
-                    let rows = self.range[self.body[u]].clone();
+                    let rows = part.locals(self.range[self.body[u]].clone());
                     for (row, &rho) in rows.zip(&self.rho[u]) {
                         for &(col, g) in &grad {
-                            part.add_at(row, col, -(a * k * rho * g));
+                            part.add_local_at(row, col, -(a * k * rho * g));
                         }
                     }
                 }
@@ -430,6 +435,8 @@ impl FloatingModes {
 struct Shared<'a> {
     interface: &'a Interface,
     exchange: &'a dyn Exchange,
+    /// Whether this process owns each body.
+    owned: Vec<bool>,
 }
 
 impl Shared<'_> {
@@ -437,7 +444,7 @@ impl Shared<'_> {
     /// parts with `part(b)` (pairs of an index of `total` and a value), a collective shares them.
     fn add_parts(&self, total: &mut [f64], part: impl Fn(usize) -> Vec<f64>) {
         let per_body = (0..self.interface.body_range.len())
-            .map(|b| match self.exchange.owns(b) {
+            .map(|b| match self.owned[b] {
                 true => part(b),
                 false => Vec::new(),
             })
@@ -486,23 +493,24 @@ impl<'a> Part<'a> {
         self.near.binary_search(&q).ok()
     }
 
+    /// The local numbers of the unknowns `qs` (a body's modes: consecutive, so consecutive
+    /// here too); empty where the part does not involve them.
+    fn locals(&self, qs: Range<usize>) -> Range<usize> {
+        match self.local(qs.start) {
+            Some(l) if !qs.is_empty() => l..l + qs.len(),
+            _ => 0..0,
+        }
+    }
+
+    /// Adds `v` to the entry of local number `l` (of the vector; of the matrix, column-major).
     fn add_local(&mut self, l: usize, v: f64) {
         self.used[l] = true;
         self.values[l] += v;
     }
 
-    /// Adds `v` to the vector's entry `q`.
-    fn add(&mut self, q: usize, v: f64) {
-        if let Some(l) = self.local(q) {
-            self.add_local(l, v);
-        }
-    }
-
-    /// Adds `v` to the matrix's entry (`row`, `col`).
-    fn add_at(&mut self, row: usize, col: usize, v: f64) {
-        if let (Some(r), Some(c)) = (self.local(row), self.local(col)) {
-            self.add_local(r + self.near.len() * c, v);
-        }
+    /// Adds `v` to the matrix's entry at the local numbers (`row`, `col`).
+    fn add_local_at(&mut self, row: usize, col: usize, v: f64) {
+        self.add_local(row + self.near.len() * col, v);
     }
 
     /// The entries as pairs (index, value) of a vector, or of a column-major n × n matrix.
