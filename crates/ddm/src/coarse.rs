@@ -386,10 +386,9 @@ impl FloatingModes {
                 }
                 let k = p.weight / p.theta;
                 // ∂Δs_j/∂c: own modes, then the partner points' modes (as the part's columns).
-                let mut grad: Vec<(usize, f64)> = part
-                    .locals(self.range[p.body].clone())
-                    .zip(self.rho[j].iter().copied())
-                    .collect();
+                let mut grad = Vec::with_capacity(self.rho[j].len() * (1 + p.partner.len()));
+                let own = part.locals(self.range[p.body].clone());
+                grad.extend(own.zip(self.rho[j].iter().copied()));
                 for &(pk, ck) in &p.partner {
                     let cols = part.locals(self.range[self.body[pk]].clone());
                     grad.extend(cols.zip(self.rho[pk].iter().map(|r| ck * r)));

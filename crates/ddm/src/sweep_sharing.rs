@@ -38,6 +38,8 @@ impl Sharing {
     ) -> Sharing {
         match settings.accelerator {
             Accelerator::Anderson { .. } => Sharing::Everyone,
+            // One process has no neighbours to plan for.
+            _ if exchange.is_local() => Sharing::Neighbours(Neighbours::default()),
             _ => Sharing::Neighbours(Neighbours::new(exchange, &interface.reads())),
         }
     }
