@@ -16,7 +16,9 @@
 #   runs in which a body's Robin problem turns singular, and checks that every rank ends with the
 #   single process's exit code and the same one message, naming the body, without hanging; and
 #   the same for a results folder that cannot be written and for input errors in a body only its
-#   own rank meshes; and that rank 0's console report holds every body's loads and reactions.
+#   own rank meshes; and that rank 0's console report holds every body's loads and reactions;
+# - runs `check` and `sweep` under mpirun: rank 0 alone runs them (their output once), and every
+#   rank ends with their exit code.
 #
 # Usage: bash scripts/test_mpi.sh
 set -euo pipefail
@@ -198,6 +200,30 @@ for n in 1 2; do
 done
 check "console report: -n 2 prints the single process's loads and reactions" \
   sh -c "test -s '$work/report-1.lines' && cmp -s '$work/report-1.lines' '$work/report-2.lines'"
+
+# The commands that do not distribute (check, sweep) run on rank 0 alone: their output once, the
+# same file, and every rank's exit code theirs (mpirun returns the first non-zero one).
+alone() {
+  local name=$1
+  shift
+  local code=0
+  "$bin" "$@" >"$work/$name-1.txt" 2>&1 || code=$?
+  echo "$code" >"$work/$name-1.code"
+  code=0
+  "${mpirun[@]}" -n 2 "$bin" "$@" >"$work/$name-2.txt" 2>"$work/$name-2.err" || code=$?
+  echo "$code" >"$work/$name-2.code"
+}
+alone check check examples/stack.toml
+check "check: -n 2 prints the single process's description once" cmp -s "$work/check-1.txt" "$work/check-2.txt"
+check "check: -n 2 exit code" cmp -s "$work/check-1.code" "$work/check-2.code"
+alone sweep sweep examples/notch.toml --gamma 0.5,auto --method active-set --quiet --out "$work/sweep.csv"
+check "sweep: -n 2 prints one line naming the CSV" test "$(grep -c '^wrote ' "$work/sweep-2.txt")" = 1
+check "sweep: -n 2 exit code" cmp -s "$work/sweep-1.code" "$work/sweep-2.code"
+alone check-missing check "$work/no-such-file.toml"
+check "check of a missing file: exit 1 on -n 2 as in one process" \
+  sh -c "grep -qx 1 '$work/check-missing-1.code' && grep -qx 1 '$work/check-missing-2.code'"
+check "check of a missing file: -n 2 says it once" \
+  test "$(grep -c '^error: ' "$work/check-missing-2.err")" = 1
 
 # A run that diverges (the paper's neumann rule with γ = 1 on the column): exit 2 everywhere.
 same stack-diverges examples/stack.toml --method neumann --gamma 1 --max-iter 50

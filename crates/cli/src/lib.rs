@@ -83,6 +83,20 @@ impl From<Exit> for ExitCode {
     }
 }
 
+/// The exit code of a command's result, with its error said once (every rank of a distributed
+/// solve meets the same error; rank 0 says it).
+fn reported(result: Result<Exit>) -> Exit {
+    match result {
+        Ok(exit) => exit,
+        Err(e) => {
+            if ranks::is_root() {
+                eprintln!("error: {e:#}");
+            }
+            Exit::Error
+        }
+    }
+}
+
 /// Runs the command line `args` (the first item is the program name) and returns the outcome.
 /// Output goes to stdout, errors to stderr as `error: …`.
 pub fn run<I, T>(args: I) -> Exit
@@ -101,22 +115,14 @@ where
             };
         }
     };
-    let result = match cli.command {
-        Command::Solve(a) => solve::solve(a),
-        Command::Sweep(a) => sweep::sweep(a),
-        Command::Check(a) => check::check(a),
-        Command::Monolithic(a) => solve::monolithic(a),
-        Command::Plot(a) => plot::plot(a),
-    };
-    let exit = match result {
-        Ok(exit) => exit,
-        Err(e) => {
-            // Every rank of a distributed run meets the same error; one says it.
-            if ranks::is_root() {
-                eprintln!("error: {e:#}");
-            }
-            Exit::Error
-        }
+    // Only `solve` distributes: under `mpirun` rank 0 runs the other commands alone, and every
+    // rank ends with its exit code.
+    let exit = match cli.command {
+        Command::Solve(a) => reported(solve::solve(a)),
+        Command::Sweep(a) => ranks::on_root(|| reported(sweep::sweep(a))),
+        Command::Check(a) => ranks::on_root(|| reported(check::check(a))),
+        Command::Monolithic(a) => ranks::on_root(|| reported(solve::monolithic(a))),
+        Command::Plot(a) => ranks::on_root(|| reported(plot::plot(a))),
     };
     match console::take_failure() {
         // The report was lost: never claim success.

@@ -8,7 +8,7 @@ use std::time::Instant;
 
 use mpi::datatype::PartitionMut;
 use mpi::topology::SimpleCommunicator;
-use mpi::traits::{Communicator, CommunicatorCollectives, Destination, Equivalence, Source};
+use mpi::traits::{Communicator, CommunicatorCollectives, Destination, Equivalence, Root, Source};
 use mpi::Count;
 
 use contactdd_ddm::exchange::{partition, Exchange};
@@ -25,6 +25,16 @@ pub fn init() -> Option<mpi::environment::Universe> {
 pub fn world_rank() -> Option<usize> {
     let running = mpi::environment::is_initialized() && !mpi::environment::is_finalized();
     running.then(|| SimpleCommunicator::world().rank() as usize)
+}
+
+/// When MPI runs with more than one rank: a broadcast of rank 0's exit code (a collective).
+pub fn root_exit() -> Option<impl FnOnce(u8) -> u8> {
+    world_rank()?;
+    let world = SimpleCommunicator::world();
+    (world.size() > 1).then_some(move |mut code: u8| {
+        world.process_at_rank(0).broadcast_into(&mut code);
+        code
+    })
 }
 
 /// The bodies partitioned over the ranks of `MPI_COMM_WORLD`.

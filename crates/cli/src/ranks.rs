@@ -13,6 +13,8 @@ use contactdd_io::shared_results::{
     shared_monitor, shared_reactions, write_results_shared, write_step_results_shared, Part,
 };
 use contactdd_io::Loaded;
+
+use crate::Exit;
 #[cfg(feature = "mpi")]
 use contactdd_io::{read_problem, shared_setup::estimated_costs};
 
@@ -157,6 +159,21 @@ impl Ranks {
         }
         vec![own]
     }
+}
+
+/// Runs `command` on rank 0 alone when MPI runs with several ranks (the others wait for it), and
+/// returns its exit code on every rank; in one process, runs it.
+pub fn on_root(command: impl FnOnce() -> Exit) -> Exit {
+    #[cfg(feature = "mpi")]
+    if let Some(share) = crate::mpi_exchange::root_exit() {
+        let code = if is_root() { command() as u8 } else { 0 };
+        return match share(code) {
+            0 => Exit::Success,
+            2 => Exit::NotConverged,
+            _ => Exit::Error,
+        };
+    }
+    command()
 }
 
 /// Whether this process is the one that reports (rank 0, or the only process).
