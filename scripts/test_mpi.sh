@@ -121,6 +121,9 @@ check "sparse: the cost model chose the sparse path for the strip's bodies" \
 # Load steps: every step's VTU set, steps.csv and results.pvd, on two bodies with exact contact
 # (the recess) and on the column of eight floating blocks in three steps.
 same recess-steps examples/recess_steps.toml
+# The same with the two-level sweeps: point-to-point exchanges inside every multiplier update of
+# every step.
+same recess-steps-sweeps examples/recess_steps.toml --accelerator none --max-iter 3000
 sed 's/^max-iter = 10000$/max-iter = 10000\nload-steps = 3/' examples/stack.toml >"$work/stack_steps.toml"
 same stack-steps "$work/stack_steps.toml"
 check "stack steps: the single process wrote three steps" test -f "$work/stack-steps-1/b7-step3.vtu"
