@@ -355,6 +355,74 @@ mod tests {
         assert_eq!(owner, vec![0, 1, 2]);
     }
 
+    /// A process of a partition, for planning only (it exchanges nothing).
+    struct Planner {
+        owner: Vec<usize>,
+        rank: usize,
+    }
+
+    impl Exchange for Planner {
+        fn owner(&self) -> &[usize] {
+            &self.owner
+        }
+        fn rank(&self) -> usize {
+            self.rank
+        }
+        fn gather(&self, own: Vec<Vec<f64>>) -> Vec<Vec<f64>> {
+            own
+        }
+        fn agree(&self, error: Option<String>) -> Option<String> {
+            error
+        }
+        fn swap(&self, _sends: Vec<(usize, Vec<f64>)>, from: &[usize]) -> Vec<Vec<f64>> {
+            vec![Vec::new(); from.len()]
+        }
+    }
+
+    #[test]
+    fn neighbours_exchange_only_what_other_ranks_read() {
+        // Bodies 0..5 on ranks [0, 0, 1, 1, 2]; body 2 reads 1 and 4, body 4 reads 0 and 2,
+        // body 0 reads 2 twice (its points' partners repeat), body 1 reads 0 (same rank).
+        let owner = vec![0, 0, 1, 1, 2];
+        let reads = vec![vec![2, 2], vec![0], vec![1, 4], vec![], vec![0, 2]];
+        let plan = |rank| {
+            let n = Neighbours::new(
+                &Planner {
+                    owner: owner.clone(),
+                    rank,
+                },
+                &reads,
+            );
+            (n.send, n.recv)
+        };
+        // Rank 0 sends body 1 to rank 1 and body 0 to rank 2; it receives body 2 from rank 1.
+        assert_eq!(
+            plan(0),
+            (vec![(1, vec![1]), (2, vec![0])], vec![(1, vec![2])])
+        );
+        // Rank 1 sends body 2 to ranks 0 and 2, and receives body 1 and body 4.
+        assert_eq!(
+            plan(1),
+            (
+                vec![(0, vec![2]), (2, vec![2])],
+                vec![(0, vec![1]), (2, vec![4])]
+            )
+        );
+        assert_eq!(
+            plan(2),
+            (vec![(1, vec![4])], vec![(0, vec![0]), (1, vec![2])])
+        );
+        // A rank with no body plans nothing.
+        let idle = Neighbours::new(
+            &Planner {
+                owner: owner.clone(),
+                rank: 3,
+            },
+            &reads,
+        );
+        assert!(idle.send.is_empty() && idle.recv.is_empty());
+    }
+
     #[test]
     fn statuses_survive_the_encoding() {
         for s in [
