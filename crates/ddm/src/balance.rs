@@ -3,10 +3,11 @@
 //! by construction (docs/method.md §4, "Which normal the gap uses").
 //!
 //! Both sides' gaps are read along the normals of one side of the pair, the *reference* side:
-//! the flatter one (the smaller spread of its normals over the points that face the partner;
-//! side 0 on a tie). A point j of the reference side reads along its own normal, ν_j = n_j; a
-//! point of the other side reads along the reference side's normal where its ray hits it,
-//! ν_j = −n_ref(x′_j), interpolated from the nodal normals. Then
+//! the flatter one (the smaller spread of its normals over the points that face the partner; on
+//! a tie the side with more points facing the other, then side 0). A point j of the reference
+//! side reads along its own normal, ν_j = n_j; a point of the other side reads along the
+//! reference side's normal where its ray hits it, ν_j = −n_ref(x′_j), interpolated from the
+//! nodal normals. Then
 //!   s_j = u_α(x_j)·ν_j − u_β(x′_j)·ν_j
 //!       = (n_j·ν_j) U_j + (t_j·ν_j) V_j − Σ_k c_jk [(n_k·ν_j) U_k + (t_k·ν_j) V_k],
 //! with U, V the normal and tangential displacements of a node (t = n turned by +90°), and the
@@ -235,39 +236,58 @@ fn row(
 }
 
 /// The reference body of a pair (its points `of_pair`, `first` the body of side 0): the side
-/// whose partnered points' normals spread least (1 − n_j·n̄ at most, n̄ their mean direction);
-/// side 0 on a tie.
+/// whose partnered points' normals spread least (1 − n_j·n̄ at most, n̄ their mean direction).
+/// On a tie (two straight sides), the side with more points facing the other: its nodes lie on
+/// the other side's surface, so its pressures cover the whole zone (a coarse side can have no
+/// node at all under a narrow partner, which would then rest on nothing); then side 0. A side
+/// with no point facing the other never carries while the other has one.
 fn reference_body(points: &[ContactPoint], of_pair: &[usize], first: usize) -> usize {
-    let spread = |body: usize| {
-        let side = || {
-            of_pair
-                .iter()
-                .map(|&j| &points[j])
-                .filter(move |p| p.body == body && p.has_partner())
-        };
+    // (spread, points facing the partner) of one side.
+    let side = |body: usize| {
+        let facing: Vec<&ContactPoint> = of_pair
+            .iter()
+            .map(|&j| &points[j])
+            .filter(|p| p.body == body && p.has_partner())
+            .collect();
         let mut mean = [0.0; 2];
-        for p in side() {
+        for p in &facing {
             mean[0] += p.normal[0];
             mean[1] += p.normal[1];
         }
         let l = mean[0].hypot(mean[1]);
         if l == 0.0 {
-            return 0.0;
+            return (0.0, facing.len());
         }
         let mean = [mean[0] / l, mean[1] / l];
-        side().fold(0.0f64, |m, p| m.max(1.0 - dot(p.normal, mean)))
+        let spread = facing
+            .iter()
+            .fold(0.0f64, |m, p| m.max(1.0 - dot(p.normal, mean)));
+        (spread, facing.len())
     };
     let second = of_pair
         .iter()
         .map(|&j| points[j].body)
         .find(|&b| b != first)
         .unwrap_or(first);
-    if spread(second) < spread(first) {
+    let ((s1, n1), (s2, n2)) = (side(first), side(second));
+    // Spreads that differ by rounding alone are a tie.
+    let tie = (s1 - s2).abs() <= SPREAD_TIE;
+    let second_wins = if n1 == 0 || n2 == 0 {
+        n1 == 0 && n2 > 0
+    } else if tie {
+        n2 > n1
+    } else {
+        s2 < s1
+    };
+    if second_wins {
         second
     } else {
         first
     }
 }
+
+/// Normal spreads (1 − cos of the angle) closer than this are equal: rounding of straight sides.
+const SPREAD_TIE: f64 = 1e-12;
 
 /// True if every point of a pair (`of_pair`) faces exactly one partner node, which faces it
 /// back, along exactly opposite normals, with the same weight and gap: then each side's pressure

@@ -48,7 +48,7 @@ use faer::sparse::linalg::{LuError, SupernodalThreshold};
 use faer::sparse::FaerError;
 use faer::sparse::{SparseColMat, SymbolicSparseColMat, Triplet};
 use faer::{Conj, Index, Mat, Par};
-use nalgebra::{DMatrix, DVector, SymmetricEigen};
+use nalgebra::{DMatrix, DVector};
 use rayon::prelude::*;
 
 use crate::condensed::CondensedBody;
@@ -435,33 +435,54 @@ impl<'a> System<'a> {
     }
 
     /// The rigid motions of floating bodies that the closed points `chi` do not resist, as
-    /// weights of the free modes: the null space of the Gram matrix of the closed pair sums'
-    /// change per mode.
+    /// weights of the free modes: the null space of G = Σ_j l_j s_jᵀ over the closed points, s_j
+    /// the change of point j's pair sum per mode and l_j the modes its force acts on. A balanced
+    /// carrier loads both sides through its gap row (l_j = s_j); an own-side point loads its own
+    /// body only, so a closed point does not hold its partner: with only one side of an own-side
+    /// pair closed, the other body moves freely away (before, such a motion counted as resisted
+    /// and made J singular).
     fn free_motions(&self, chi: &[bool]) -> Vec<DVector<f64>> {
         let k = modes_bound(self.mode_range);
         if k == 0 {
             return Vec::new();
         }
-        let mut gram = DMatrix::<f64>::zeros(k, k);
-        let mut row = vec![0.0; k];
+        let mut g = DMatrix::<f64>::zeros(k, k);
+        // The size of G's diagonal terms, Σ_j |l_ja s_ja| (for balanced pairs, G's diagonal).
+        let mut scale = vec![0.0f64; k];
+        let (mut sum, mut load) = (vec![0.0; k], vec![0.0; k]);
         for j in (0..self.len()).filter(|&j| chi[j]) {
-            self.sum_change(j, &mut row);
-            for a in 0..k {
-                if row[a] != 0.0 {
-                    for b in 0..k {
-                        gram[(a, b)] += row[a] * row[b];
-                    }
+            self.mode_rows(j, &mut sum, &mut load);
+            for a in (0..k).filter(|&a| load[a] != 0.0) {
+                scale[a] += (load[a] * sum[a]).abs();
+                for b in 0..k {
+                    g[(a, b)] += load[a] * sum[b];
                 }
             }
         }
-        let scale = (0..k).map(|a| gram[(a, a)]).fold(0.0, f64::max);
-        let eig = SymmetricEigen::new(gram);
-        eig.eigenvalues
+        let scale = scale.into_iter().fold(0.0, f64::max);
+        // The null space from G's own singular values (those of GᵀG would square the rounding).
+        let svd = g.svd(false, true);
+        let Some(v_t) = svd.v_t else {
+            return Vec::new();
+        };
+        svd.singular_values
             .iter()
             .enumerate()
-            .filter(|(_, &lambda)| lambda <= 1e-10 * scale)
-            .map(|(q, _)| eig.eigenvectors.column(q).into_owned())
+            .filter(|(_, &sigma)| sigma <= 1e-10 * scale)
+            .map(|(q, _)| v_t.row(q).transpose())
             .collect()
+    }
+
+    /// Point j's change of pair sum per free mode (`sum`), and the modes its force acts on
+    /// (`load`): a balanced carrier's gap row loads both sides, an own-side point its own body.
+    fn mode_rows(&self, j: usize, sum: &mut [f64], load: &mut [f64]) {
+        self.sum_change(j, sum);
+        if self.balanced[j] {
+            load.copy_from_slice(sum);
+        } else {
+            load.iter_mut().for_each(|v| *v = 0.0);
+            self.add_modes(j, 1.0, load);
+        }
     }
 
     /// The change of point j's pair sum per free mode, in `row`.
@@ -527,26 +548,31 @@ impl<'a> System<'a> {
         (0..self.bodies.len()).max_by(|&a, &b| share(a).total_cmp(&share(b)))
     }
 
-    /// The points that can close (partnered, weighted, and carriers on balanced pairs) and whose
-    /// pair sum the rigid motion `v` changes: closed, they would resist it.
+    /// The points that can close (partnered, weighted, and carriers on balanced pairs) whose
+    /// pair sum the rigid motion `v` changes and whose force acts along it (an own-side point on
+    /// a body that moves): closed, they would resist it.
     fn resisting(&self, v: &DVector<f64>) -> Vec<usize> {
         let points = &self.interface.points;
-        let mut row = vec![0.0; v.len()];
-        let change: Vec<(usize, f64)> = (0..self.len())
+        let (mut sum, mut load) = (vec![0.0; v.len()], vec![0.0; v.len()]);
+        let along = |row: &[f64]| row.iter().zip(v.iter()).map(|(a, b)| a * b).sum::<f64>();
+        // Per point: the change of its pair sum along v, and its force's work along v.
+        let change: Vec<(usize, f64, f64)> = (0..self.len())
             .filter(|&j| {
                 let p = &points[j];
                 p.has_partner() && !self.weightless[j] && (!self.balanced[j] || p.carries())
             })
             .map(|j| {
-                self.sum_change(j, &mut row);
-                (j, row.iter().zip(v.iter()).map(|(a, b)| a * b).sum::<f64>())
+                self.mode_rows(j, &mut sum, &mut load);
+                (j, along(&sum), along(&load))
             })
             .collect();
-        let largest = change.iter().fold(0.0f64, |m, &(_, c)| m.max(c.abs()));
+        let largest =
+            |f: fn(&(usize, f64, f64)) -> f64| change.iter().fold(0.0f64, |m, c| m.max(f(c).abs()));
+        let (sums, works) = (largest(|c| c.1), largest(|c| c.2));
         change
             .into_iter()
-            .filter(|&(_, c)| c.abs() > 1e-8 * largest)
-            .map(|(j, _)| j)
+            .filter(|&(_, c, a)| c.abs() > 1e-8 * sums && a.abs() > 1e-8 * works)
+            .map(|(j, _, _)| j)
             .collect()
     }
 

@@ -208,19 +208,19 @@ pub fn stop_message(
                 body(*b)
             ),
             Breakdown::LostContact => format!(
-                "diverged: body '{}' lost all contact at iteration {iteration} (its Robin problem became singular); try a smaller gamma, gamma = \"auto\" or another method",
+                "diverged: body '{}' lost all contact at iteration {iteration} (its Robin problem became singular); try a smaller gamma, gamma = \"auto\", another method or the interface Newton method (accelerator = \"newton\")",
                 body(*b)
             ),
             Breakdown::Singular => format!(
-                "diverged: the Robin problem of body '{}' became singular at iteration {iteration}; try a smaller gamma or another method",
+                "diverged: the Robin problem of body '{}' became singular at iteration {iteration}; try a smaller gamma, another method or the interface Newton method (accelerator = \"newton\")",
                 body(*b)
             ),
             Breakdown::NonFinite => format!(
-                "diverged: non-finite values in body '{}' at iteration {iteration}; try a smaller gamma",
+                "diverged: non-finite values in body '{}' at iteration {iteration}; try a smaller gamma or the interface Newton method (accelerator = \"newton\")",
                 body(*b)
             ),
             Breakdown::Growth => format!(
-                "diverged: the displacements of body '{}' grew without bound at iteration {iteration}; try a smaller gamma",
+                "diverged: the displacements of body '{}' grew without bound at iteration {iteration}; try a smaller gamma or the interface Newton method (accelerator = \"newton\")",
                 body(*b)
             ),
             Breakdown::NoDescent => format!(
