@@ -14,7 +14,8 @@ mesh size, diagonal and material, the last block of a row is pushed sideways or 
 top row is pressed down. Per seed the script prints both exit codes and, where both converged,
 the largest difference of the contact pressures relative to the peak. A seed counts as failed
 when the decomposition does not converge while the reference does, or when the two disagree by
-more than 1e-6 of the peak (both solve with tol 1e-9).
+more than 1e-6 of the peak (both solve with tol 1e-9; with `--enforcement augmented`, 1e-3, as
+each meets the exact contact only to its gap tolerance).
 """
 import csv
 import random
@@ -117,7 +118,9 @@ def run(seed, work, enforcement):
         a, b = pressures(work / f"solve{seed}/contact.csv"), pressures(work / f"monolithic{seed}/contact.csv")
         peak = max((abs(v) for v in b.values()), default=0.0) or 1.0
         difference = max((abs(a[k] - b[k]) for k in b), default=0.0) / peak if a.keys() == b.keys() else float("inf")
-    failed = (codes[0] != 0 and codes[1] == 0) or (difference is not None and difference > 1e-6)
+    # Exact contact is met to a gap tolerance, which leaves each solver's pressures that far off.
+    limit = 1e-6 if enforcement == "penalty" else 1e-3
+    failed = (codes[0] != 0 and codes[1] == 0) or (difference is not None and difference > limit)
     return codes, difference, failed
 
 

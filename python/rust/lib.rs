@@ -203,7 +203,7 @@ fn solve(
             }
         };
         with_threads(threads, || {
-            let prepared = contactdd_ddm::prepare_with(&m, settings.condensation)?;
+            let prepared = contactdd_ddm::prepare_with(&m, &settings)?;
             let findings = contact_check::check(&m, &prepared.interface);
             let hooks = Hooks {
                 on_iteration: progress
@@ -314,7 +314,7 @@ fn solve_steps<'py>(
     let m = model.clone();
     let (out, interrupt) = run_interruptible(py, move |cancel| {
         with_threads(threads, || {
-            let mut prepared = contactdd_ddm::prepare_with(&m, settings.condensation)?;
+            let mut prepared = contactdd_ddm::prepare_with(&m, &settings)?;
             let hooks = Hooks {
                 on_iteration: None,
                 cancel: Some(cancel),
@@ -443,7 +443,12 @@ fn sweep<'py>(
             }
         };
         with_threads(threads, || {
-            let prepared = contactdd_ddm::prepare_with(&model, base.condensation)?;
+            // The sweeps run the paper's iteration: the pairs' own θ.
+            let how = contactdd_ddm::Preparation {
+                condensation: base.condensation,
+                inner: contactdd_ddm::InnerPenalty::AsGiven,
+            };
+            let prepared = contactdd_ddm::prepare_with(&model, how)?;
             let hooks = SweepHooks {
                 cancel: Some(cancel),
                 on_run: Some(&report),

@@ -191,7 +191,7 @@ pub fn solve(args: SolveArgs) -> Result<Exit> {
                 count(model.bodies.len(), "body", "bodies")
             ));
         }
-        let mut prepared = prepare_on(model, settings.condensation, ranks.exchange())
+        let mut prepared = prepare_on(model, &settings, ranks.exchange())
             .map_err(|e| anyhow::anyhow!("{}: {e}", args.file.display()))?;
         if ranks.is_root() {
             warn_contact(&args.file, model, &prepared.interface);

@@ -101,17 +101,20 @@ fn update_loop(
             gap_tol = default_gap_tol(&outcome.un);
         }
         // G(λ): the pressures of this solve on the augmented points, and how far it is from exact.
-        let (next, violation) = uzawa_update(&interface, &outcome.un, &augmented);
-        if violation <= gap_tol {
+        let update = uzawa_update(&interface, &outcome.un, &augmented);
+        let distance = update.distance(gap_tol, settings.tol);
+        if distance <= 1.0 {
             return finish(outcome, history, interface, updates, gap_tol);
         }
+        let (next, violation) = (update.multipliers, update.violation);
         let t_load = outcome.t_load.clone();
-        if best.as_ref().map_or(true, |b| violation < b.violation) {
+        if best.as_ref().map_or(true, |b| distance < b.distance) {
             since_best = 0;
             best = Some(Best {
                 outcome,
                 interface: interface.clone(),
                 violation,
+                distance,
             });
         } else {
             since_best += 1;
@@ -126,7 +129,7 @@ fn update_loop(
         let mut loads = warm.unwrap_or_else(|| t_load.clone());
         memory.advance(&mut lambda, &mut loads, &next, &t_load, 1.0);
         for (j, p) in interface.points.iter_mut().enumerate() {
-            lambda[j] = if augmented[j] {
+            lambda[j] = if augmented[j].is_some() {
                 lambda[j].max(0.0)
             } else {
                 0.0
@@ -161,6 +164,8 @@ struct Best {
     interface: Interface,
     /// Its violation of the Signorini conditions.
     violation: f64,
+    /// Its [`Update::distance`] from done.
+    distance: f64,
 }
 
 impl Best {
@@ -203,16 +208,17 @@ fn inner_solve(
     outcome
 }
 
-/// The points of `interface` whose pair uses the augmented Lagrangian (and that have a partner
-/// and carry their pressure).
-pub(crate) fn augmented_points(model: &Model, interface: &Interface) -> Vec<bool> {
+/// Per point of `interface`, the θ its pair gives, where the pair uses the augmented Lagrangian
+/// (and the point has a partner and carries its pressure); `None` elsewhere.
+pub(crate) fn augmented_points(model: &Model, interface: &Interface) -> Vec<Option<f64>> {
     interface
         .points
         .iter()
         .map(|p| {
-            p.carries()
+            (p.carries()
                 && p.has_partner()
-                && model.pairs[p.pair].enforcement == Enforcement::Augmented
+                && model.pairs[p.pair].enforcement == Enforcement::Augmented)
+                .then(|| model.theta(p.pair))
         })
         .collect()
 }
@@ -222,35 +228,67 @@ pub(crate) fn default_gap_tol(un: &[f64]) -> f64 {
     GAP_TOL * un.iter().fold(0.0, |m: f64, u| m.max(u.abs()))
 }
 
+/// What one Uzawa update finds ([`uzawa_update`]).
+pub(crate) struct Update {
+    /// The new multipliers: the pressure magnitude p = −σ_n of every augmented point, 0
+    /// elsewhere.
+    pub multipliers: Vec<f64>,
+    /// The largest violation of the Signorini conditions over the augmented points: the gap
+    /// |d − s| where p > 0, the penetration (s − d)⁺ elsewhere (a length).
+    pub violation: f64,
+    /// The largest change |p − λ| of a pressed point whose inner θ is stiffer than its pair's
+    /// (`crate::contact::AUGMENTED_C`): its gap θ|p − λ| is then small long before its pressure
+    /// has settled, so the pressures are also asked to settle.
+    pub settle: f64,
+    /// The largest pressure of the augmented points.
+    pub peak: f64,
+}
+
+impl Update {
+    /// How far from done, 1 at the tolerances: the violation against `gap_tol`, and the
+    /// pressures' last change against `tol` times the peak pressure.
+    pub fn distance(&self, gap_tol: f64, tol: f64) -> f64 {
+        let settle = if self.settle > 0.0 {
+            self.settle / (tol * self.peak)
+        } else {
+            0.0
+        };
+        (self.violation / gap_tol).max(settle)
+    }
+}
+
 /// One Uzawa update from the normal displacements `un` of a solve with the multipliers of
-/// `interface`: the new multipliers (the pressure magnitude p = −σ_n of every `augmented` point,
-/// 0 elsewhere) and the largest violation of the Signorini conditions over those points — the
-/// gap |d − s| where p > 0, the penetration (s − d)⁺ elsewhere.
-pub(crate) fn uzawa_update(
-    interface: &Interface,
-    un: &[f64],
-    augmented: &[bool],
-) -> (Vec<f64>, f64) {
+/// `interface`, at the points that `augmented` marks with their pair's θ.
+pub(crate) fn uzawa_update(interface: &Interface, un: &[f64], augmented: &[Option<f64>]) -> Update {
     let mut s = vec![0.0; un.len()];
     interface.sum_normal(un, &mut s);
-    let mut violation = 0.0f64;
+    let (mut violation, mut settle, mut peak) = (0.0f64, 0.0f64, 0.0f64);
     let multipliers = interface
         .points
         .iter()
         .enumerate()
         .map(|(j, p)| {
-            if !augmented[j] {
+            let Some(theta) = augmented[j] else {
                 return 0.0;
-            }
+            };
             let (pressure, gap) = (-p.pressure(s[j]), p.gap - s[j]);
             let v = if pressure > 0.0 {
+                if p.theta < theta {
+                    settle = settle.max((pressure - p.multiplier).abs());
+                }
                 gap.abs()
             } else {
                 (-gap).max(0.0)
             };
             violation = violation.max(v);
+            peak = peak.max(pressure);
             pressure
         })
         .collect();
-    (multipliers, violation)
+    Update {
+        multipliers,
+        violation,
+        settle,
+        peak,
+    }
 }

@@ -21,7 +21,14 @@ use rstar::primitives::{GeomWithData, Rectangle};
 use rstar::{RTree, AABB};
 
 use crate::error::SetupError;
-use crate::model::Model;
+use crate::model::{Enforcement, Forces, InnerPenalty, Model, Penalty};
+
+/// The rod model's factor c of the inner penalty of an augmented balanced pair's point, with the
+/// point's share of its boundary as h: the spring w/θ is then E*/c (E* = 1/(1/E*_α + 1/E*_β)),
+/// about 1/c times the stiffness that the bodies oppose to one node, so each multiplier update leaves
+/// about c/(1 + c) of the error (`docs/augmented-lagrangian.md`). 0.05 is the paper's factor.
+/// The pair's own θ is used where it is stiffer.
+pub const AUGMENTED_C: f64 = 0.05;
 
 /// One contact point: a node of a contact boundary of one body, in one contact pair.
 #[derive(Clone, Debug, PartialEq)]
@@ -138,8 +145,13 @@ pub struct Interface {
 }
 
 impl Interface {
-    /// Builds the contact points of a model.
+    /// Builds the contact points of a model, every pair with its own θ.
     pub fn new(model: &Model) -> Result<Interface, SetupError> {
+        Interface::with_inner(model, InnerPenalty::AsGiven)
+    }
+
+    /// [`Interface::new`] with the augmented balanced pairs' inner penalty `inner`.
+    pub fn with_inner(model: &Model, inner: InnerPenalty) -> Result<Interface, SetupError> {
         // Points per (pair, side) before global numbering.
         struct Side {
             body: usize,
@@ -250,6 +262,25 @@ impl Interface {
                     .get(&v)
                     .and_then(|node| normalised(node, &partner_index));
                 let profile = pair.profile.as_ref().map_or(0.0, |p| p.at(x));
+                // Own-side pairs keep θ: on non-matching meshes their two sides' multipliers
+                // are tied only through the penalty, and a stiffer one lets them drift apart
+                // (the non-matching notch then stalls at 5e−5). A weightless point (a P2 vertex
+                // on a coarse side, say) keeps θ too: it carries nothing, its spring stays 0.
+                let stiffened = inner == InnerPenalty::Stiffened
+                    && pair.enforcement == Enforcement::Augmented
+                    && pair.forces == Forces::Balanced
+                    && side.weights[k] > 0.0;
+                let theta = if stiffened {
+                    theta.min(
+                        Penalty::RodModel {
+                            c: AUGMENTED_C,
+                            h: side.weights[k],
+                        }
+                        .theta(a, &model.bodies[partner_side.body]),
+                    )
+                } else {
+                    theta
+                };
                 points[offset[i] + k] = Some(ContactPoint {
                     body: side.body,
                     node: v,

@@ -34,6 +34,19 @@ impl Penalty {
     }
 }
 
+/// The inner penalty of the augmented balanced pairs (`docs/augmented-lagrangian.md`, "Speed").
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum InnerPenalty {
+    /// Every point's θ at most the rod model's with c = [`crate::contact::AUGMENTED_C`] and h
+    /// the point's share of its boundary: each multiplier update then contracts by about the
+    /// same factor whatever the pair's θ and the mesh. For the interface Newton method, whose
+    /// count does not depend on θ.
+    #[default]
+    Stiffened,
+    /// The pair's θ as given: for the Robin sweeps, whose count grows as θ stiffens.
+    AsGiven,
+}
+
 /// How a contact pair enforces non-penetration.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum Enforcement {

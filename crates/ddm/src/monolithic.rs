@@ -185,7 +185,9 @@ pub fn solve_monolithic_with(
             if gap_tol.is_nan() {
                 gap_tol = default_gap_tol(&un);
             }
-            let (lambda, violation) = uzawa_update(&interface, &un, &augmented);
+            // Its contact points keep their pairs' θ, so only the violation decides.
+            let update = uzawa_update(&interface, &un, &augmented);
+            let (lambda, violation) = (update.multipliers, update.violation);
             let enforced = !model.is_augmented() || violation <= gap_tol;
             if run.stop.is_some() || enforced || updates >= settings.max_updates {
                 let unenforced = (!enforced).then(|| {
@@ -206,7 +208,7 @@ pub fn solve_monolithic_with(
         };
         // Uzawa's update: the multipliers become the pressures just found.
         for (j, p) in interface.points.iter_mut().enumerate() {
-            if augmented[j] {
+            if augmented[j].is_some() {
                 p.multiplier = next[j];
             }
         }

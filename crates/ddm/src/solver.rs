@@ -13,8 +13,8 @@ use crate::condensed::{analyse_all, Condensation, CondensedBody, SetupTimes};
 use crate::contact::Interface;
 use crate::error::SetupError;
 use crate::exchange::{share_vectors, Exchange, Local};
-use crate::iteration::{iterate_on, Hooks, Settings, Stop};
-use crate::model::Model;
+use crate::iteration::{iterate_on, Accelerator, Hooks, Settings, Stop};
+use crate::model::{InnerPenalty, Model};
 use crate::solution::{body_results, pair_results, stop_message, Solution};
 
 /// Everything about a model that does not depend on the method or γ: reuse it across solves
@@ -48,19 +48,50 @@ impl Prepared {
     }
 }
 
-/// Builds the contact geometry and factorises and condenses every body (in parallel), each on
-/// the path the cost model chooses ([`Condensation::Auto`]).
-pub fn prepare(model: &Model) -> Result<Prepared, SetupError> {
-    prepare_with(model, Condensation::Auto)
+/// How [`prepare_with`] sets the bodies up: their condensation path, and the inner penalty of
+/// the augmented balanced pairs, which suits one iteration and not the other. From a
+/// [`Condensation`] alone: that path, for the default iteration (the interface Newton method);
+/// from [`Settings`]: for the iteration they choose.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Preparation {
+    /// The condensation path (`docs/sparse-path.md`).
+    pub condensation: Condensation,
+    /// The augmented balanced pairs' inner penalty.
+    pub inner: InnerPenalty,
 }
 
-/// [`prepare`] with the condensation path given (`docs/sparse-path.md`).
-pub fn prepare_with(model: &Model, condensation: Condensation) -> Result<Prepared, SetupError> {
-    prepare_on(
-        model,
-        condensation,
-        Arc::new(Local::new(model.bodies.len())),
-    )
+impl From<Condensation> for Preparation {
+    fn from(condensation: Condensation) -> Self {
+        Preparation {
+            condensation,
+            ..Preparation::default()
+        }
+    }
+}
+
+impl From<&Settings> for Preparation {
+    fn from(settings: &Settings) -> Self {
+        Preparation {
+            condensation: settings.condensation,
+            inner: if settings.accelerator == Accelerator::Newton {
+                InnerPenalty::Stiffened
+            } else {
+                InnerPenalty::AsGiven
+            },
+        }
+    }
+}
+
+/// Builds the contact geometry and factorises and condenses every body (in parallel), each on
+/// the path the cost model chooses ([`Condensation::Auto`]), for the default iteration.
+pub fn prepare(model: &Model) -> Result<Prepared, SetupError> {
+    prepare_with(model, Preparation::default())
+}
+
+/// [`prepare`] with the condensation path given (`docs/sparse-path.md`), or the settings of the
+/// solve to come.
+pub fn prepare_with(model: &Model, how: impl Into<Preparation>) -> Result<Prepared, SetupError> {
+    prepare_on(model, how, Arc::new(Local::new(model.bodies.len())))
 }
 
 /// [`prepare_with`] for the bodies that `exchange` gives this process; the contact geometry and
@@ -68,11 +99,15 @@ pub fn prepare_with(model: &Model, condensation: Condensation) -> Result<Prepare
 /// process is every process's error.
 pub fn prepare_on(
     model: &Model,
-    condensation: Condensation,
+    how: impl Into<Preparation>,
     exchange: Arc<dyn Exchange>,
 ) -> Result<Prepared, SetupError> {
+    let Preparation {
+        condensation,
+        inner,
+    } = how.into();
     let t = Instant::now();
-    let interface = Interface::new(model)?;
+    let interface = Interface::with_inner(model, inner)?;
     crate::contact_check::refuse(&crate::contact_check::check(model, &interface))?;
     let t_contact = t.elapsed().as_secs_f64();
     let t = Instant::now();
