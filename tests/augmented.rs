@@ -133,6 +133,32 @@ fn exact_mode_updates_do_not_grow_with_a_soft_penalty_or_a_finer_mesh() {
     }
 }
 
+/// With the stiffer inner penalty a pair's gaps close long before its pressures settle: a gap
+/// tolerance met at once does not end the loop while the pressures still change by more than
+/// `tol` of the peak, and a cap on the updates then reports that, not a solution.
+#[test]
+fn closed_gaps_with_unsettled_pressures_are_not_a_solution() {
+    let settings = Settings {
+        gap_tol: Some(1.0),
+        max_updates: 2,
+        ..Settings::default()
+    };
+    let sol = run(&augmented(notch(0.5)), &settings);
+    assert!(!sol.converged);
+    assert!(
+        matches!(sol.stop, Stop::Unenforced { .. }),
+        "{:?}",
+        sol.stop
+    );
+    let message = sol.message.unwrap_or_default();
+    assert!(message.contains("pressures still change"), "{message}");
+    let relaxed = Settings {
+        max_updates: 100,
+        ..settings
+    };
+    assert!(run(&augmented(notch(0.5)), &relaxed).converged);
+}
+
 /// Warm-started Newton solves: every multiplier update after the first inner solve (which is the
 /// penalty solve itself) costs at most two Newton iterations on average, where a cold start would
 /// cost a whole penalty solve each.

@@ -25,9 +25,9 @@ use crate::model::{Enforcement, Forces, InnerPenalty, Model, Penalty};
 
 /// The rod model's factor c of the inner penalty of an augmented balanced pair's point, with the
 /// point's share of its boundary as h: the spring w/θ is then E*/c (E* = 1/(1/E*_α + 1/E*_β)),
-/// about 1/c times the stiffness that the bodies oppose to one node, so each multiplier update leaves
-/// about c/(1 + c) of the error (`docs/augmented-lagrangian.md`). 0.05 is the paper's factor.
-/// The pair's own θ is used where it is stiffer.
+/// about 1/c times the stiffness that the bodies oppose to one node, so each multiplier update
+/// leaves about c/(1 + c) of the error (`docs/augmented-lagrangian.md`). 0.05 is the paper's
+/// factor. The pair's own θ is used where it is stiffer.
 pub const AUGMENTED_C: f64 = 0.05;
 
 /// One contact point: a node of a contact boundary of one body, in one contact pair.

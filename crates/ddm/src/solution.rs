@@ -241,6 +241,13 @@ fn unenforced_message(stop: &Stop) -> Option<String> {
     else {
         return None;
     };
+    if violation <= limit {
+        // The gaps met gap-tol; the pressures of the points with a stiffer inner penalty did not
+        // settle to tol (`docs/augmented-lagrangian.md`, "Stopping rule").
+        return Some(format!(
+            "not enforced: after {updates} multiplier updates the gaps meet gap-tol ({violation:.3e} ≤ {limit:.3e}, a length) but the contact pressures still change by more than tol of the peak from one update to the next (the result is the closest update's); raise tol to accept it, or raise max-updates"
+        ));
+    }
     Some(format!(
         "not enforced: after {updates} multiplier updates the contact still violates the Signorini conditions by {violation:.3e} at best (gap-tol {limit:.3e}, a length; the result is that best update's); a tolerance near the rounding of the displacements cannot be reached, and with forces = \"own-side\" on curved non-matching meshes the violation can stop decreasing above it (balanced pairs, the default, do not): raise gap-tol to accept it; otherwise raise max-updates or use a smaller penalty θ, which makes the updates contract faster"
     ))
