@@ -80,6 +80,7 @@ fn update_loop(
     // returns when it cannot meet the tolerance.
     let mut best: Option<Best> = None;
     let mut since_best = 0;
+    let mut last_distance = f64::INFINITY;
     let mut updates = 0;
     loop {
         updates += 1;
@@ -127,6 +128,13 @@ fn update_loop(
         // Uzawa's λ ← G(λ), accelerated over the earlier updates; the warm start's loads are
         // combined with the same coefficients.
         let mut loads = warm.unwrap_or_else(|| t_load.clone());
+        // An update that took the loop further from done spoils Anderson's secant model (an
+        // extrapolation across a change of the closed set, or past the clamp λ ≥ 0): start it
+        // again from this update.
+        if distance > last_distance {
+            memory.reset();
+        }
+        last_distance = distance;
         memory.advance(&mut lambda, &mut loads, &next, &t_load, 1.0);
         for (j, p) in interface.points.iter_mut().enumerate() {
             lambda[j] = if augmented[j].is_some() {
