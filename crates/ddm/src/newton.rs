@@ -48,7 +48,7 @@ use faer::sparse::linalg::{LuError, SupernodalThreshold};
 use faer::sparse::FaerError;
 use faer::sparse::{SparseColMat, SymbolicSparseColMat, Triplet};
 use faer::{Conj, Index, Mat, Par};
-use nalgebra::{DMatrix, DVector};
+use nalgebra::{DMatrix, DVector, SymmetricEigen};
 use rayon::prelude::*;
 
 use crate::condensed::CondensedBody;
@@ -460,6 +460,22 @@ impl<'a> System<'a> {
             }
         }
         let scale = scale.into_iter().fold(0.0, f64::max);
+        // Balanced pairs, and own-side pairs closed on both sides, give a symmetric G = Σ s sᵀ:
+        // its eigenvectors, three times cheaper than a singular value decomposition (a column
+        // of 64 blocks has 192 modes, and every evaluation asks).
+        let asymmetry = (0..k)
+            .flat_map(|a| (0..a).map(move |b| (a, b)))
+            .fold(0.0f64, |m, (a, b)| m.max((g[(a, b)] - g[(b, a)]).abs()));
+        if asymmetry == 0.0 {
+            let eig = SymmetricEigen::new(g);
+            return eig
+                .eigenvalues
+                .iter()
+                .enumerate()
+                .filter(|(_, &lambda)| lambda.abs() <= 1e-10 * scale)
+                .map(|(q, _)| eig.eigenvectors.column(q).into_owned())
+                .collect();
+        }
         // The null space from G's own singular values (those of GᵀG would square the rounding).
         let svd = g.svd(false, true);
         let Some(v_t) = svd.v_t else {
