@@ -443,11 +443,7 @@ fn sweep<'py>(
             }
         };
         with_threads(threads, || {
-            // The sweeps run the paper's iteration: the pairs' own θ.
-            let how = contactdd_ddm::Preparation {
-                condensation: base.condensation,
-                inner: contactdd_ddm::InnerPenalty::AsGiven,
-            };
+            let how = contactdd_ddm::Preparation::for_sweeps(base.condensation);
             let prepared = contactdd_ddm::prepare_with(&model, how)?;
             let hooks = SweepHooks {
                 cancel: Some(cancel),

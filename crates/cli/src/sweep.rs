@@ -8,7 +8,7 @@ use anyhow::{Context, Result};
 use std::sync::atomic::{AtomicUsize, Ordering};
 
 use contactdd_ddm::sweep::{SweepHooks, SweepRun};
-use contactdd_ddm::{prepare_with, sweep_with, Gamma, InnerPenalty, Method, Preparation, Stop};
+use contactdd_ddm::{prepare_with, sweep_with, Gamma, Method, Preparation, Stop};
 use contactdd_io::atomic::check_output_path;
 use contactdd_io::output::{safe_file_name, sweep_csv, write_atomic};
 
@@ -50,11 +50,7 @@ pub fn sweep(args: SweepArgs) -> Result<Exit> {
                 count(model.bodies.len(), "body", "bodies")
             ));
         }
-        // The sweeps run the paper's iteration: the pairs' own θ.
-        let how = Preparation {
-            condensation: settings.condensation,
-            inner: InnerPenalty::AsGiven,
-        };
+        let how = Preparation::for_sweeps(settings.condensation);
         let prepared = prepare_with(model, how).map_err(|e| anyhow::anyhow!("{e}"))?;
         if !quiet {
             progress(&format!(

@@ -60,6 +60,16 @@ pub struct Preparation {
     pub inner: InnerPenalty,
 }
 
+impl Preparation {
+    /// For a γ sweep ([`crate::sweep`]): the paper's iteration, so the pairs' own θ.
+    pub fn for_sweeps(condensation: Condensation) -> Self {
+        Preparation {
+            condensation,
+            inner: InnerPenalty::AsGiven,
+        }
+    }
+}
+
 impl From<Condensation> for Preparation {
     fn from(condensation: Condensation) -> Self {
         Preparation {
