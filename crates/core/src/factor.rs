@@ -232,20 +232,7 @@ impl FactoredBody {
         additions: &[(usize, usize, f64)],
         out: &mut FactorValues,
     ) -> Result<(), BodyError> {
-        let kv = self.k.val();
-        out.values.clear();
-        if self.mixed.is_empty() {
-            out.values.extend(self.gather.iter().map(|&p| kv[p]));
-        } else {
-            out.values.extend(
-                self.gather
-                    .iter()
-                    .map(|&p| if p == NONE { 0.0 } else { kv[p] }),
-            );
-            for &(e, p, c) in &self.mixed {
-                out.values[e] += c * kv[p];
-            }
-        }
+        self.stiffness_values_into(&mut out.values);
         for &(i, j, a) in additions {
             let (ri, rj) = (self.reduced[i], self.reduced[j]);
             if ri == NONE || rj == NONE {
@@ -299,6 +286,32 @@ impl FactoredBody {
                 }
             })?;
         Ok(())
+    }
+
+    /// The values of the reduced stiffness K itself (no additions) on the pattern of
+    /// [`FactoredBody::reduced_lower`].
+    pub fn reduced_stiffness_values(&self) -> Vec<f64> {
+        let mut values = Vec::with_capacity(self.gather.len());
+        self.stiffness_values_into(&mut values);
+        values
+    }
+
+    /// Writes the reduced stiffness's lower values into `values` (cleared first).
+    fn stiffness_values_into(&self, values: &mut Vec<f64>) {
+        let kv = self.k.val();
+        values.clear();
+        if self.mixed.is_empty() {
+            values.extend(self.gather.iter().map(|&p| kv[p]));
+        } else {
+            values.extend(
+                self.gather
+                    .iter()
+                    .map(|&p| if p == NONE { 0.0 } else { kv[p] }),
+            );
+            for &(e, p, c) in &self.mixed {
+                values[e] += c * kv[p];
+            }
+        }
     }
 
     /// Allocates the factor's values on the first factorisation; a failed allocation is an error

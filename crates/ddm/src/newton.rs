@@ -19,9 +19,9 @@
 //! e_j + Σ_k c_jk B_k· for a closed one (the point's own B row cancels). J is sparse by bodies:
 //! dense blocks of the size of one body's contact zone, coupled only across closed pairs.
 //!
-//! Each step solves J δ = −R by sparse LU and takes the full step. A watchdog keeps the last state
-//! whose ‖R̂‖ (R with closed rows scaled by ρ: the complementarity residual) a step decreased
-//! enough; when a few full steps in a row do not decrease it below that state's, the run returns
+//! Each step solves J δ = −R (by LU, or on sparse bodies by the symmetric form of `primal`)
+//! and takes the full step. A watchdog keeps the last state whose ‖R̂‖ (R with closed rows
+//! scaled by ρ: the complementarity residual) a step decreased enough; when a few full steps in a row do not decrease it below that state's, the run returns
 //! there and backtracks along that state's step. Two safeguards keep J regular:
 //! - rigid motions that no closed contact resists (two floating bodies moving together) are in
 //!   the kernel of J; they are found from the bodies' free rigid modes, and the step is kept
@@ -61,6 +61,13 @@ use crate::robin_sweep::Breakdown;
 use crate::shared_rows::{body_parts, BodyPart};
 use crate::solver::Prepared;
 
+mod primal;
+use primal::PrimalCache;
+
+/// The forcing term of the inexact Newton step (Dembo, Eisenstat & Steihaug 1982) as a fraction
+/// of the convergence tolerance: a step is refined until ‖Jδ + R‖ ≤ 10⁻³ tol ‖R‖, an error that
+/// none of the iteration's decisions can see.
+const FORCING: f64 = 1e-3;
 /// Full steps the watchdog takes without a sufficient decrease of ‖R̂‖ before it returns to its
 /// checkpoint (the window of Grippo, Lampariello & Lucidi's non-monotone rule, 10).
 const WINDOW: usize = 10;
@@ -137,6 +144,13 @@ struct System<'a> {
     balanced: Vec<bool>,
     /// The sparse LU kept between steps (sparse path only).
     lu: Mutex<LuCache>,
+    /// Whether the step may take the symmetric form (`primal`), and its kept factor.
+    symmetric: bool,
+    /// Whether the penalty problem minimises an energy (every pair balanced, or own-side with
+    /// matching sides), so that it has one solution whatever the start. Own-side pairs on
+    /// non-matching meshes derive from no energy and can have several (a start decides which).
+    variational: bool,
+    primal: Mutex<PrimalCache>,
 }
 
 /// U, s and R at one τ.
@@ -232,7 +246,7 @@ impl<'a> System<'a> {
                 })
             })
             .collect();
-        System {
+        let mut system = System {
             interface,
             bodies: &prepared.bodies,
             exchange,
@@ -249,7 +263,13 @@ impl<'a> System<'a> {
             balanced,
             d0,
             lu: Mutex::new(LuCache::default()),
-        }
+            symmetric: false,
+            variational: false,
+            primal: Mutex::new(PrimalCache::default()),
+        };
+        system.symmetric = system.every_body_sparse();
+        system.variational = system.springs(&vec![true; system.len()]).is_some();
+        system
     }
 
     fn len(&self) -> usize {
@@ -601,7 +621,16 @@ impl<'a> System<'a> {
     }
 
     /// The Newton step: solves [J Z; Zᵀ 0] [δ; μ] = [−R; 0].
-    fn step(&self, chi: &[bool], z: &[Vec<f64>], r: &[f64]) -> Option<Vec<f64>> {
+    ///
+    ///
+    /// The symmetric form refines its step against the true J until the residual is at most
+    /// `eta` ‖R‖ (an inexact Newton step); the LU refines while that halves the residual.
+    fn step(&self, chi: &[bool], z: &[Vec<f64>], r: &[f64], eta: f64) -> Option<Vec<f64>> {
+        if self.symmetric {
+            if let Some(delta) = self.symmetric_step(chi, z, r, eta * norm(r)) {
+                return Some(delta);
+            }
+        }
         let m = self.len();
         let mut n = m + z.len();
         let mut trip = Vec::new();
@@ -806,12 +835,7 @@ impl<'a> System<'a> {
         let range = self.range(b);
         let local = k - range.start;
         let Some(bm) = &self.response[b] else {
-            let dofs = match (&self.parts[b], self.bodies[b].as_ref()) {
-                (BodyPart::Remote(rows), _) => rows.point_dofs(local),
-                (_, Some(body)) => body.sparse().map_or(&[][..], |s| s.point_dofs(local)),
-                (_, None) => &[],
-            };
-            if let Some(offset) = self.sparse_offset[b] {
+            if let Some((offset, dofs)) = self.sparse_dofs(k) {
                 for &(r, n) in dofs {
                     trip.push(Triplet::new(j, offset + r, c * n));
                 }
@@ -824,6 +848,19 @@ impl<'a> System<'a> {
                 trip.push(Triplet::new(j, col, v));
             }
         }
+    }
+
+    /// The column of the first reduced unknown of point k's body in the Newton system, and the
+    /// point's reduced DOFs with their normal components (`None` for a dense body).
+    fn sparse_dofs(&self, k: usize) -> Option<(usize, &[(usize, f64)])> {
+        let b = self.body_of[k];
+        let local = k - self.range(b).start;
+        let dofs = match (&self.parts[b], self.bodies[b].as_ref()) {
+            (BodyPart::Remote(rows), _) => rows.point_dofs(local),
+            (_, Some(body)) => body.sparse().map_or(&[][..], |s| s.point_dofs(local)),
+            (_, None) => &[],
+        };
+        Some((self.sparse_offset[b]?, dofs))
     }
 
     /// ‖R‖ with the components along the kernel `z` removed (those are the bodies' balance,
@@ -1145,6 +1182,9 @@ impl<'s, 'a> Run<'s, 'a> {
             let range = system.range(b);
             match (warm, body) {
                 (Some(warm), _) => t[range.clone()].copy_from_slice(&warm[range]),
+                // Where the penalty problem has one solution, a sparse body starts unloaded:
+                // its load for u⁰ takes conjugate gradients that cost more than a Newton step.
+                (None, Some(body)) if body.sparse().is_some() && system.variational => {}
                 (None, Some(body)) => {
                     let u0 = starting_values(system.interface, range.clone(), settings.u0);
                     t[range].copy_from_slice(&body.initial_load(&u0))
@@ -1186,7 +1226,7 @@ impl<'s, 'a> Run<'s, 'a> {
             };
             let z = self.system.kernel(free);
             let r = self.system.residual(&self.tau, &self.state, &chi);
-            let Some(delta) = self.system.step(&chi, &z, &r) else {
+            let Some(delta) = self.system.step(&chi, &z, &r, FORCING * settings.tol) else {
                 return (self.failure(k, Breakdown::Singular), k);
             };
             let checkpoint = watchdog.take().unwrap_or_else(|| Checkpoint {
@@ -1361,6 +1401,9 @@ impl<'s, 'a> Run<'s, 'a> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::condensed::Condensation;
+    use crate::model::Model;
+    use crate::solver::prepare_with;
 
     /// A small nonsymmetric tridiagonal system with a known solution.
     fn system(n: usize) -> (SparseColMat<usize, f64>, Mat<f64>, Vec<f64>) {
@@ -1379,6 +1422,77 @@ mod tests {
             b[(t.row, 0)] += t.val * x[t.col];
         }
         (a, b, x)
+    }
+
+    /// The notch on the sparse path, with `upper` cells in x on the upper body (another count
+    /// than the lower body's 12: non-matching), P1 or P2, and the pair's forces.
+    fn notch(upper: usize, order: contactdd_core::Order, forces: crate::Forces) -> Model {
+        let make = |nx| {
+            let notch = crate::benchmark::Notch {
+                nx,
+                ny: 6,
+                order,
+                ..Default::default()
+            };
+            notch.model().expect("the notch builds")
+        };
+        let mut model = make(12);
+        model.bodies[1] = make(upper).bodies.swap_remove(1);
+        model.pairs[0].forces = forces;
+        // Unequal pressures: the loads do work along the blocks' joint free motion, so the
+        // bordered system's multiplier μ is not zero.
+        model.bodies[1].load.iter_mut().for_each(|f| *f *= 1.25);
+        model
+    }
+
+    /// The step by the symmetric form against the LU's at the starting state and after one step
+    /// (the joint vertical translation of the two floating blocks is in the kernel of J).
+    fn compare_steps(model: &Model) -> usize {
+        let prepared = prepare_with(model, Condensation::Sparse).expect("the notch prepares");
+        let mut system = System::new(&prepared, &prepared.interface);
+        assert!(system.symmetric);
+        // An arbitrary start: its residual also acts along the kernel (μ ≠ 0).
+        let mut tau: Vec<f64> = (0..system.len()).map(|j| 1e-4 * (j as f64).sin()).collect();
+        let mut symmetric = 0;
+        for _ in 0..2 {
+            let eval = system.evaluate(&tau);
+            let chi = system.jacobian_set(&eval);
+            let z = system.kernel(&system.free_motions(&chi));
+            assert_eq!(z.len(), 1, "one free motion");
+            let r = system.residual(&tau, &eval, &chi);
+            system.symmetric = false;
+            let lu = system.step(&chi, &z, &r, 0.0).expect("the LU step");
+            // Unrefined (any accuracy will do): the symmetric form itself must be exact.
+            if let Some(sym) = system.symmetric_step(&chi, &z, &r, f64::INFINITY) {
+                symmetric += 1;
+                let scale = lu.iter().fold(0.0f64, |a, v| a.max(v.abs()));
+                for (a, b) in sym.iter().zip(&lu) {
+                    assert!(
+                        (a - b).abs() <= 1e-9 * scale,
+                        "{a} against {b} (scale {scale})"
+                    );
+                }
+            }
+            system.symmetric = true;
+            tau.iter_mut().zip(&lu).for_each(|(t, d)| *t += d);
+        }
+        symmetric
+    }
+
+    #[test]
+    fn the_symmetric_step_solves_the_bordered_system_of_the_lu() {
+        use crate::Forces::{Balanced, OwnSide};
+        use contactdd_core::Order::{P1, P2};
+        // Matching own-side, non-matching balanced (P1 and P2): every step symmetric.
+        for (upper, order, forces) in [(12, P1, OwnSide), (17, P1, Balanced), (9, P2, Balanced)] {
+            assert_eq!(
+                compare_steps(&notch(upper, order, forces)),
+                2,
+                "{upper} {order:?}"
+            );
+        }
+        // Non-matching own-side: each side loads only itself, P is not symmetric, the LU steps.
+        assert_eq!(compare_steps(&notch(17, P1, OwnSide)), 0);
     }
 
     #[test]

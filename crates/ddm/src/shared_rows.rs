@@ -40,6 +40,8 @@ pub struct SparseRows {
     free: usize,
     dofs: Vec<Vec<(usize, f64)>>,
     rows: Vec<(usize, usize, f64)>,
+    /// The lower triangle of the reduced stiffness K, for the symmetric step.
+    stiffness: Vec<(usize, usize, f64)>,
 }
 
 impl SparseRows {
@@ -62,6 +64,42 @@ impl SparseRows {
                 start + (c - self.free)
             };
             trip.push(Triplet::new(offset + r, col, v));
+        }
+    }
+}
+
+/// Pushes the lower triangle of a sparse body's reduced stiffness K (no springs) with its
+/// unknowns at `offset..`, in the same order on every process: the symmetric Newton step's block
+/// of the body (`crate::newton::primal`). Nothing for a dense body.
+pub fn push_stiffness(
+    part: &BodyPart,
+    body: Option<&CondensedBody>,
+    offset: usize,
+    trip: &mut Vec<Triplet<usize, usize, f64>>,
+) {
+    match (part, body) {
+        (BodyPart::Remote(rows), _) => trip.extend(
+            rows.stiffness
+                .iter()
+                .map(|&(r, c, v)| Triplet::new(offset + r, offset + c, v)),
+        ),
+        (BodyPart::Own { .. }, Some(body)) => stiffness_entries(body, |r, c, v| {
+            trip.push(Triplet::new(offset + r, offset + c, v))
+        }),
+        _ => {}
+    }
+}
+
+/// Calls `f(row, col, value)` for the lower triangle of the body's reduced stiffness, column by
+/// column.
+fn stiffness_entries(body: &CondensedBody, mut f: impl FnMut(usize, usize, f64)) {
+    let op = body.operator();
+    let lower = op.reduced_lower();
+    let values = op.reduced_stiffness_values();
+    let (col_ptr, row_idx) = (lower.symbolic().col_ptr(), lower.symbolic().row_idx());
+    for col in 0..lower.ncols() {
+        for p in col_ptr[col]..col_ptr[col + 1] {
+            f(row_idx[p], col, values[p]);
         }
     }
 }
@@ -97,7 +135,8 @@ pub fn body_parts(bodies: &[Option<CondensedBody>], exchange: &dyn Exchange) -> 
 }
 
 /// A sparse body's rows and point DOFs: `[free, points, per point its DOF count and (dof, n)
-/// pairs, then (row, column, value) triples]`; empty for a dense body.
+/// pairs, the number of rows' triples, the rows' (row, column, value) triples, then the
+/// stiffness's]`; empty for a dense body.
 fn pack(body: &CondensedBody) -> Vec<f64> {
     let Some(s) = body.sparse() else {
         return Vec::new();
@@ -113,10 +152,13 @@ fn pack(body: &CondensedBody) -> Vec<f64> {
         out.push(dofs.len() as f64);
         out.extend(dofs.iter().flat_map(|&(r, n)| [r as f64, n]));
     }
+    out.push(trip.len() as f64);
     out.extend(
         trip.iter()
             .flat_map(|t| [t.row as f64, t.col as f64, t.val]),
     );
+    drop(trip);
+    stiffness_entries(body, |r, c, v| out.extend([r as f64, c as f64, v]));
     out
 }
 
@@ -131,10 +173,18 @@ fn unpack(values: &[f64]) -> Option<SparseRows> {
         dofs.push(pairs.chunks(2).map(|p| (p[0] as usize, p[1])).collect());
         at += 1 + 2 * k;
     }
-    let rows = values
-        .get(at..)?
-        .chunks_exact(3)
-        .map(|t| (t[0] as usize, t[1] as usize, t[2]))
-        .collect();
-    Some(SparseRows { free, dofs, rows })
+    let count = *values.get(at)? as usize;
+    let triples = |v: &[f64]| {
+        v.chunks_exact(3)
+            .map(|t| (t[0] as usize, t[1] as usize, t[2]))
+            .collect()
+    };
+    let rows = triples(values.get(at + 1..at + 1 + 3 * count)?);
+    let stiffness = triples(values.get(at + 1 + 3 * count..)?);
+    Some(SparseRows {
+        free,
+        dofs,
+        rows,
+        stiffness,
+    })
 }
