@@ -8,6 +8,7 @@ floating blocks held only by contact, notched gaps).
     python3 scripts/random_walls.py 1 400               # seeds 1 … 400, penalty contact
     python3 scripts/random_walls.py 1 50 --keep /tmp/w  # keep the problem files and results
     CONTACTDD_BIN=/path/to/contactdd python3 scripts/random_walls.py 1 400   # another build
+    python3 scripts/random_walls.py 1 100 --condensation sparse    # every block on the sparse path
 
 A seed's wall has 2 to 4 rows of 1 to 3 blocks on a clamped base row; each block has its own
 mesh size, diagonal and material, the last block of a row is pushed sideways or held, and the
@@ -104,9 +105,9 @@ def pressures(path):
                 float(row["pressure"]) for row in csv.DictReader(f)}
 
 
-def run(seed, work, enforcement):
+def run(seed, work, enforcement, condensation):
     problem = work / f"wall{seed}.toml"
-    problem.write_text(wall(seed))
+    problem.write_text(wall(seed) + (f'condensation = "{condensation}"\n' if condensation else ""))
     codes = []
     for command in ("solve", "monolithic"):
         out = work / f"{command}{seed}"
@@ -134,13 +135,17 @@ def main():
     if "--enforcement" in args:
         enforcement = args.pop(args.index("--enforcement") + 1)
         args.remove("--enforcement")
+    condensation = None
+    if "--condensation" in args:
+        condensation = args.pop(args.index("--condensation") + 1)
+        args.remove("--condensation")
     first, last = int(args[0]), int(args[1])
     with tempfile.TemporaryDirectory() as tmp:
         work = keep or Path(tmp)
         work.mkdir(parents=True, exist_ok=True)
         failures, both = [], 0
         for seed in range(first, last + 1):
-            codes, difference, failed = run(seed, work, enforcement)
+            codes, difference, failed = run(seed, work, enforcement, condensation)
             both += codes == [0, 0]
             shown = "" if difference is None else f" difference {difference:.1e}"
             print(f"seed {seed}: solve exit {codes[0]}, monolithic exit {codes[1]}{shown}"
