@@ -620,8 +620,8 @@ impl<'a> System<'a> {
         }
     }
 
-    /// The Newton step: solves [J Z; Zᵀ 0] [δ; μ] = [−R; 0].
-    ///
+    /// The Newton step: solves [J Z; Zᵀ 0] [δ; μ] = [−R; 0], by the symmetric form where it
+    /// applies (`primal`), else by LU.
     ///
     /// The symmetric form refines its step against the true J until the residual is at most
     /// `eta` ‖R‖ (an inexact Newton step); the LU refines while that halves the residual.
