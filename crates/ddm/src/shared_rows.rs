@@ -179,8 +179,9 @@ fn unpack(values: &[f64]) -> Option<SparseRows> {
             .map(|t| (t[0] as usize, t[1] as usize, t[2]))
             .collect()
     };
-    let rows = triples(values.get(at + 1..at + 1 + 3 * count)?);
-    let stiffness = triples(values.get(at + 1 + 3 * count..)?);
+    let end = count.checked_mul(3)?.checked_add(at + 1)?;
+    let rows = triples(values.get(at + 1..end)?);
+    let stiffness = triples(values.get(end..)?);
     Some(SparseRows {
         free,
         dofs,
