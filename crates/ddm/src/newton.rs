@@ -1143,6 +1143,8 @@ struct Run<'s, 'a> {
     tau: Vec<f64>,
     state: Evaluation,
     history: Vec<Record>,
+    /// The last body that a step found pulled away from its partners (see [`Run::watch`]).
+    pulled: Option<usize>,
 }
 
 /// The watchdog's reference: the last state whose ‖R̂‖ a step decreased enough, with the closed
@@ -1207,6 +1209,7 @@ impl<'s, 'a> Run<'s, 'a> {
             tau,
             state,
             history: Vec::new(),
+            pulled: None,
         }
     }
 
@@ -1272,17 +1275,24 @@ impl<'s, 'a> Run<'s, 'a> {
         z: &[Vec<f64>],
         delta: Vec<f64>,
     ) -> Result<(Step, Option<Checkpoint>), Stop> {
-        let full = (checkpoint.steps < WINDOW)
+        let mut full = (checkpoint.steps < WINDOW)
             .then(|| self.system.evaluate(&self.along(&delta, 1.0)))
             .filter(|next| self.check(&next.u).is_none());
         // A body that nothing held, and that the step (which closed all its points) leaves held
-        // by none again, is pulled away from its partners.
+        // by none again, is pulled away from its partners. Unless the checkpoint holds every
+        // body: the glued step can also strand a pressed body while other bodies' closed sets are
+        // still wrong (an own-side wall), so the watchdog goes back there; a failure later names
+        // the body.
         let pulled = self
             .state
             .stranded
             .filter(|&b| full.as_ref().is_some_and(|next| next.stranded == Some(b)));
         if let Some(body) = pulled {
-            return Err(diverged(body, k, Breakdown::LostContact));
+            if checkpoint.merit.is_infinite() {
+                return Err(diverged(body, k, Breakdown::LostContact));
+            }
+            self.pulled = Some(body);
+            full = None;
         }
         if let Some(next) = full {
             let kept =
@@ -1376,10 +1386,10 @@ impl<'s, 'a> Run<'s, 'a> {
         self.state.stranded
     }
 
-    /// The stop when the steps make no progress or J is singular: a body that lost its hold, or
-    /// `otherwise`.
+    /// The stop when the steps make no progress or J is singular: a body that lost its hold (now,
+    /// or at a step the watchdog went back from), or `otherwise`.
     fn failure(&self, k: usize, otherwise: Breakdown) -> Stop {
-        match self.stranded() {
+        match self.stranded().or(self.pulled) {
             Some(b) => diverged(b, k, Breakdown::LostContact),
             None => diverged(0, k, otherwise),
         }
