@@ -4,6 +4,7 @@
 //! and force balance.
 
 use contactdd::cases;
+use contactdd::ddm::benchmark::Notch;
 use contactdd::ddm::profile::GapProfile;
 use contactdd::ddm::{prepare, solve, solve_monolithic, Hooks, Model, Penalty, Settings, Solution};
 
@@ -116,6 +117,23 @@ fn a_block_pulled_away_is_not_reported_as_a_solution() {
     assert!(sol.iterations < 100, "{} iterations", sol.iterations);
     let message = sol.message.unwrap_or_default();
     assert!(message.contains("no closed contact point"), "{message}");
+}
+
+/// The paper's notch with its loads reversed: both blocks pulled apart, held vertically only by
+/// the contact. Along their separation no contact point can push back (every gap opens), so the
+/// loads have no equilibrium, whatever the closed set: the solve must say so at once, naming a
+/// block. It ran 100 Newton steps to "stopped reducing the residual" before.
+#[test]
+fn blocks_pulled_apart_are_reported_at_once() {
+    let mut model = Notch::default().model().unwrap();
+    for body in &mut model.bodies {
+        body.load.iter_mut().for_each(|f| *f = -*f);
+    }
+    let sol = run(&model, &Settings::default());
+    assert!(!sol.converged, "reported converged: {:?}", sol.stop);
+    assert!(sol.iterations <= 1, "{} iterations", sol.iterations);
+    let message = sol.message.unwrap_or_default();
+    assert!(message.contains("nothing holds body"), "{message}");
 }
 
 /// The Hertz example (stiff penalty θ·E*/a ≈ 0.01, non-matching P2 meshes): at most 40

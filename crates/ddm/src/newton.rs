@@ -588,10 +588,40 @@ impl<'a> System<'a> {
     /// pair sum the rigid motion `v` changes and whose force acts along it (an own-side point on
     /// a body that moves): closed, they would resist it.
     fn resisting(&self, v: &DVector<f64>) -> Vec<usize> {
+        self.along_motion(v)
+            .into_iter()
+            .filter(|&(_, c, a)| c != 0.0 && a != 0.0)
+            .map(|(j, _, _)| j)
+            .collect()
+    }
+
+    /// The body that nothing can ever hold, if the free motions `free` include one along which
+    /// the loads do work W and no contact point pushes back: taken the way the loads push, every
+    /// point's normal moves away from its partner or along it, so its pressure p ≥ 0 can only do
+    /// work ≥ 0 too, and the rigid motion's balance W + Σ (work of p) = 0 has no solution, with
+    /// any penalty or with exact contact. The body is the one that moves most along it.
+    fn unresisted(&self, free: &[DVector<f64>]) -> Option<usize> {
+        let v = self.loaded_motion(free)?;
+        let work: f64 = v.iter().zip(self.mode_load).map(|(a, f)| a * f).sum();
+        let pushed_back = self
+            .along_motion(&v)
+            .iter()
+            .any(|&(_, _, a)| a * work.signum() > 0.0);
+        if pushed_back {
+            return None;
+        }
+        let share = |b: usize| self.mode_range[b].clone().map(|m| v[m] * v[m]).sum::<f64>();
+        (0..self.bodies.len()).max_by(|&a, &b| share(a).total_cmp(&share(b)))
+    }
+
+    /// Per point that can close: the change of its pair sum along the rigid motion `v`, and the
+    /// normal motion of the body points its force acts on (its own, or both sides' for a
+    /// balanced carrier: its force's work along v per unit pressure, negated). Each is 0 below
+    /// 10⁻⁸ of its largest value (rounding).
+    fn along_motion(&self, v: &DVector<f64>) -> Vec<(usize, f64, f64)> {
         let points = &self.interface.points;
         let (mut sum, mut load) = (vec![0.0; v.len()], vec![0.0; v.len()]);
         let along = |row: &[f64]| row.iter().zip(v.iter()).map(|(a, b)| a * b).sum::<f64>();
-        // Per point: the change of its pair sum along v, and its force's work along v.
         let change: Vec<(usize, f64, f64)> = (0..self.len())
             .filter(|&j| {
                 let p = &points[j];
@@ -605,10 +635,10 @@ impl<'a> System<'a> {
         let largest =
             |f: fn(&(usize, f64, f64)) -> f64| change.iter().fold(0.0f64, |m, c| m.max(f(c).abs()));
         let (sums, works) = (largest(|c| c.1), largest(|c| c.2));
+        let cut = |x: f64, top: f64| if x.abs() > 1e-8 * top { x } else { 0.0 };
         change
             .into_iter()
-            .filter(|&(_, c, a)| c.abs() > 1e-8 * sums && a.abs() > 1e-8 * works)
-            .map(|(j, _, _)| j)
+            .map(|(j, c, a)| (j, cut(c, sums), cut(a, works)))
             .collect()
     }
 
@@ -1218,6 +1248,9 @@ impl<'s, 'a> Run<'s, 'a> {
         for k in 1..=settings.max_iter {
             if hooks.cancel.is_some_and(|c| c.load(Ordering::Relaxed)) {
                 return (Stop::Interrupted, k - 1);
+            }
+            if let Some(b) = self.system.unresisted(&self.state.free) {
+                return (diverged(b, k, Breakdown::LostContact), k);
             }
             let chi = self.system.jacobian_set(&self.state);
             let found;
