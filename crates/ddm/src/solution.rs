@@ -8,7 +8,7 @@ use contactdd_core::{ElasticBody, Mesh, Vector, DIM};
 use crate::contact::Interface;
 use crate::iteration::{Accelerator, Breakdown, CoarseMode, Record, Settings, Stop};
 use crate::method::Method;
-use crate::model::Model;
+use crate::model::{Forces, Model};
 use crate::relaxation::Gamma;
 
 /// Fields of one body.
@@ -253,6 +253,15 @@ fn unenforced_message(stop: &Stop) -> Option<String> {
     ))
 }
 
+/// Why the Newton steps can stall with own-side pairs, if the model has any.
+fn own_side_hint(model: &Model) -> &'static str {
+    if model.pairs.iter().any(|p| p.forces == Forces::OwnSide) {
+        "; own-side pairs on non-matching meshes derive from no energy, and their residual can stop decreasing short of a solution: balanced pairs (forces = \"balanced\", the default) minimise an energy"
+    } else {
+        ""
+    }
+}
+
 /// The largest relative change of a body in the last record (NaN without records).
 fn largest_change(history: &[Record]) -> f64 {
     history
@@ -288,7 +297,8 @@ fn newton_message(stop: &Stop, model: &Model, history: &[Record], tol: f64) -> O
                 body(*b)
             ),
             Breakdown::NoDescent => format!(
-                "diverged: the Newton steps stopped reducing the residual at step {iteration}; try the Robin sweeps (accelerator = \"none\")"
+                "diverged: the Newton steps stopped reducing the residual at step {iteration}; try the Robin sweeps (accelerator = \"none\"){}",
+                own_side_hint(model)
             ),
             Breakdown::Singular => format!(
                 "diverged: the interface Newton system became singular at step {iteration}; try the Robin sweeps (accelerator = \"none\")"
