@@ -22,7 +22,7 @@ use std::fmt;
 
 use contactdd_core::Point;
 
-use crate::contact::Interface;
+use crate::contact::{ContactPoint, Interface};
 use crate::error::SetupError;
 use crate::model::Model;
 
@@ -115,9 +115,16 @@ impl fmt::Display for Finding {
 /// The findings about every pair of `model`, whose contact points are `interface`.
 pub fn check(model: &Model, interface: &Interface) -> Vec<Finding> {
     let mut findings = Vec::new();
+    // Each pair's points, in one pass over all of them.
+    let mut of_pair: Vec<Vec<&ContactPoint>> = vec![Vec::new(); model.pairs.len()];
+    for q in &interface.points {
+        if let Some(list) = of_pair.get_mut(q.pair) {
+            list.push(q);
+        }
+    }
     for (p, pair) in model.pairs.iter().enumerate() {
-        let points = interface.points.iter().filter(|q| q.pair == p);
-        let Some(worst) = points
+        let Some(worst) = of_pair[p]
+            .iter()
             .filter(|q| q.has_partner())
             .max_by(|a, b| (-a.gap).total_cmp(&-b.gap))
         else {

@@ -41,7 +41,8 @@ pub fn contact_point_data(name: &str, num_nodes: usize, pairs: &[PairResult]) ->
         gap: vec![f64::NAN; num_nodes],
         status: vec![f64::NAN; num_nodes],
     };
-    for p in pairs {
+    // Only the pairs of this body: a model of thousands of bodies has thousands of pairs.
+    for p in pairs.iter().filter(|p| p.bodies.iter().any(|b| b == name)) {
         for i in (0..p.side.len()).filter(|&i| p.bodies[p.side[i]] == name) {
             let (v, gap) = (p.node[i], p.gap[i]);
             let old = data.gap.get(v).copied();

@@ -45,6 +45,7 @@
 //! [`write_results`] writes the folder as a set ([`crate::result_set`]): the data files first,
 //! `summary.json` last, so a folder without `summary.json` holds no complete result.
 
+use std::collections::HashSet;
 use std::io::{Error, ErrorKind};
 use std::path::{Path, PathBuf};
 
@@ -493,12 +494,15 @@ struct Extra {
 /// earlier body's name gives the same file name.
 pub(crate) fn vtu_paths(dir: &Path, suffix: &str, bodies: &[BodyResult]) -> Vec<PathBuf> {
     let mut paths: Vec<PathBuf> = Vec::with_capacity(bodies.len());
+    // The names taken so far (a set: thousands of bodies are compared in linear time).
+    let mut taken: HashSet<PathBuf> = HashSet::with_capacity(bodies.len());
     for (b, body) in bodies.iter().enumerate() {
         let name = safe_file_name(&body.name);
         let mut path = dir.join(format!("{name}{suffix}.vtu"));
-        if paths.contains(&path) {
+        if taken.contains(&path) {
             path = dir.join(format!("{name}-{b}{suffix}.vtu"));
         }
+        taken.insert(path.clone());
         paths.push(path);
     }
     paths
