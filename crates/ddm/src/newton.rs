@@ -630,10 +630,11 @@ impl<'a> System<'a> {
         (0..self.bodies.len()).max_by(|&a, &b| share(a).total_cmp(&share(b)))
     }
 
-    /// Per point that can close: the change of its pair sum along the rigid motion `v`, and the
-    /// normal motion of the body points its force acts on (its own, or both sides' for a
-    /// balanced carrier: its force's work along v per unit pressure, negated). Each is 0 below
-    /// 10⁻⁸ of its largest value (rounding).
+    /// Per point that can close: c, the change of its pair sum along the rigid motion `v`, and
+    /// a, the same change seen by the bodies its force acts on (its own body's part for an
+    /// own-side point; a = c for a balanced carrier, whose force acts through its gap row), so
+    /// that its pressure p does work −p·a along v. Each is 0 below 10⁻⁸ of its largest value
+    /// (rounding).
     fn along_motion(&self, v: &DVector<f64>) -> Vec<(usize, f64, f64)> {
         let points = &self.interface.points;
         let along = |row: &[(usize, f64)]| row.iter().map(|&(m, x)| x * v[m]).sum::<f64>();
@@ -1145,7 +1146,6 @@ fn pin_points(z: &[Vec<f64>]) -> Vec<usize> {
     pins
 }
 
-/// The most kernel vectors [`System::kernel`] can return: the number of free rigid modes.
 /// The (row, column, value) entries sorted by position, duplicates summed in their order.
 fn merge(mut entries: Vec<(usize, usize, f64)>) -> Vec<(usize, usize, f64)> {
     entries.sort_by_key(|e| (e.0, e.1));
@@ -1159,6 +1159,7 @@ fn merge(mut entries: Vec<(usize, usize, f64)>) -> Vec<(usize, usize, f64)> {
     merged
 }
 
+/// The most kernel vectors [`System::kernel`] can return: the number of free rigid modes.
 fn modes_bound(mode_range: &[Range<usize>]) -> usize {
     mode_range.iter().map(|r| r.end).max().unwrap_or(0)
 }
