@@ -9,6 +9,10 @@
 //! that of their Schur complement S = G_DD − G_DE G_EE⁻¹ G_ED (a small dense matrix), by the
 //! symmetric eigensolver with the threshold of the dense method; a null vector y of S extends to
 //! G's as (−G_EE⁻¹ G_ED y, y). A mode with no entry at all is free by itself.
+//!
+//! G is semidefinite for balanced pairs (a sum of s sᵀ). An own-side G that happens to be
+//! symmetric need not be; its negative pivots are deferred like the small ones, and S's
+//! eigensolver, which looks at |λ|, decides as the dense method did.
 
 use nalgebra::{DMatrix, DVector, SymmetricEigen};
 
