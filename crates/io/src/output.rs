@@ -610,6 +610,33 @@ mod tests {
         );
     }
 
+    /// Bodies whose names give the same file name get the body's index appended, in order.
+    #[test]
+    fn vtu_names_that_collide_get_the_body_index() {
+        let mesh = contactdd_core::Mesh::new(
+            vec![[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]],
+            Order::P1,
+            vec![0, 1, 2],
+            Default::default(),
+            Default::default(),
+        )
+        .unwrap();
+        let body = |name: &str| BodyResult {
+            name: name.to_string(),
+            mesh: mesh.clone(),
+            displacement: Vec::new(),
+            stress: Vec::new(),
+            von_mises: Vec::new(),
+            contact_pressure: Vec::new(),
+        };
+        let bodies = ["a b", "c", "a_b", "a/b"].map(body);
+        let names: Vec<String> = vtu_paths(Path::new("out"), "", &bodies)
+            .iter()
+            .map(|p| p.file_name().unwrap().to_string_lossy().into_owned())
+            .collect();
+        assert_eq!(names, ["a_b.vtu", "c.vtu", "a_b-2.vtu", "a_b-3.vtu"]);
+    }
+
     #[test]
     fn file_names_are_sanitised() {
         assert_eq!(safe_file_name("lower"), "lower");
