@@ -582,11 +582,19 @@ impl<'a> System<'a> {
             return None;
         }
         free.iter()
-            .find(|v| {
-                let work: f64 = v.iter().zip(self.mode_load).map(|(a, f)| a * f).sum();
-                work.abs() > WORK_TOL * total
-            })
+            .find(|v| self.work(v).abs() > WORK_TOL * total)
             .cloned()
+    }
+
+    /// The loads' work along the rigid motion `v` (weights of the free modes).
+    fn work(&self, v: &DVector<f64>) -> f64 {
+        v.iter().zip(self.mode_load).map(|(a, f)| a * f).sum()
+    }
+
+    /// The body that moves most along the rigid motion `v`.
+    fn moves_most(&self, v: &DVector<f64>) -> Option<usize> {
+        let share = |b: usize| self.mode_range[b].clone().map(|m| v[m] * v[m]).sum::<f64>();
+        (0..self.bodies.len()).max_by(|&a, &b| share(a).total_cmp(&share(b)))
     }
 
     /// The body that nothing holds in `closed` (whose free motions are `free`): one none of whose
@@ -596,8 +604,7 @@ impl<'a> System<'a> {
             return Some(b);
         }
         let v = self.loaded_motion(free)?;
-        let share = |b: usize| self.mode_range[b].clone().map(|m| v[m] * v[m]).sum::<f64>();
-        (0..self.bodies.len()).max_by(|&a, &b| share(a).total_cmp(&share(b)))
+        self.moves_most(&v)
     }
 
     /// The points that can close (partnered, weighted, and carriers on balanced pairs) whose
@@ -618,16 +625,15 @@ impl<'a> System<'a> {
     /// any penalty or with exact contact. The body is the one that moves most along it.
     fn unresisted(&self, free: &[DVector<f64>]) -> Option<usize> {
         let v = self.loaded_motion(free)?;
-        let work: f64 = v.iter().zip(self.mode_load).map(|(a, f)| a * f).sum();
+        let push = self.work(&v).signum();
         let pushed_back = self
             .along_motion(&v)
             .iter()
-            .any(|&(_, _, a)| a * work.signum() > 0.0);
+            .any(|&(_, _, a)| a * push > 0.0);
         if pushed_back {
             return None;
         }
-        let share = |b: usize| self.mode_range[b].clone().map(|m| v[m] * v[m]).sum::<f64>();
-        (0..self.bodies.len()).max_by(|&a, &b| share(a).total_cmp(&share(b)))
+        self.moves_most(&v)
     }
 
     /// Per point that can close: c, the change of its pair sum along the rigid motion `v`, and
