@@ -27,6 +27,7 @@ use faer::{Conj, Mat, MatMut, Par, Side};
 
 use crate::error::BodyError;
 use crate::geometry::{component_of, node_of};
+use crate::ordering::node_amd;
 use crate::supports::Constraints;
 
 const NONE: usize = usize::MAX;
@@ -110,19 +111,20 @@ impl FactoredBody {
             .filter_map(|&d| (reduced[d] != NONE).then_some(reduced[d]))
             .filter(|&r| seen.insert(r))
             .collect();
-        // With no interface faer's own AMD is the ordering; otherwise AMD on the interior and the
-        // interface last.
+        // With no interface AMD on the nodes' graph is the ordering; otherwise AMD on the interior
+        // and the interface last.
         let perm = if interface.is_empty() {
             Vec::new()
         } else {
             last_ordering(&lower, &interface).map_err(|e| fail(format!("{e:?}")))?
         };
-        let inv = inverse(&perm);
-        let ordering = if interface.is_empty() {
-            SymmetricOrdering::Amd
+        let (perm, inv) = if interface.is_empty() {
+            node_amd(lower.as_ref()).ok_or_else(|| fail("no fill-reducing order".into()))?
         } else {
-            SymmetricOrdering::Custom(faer::perm::PermRef::new_checked(&perm, &inv, n))
+            let inv = inverse(&perm);
+            (perm, inv)
         };
+        let ordering = SymmetricOrdering::Custom(faer::perm::PermRef::new_checked(&perm, &inv, n));
         let params = CholeskySymbolicParams {
             // The Schur factor is read off supernodes; small bodies would otherwise go simplicial.
             supernodal_flop_ratio_threshold: if interface.is_empty() {

@@ -1,0 +1,479 @@
+//! A sparse Cholesky factor whose refactorisation recomputes only what a change of values reaches.
+//!
+//! A left-looking supernodal factorisation computes supernode s from the values of A in its
+//! columns and the columns of L of its descendants in the elimination tree. Changed entries in the
+//! columns of supernode s therefore change s and its ancestors only: every other supernode keeps
+//! its values. When a few entries change between two factorisations (the springs of the contact
+//! points whose state changed, between two Newton steps), only that part of the tree is
+//! recomputed (`docs/sparse-path.md`, "Partial refactorisation").
+//!
+//! The symbolic analysis (AMD order, supernodal structure) is faer's; so is the solve. The numeric
+//! factorisation is done here, supernode by supernode, with faer's dense kernels.
+
+use faer::dyn_stack::{MemBuffer, MemStack, StackReq};
+use faer::linalg::cholesky::llt::factor::LltRegularization;
+use faer::linalg::cholesky::llt::factor::{cholesky_in_place, cholesky_in_place_scratch};
+use faer::linalg::matmul::matmul;
+use faer::linalg::triangular_solve::solve_lower_triangular_in_place;
+use faer::perm::PermRef;
+use faer::sparse::linalg::cholesky::supernodal::SymbolicSupernodalCholesky;
+use faer::sparse::linalg::cholesky::{
+    factorize_symbolic_cholesky, CholeskySymbolicParams, LltRef, SymbolicCholesky,
+    SymbolicCholeskyRaw, SymmetricOrdering,
+};
+use faer::sparse::linalg::SupernodalThreshold;
+use faer::sparse::SymbolicSparseColMatRef;
+use faer::{Accum, Conj, MatMut, MatRef, Par, Side};
+
+use crate::ordering::node_amd;
+
+/// Marks a supernode without a parent (a root of the elimination tree).
+const ROOT: usize = usize::MAX;
+
+/// Why a factorisation failed.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum FactorError {
+    /// A pivot was not positive: the matrix is not positive definite.
+    NotPositiveDefinite,
+    /// The work space could not be allocated.
+    OutOfMemory,
+}
+
+/// The Cholesky factor L Lᵀ = P A Pᵀ of a symmetric positive definite matrix A with a fixed
+/// pattern, given by its lower triangle.
+pub struct IncrementalCholesky {
+    tree: Tree,
+    /// A's values at the last factorisation, and its factor (valid if `factored`).
+    values: Vec<f64>,
+    l_values: Vec<f64>,
+    factored: bool,
+}
+
+/// What the analysis fixes: the order, the supernodes and who updates whom.
+struct Tree {
+    symbolic: SymbolicCholesky<usize>,
+    /// Per permuted column j, the entries of P A Pᵀ's lower triangle in it: rows of the permuted
+    /// matrix and positions in A's value array (`lower_ptr` delimits the columns).
+    lower_ptr: Vec<usize>,
+    lower: Vec<(usize, usize)>,
+    /// The supernode of every permuted column, and every supernode's parent (or [`ROOT`]).
+    supernode_of: Vec<usize>,
+    parent: Vec<usize>,
+    /// Per supernode s, the descendants whose pattern has rows in s (`updaters_ptr` delimits).
+    updaters_ptr: Vec<usize>,
+    updaters: Vec<usize>,
+}
+
+impl IncrementalCholesky {
+    /// Analyses the lower triangle `pattern` of A (fill-reducing AMD order, supernodal
+    /// structure); `None` if the analysis fails (out of memory, index overflow).
+    pub fn analyse(pattern: SymbolicSparseColMatRef<'_, usize>) -> Option<Self> {
+        let (fwd, inv) = node_amd(pattern)?;
+        let n = pattern.ncols();
+        let order = PermRef::new_checked(&fwd, &inv, n);
+        let symbolic = factorize_symbolic_cholesky(
+            pattern,
+            Side::Lower,
+            SymmetricOrdering::Custom(order),
+            CholeskySymbolicParams {
+                supernodal_flop_ratio_threshold: SupernodalThreshold::FORCE_SUPERNODAL,
+                ..Default::default()
+            },
+        )
+        .ok()?;
+        let perm_inv = match symbolic.perm() {
+            Some(perm) => perm.arrays().1.to_vec(),
+            None => (0..n).collect(),
+        };
+        let (lower_ptr, lower) = permuted_lower(pattern, &perm_inv);
+        let SymbolicCholeskyRaw::Supernodal(sn) = symbolic.raw() else {
+            return None;
+        };
+        let supernode_of = supernode_of(sn);
+        let parent = (0..sn.n_supernodes())
+            .map(|s| {
+                sn.supernode(s)
+                    .pattern()
+                    .first()
+                    .map_or(ROOT, |&r| supernode_of[r])
+            })
+            .collect();
+        let (updaters_ptr, updaters) = updaters(sn, &supernode_of);
+        let l_values = vec![0.0; symbolic.len_val()];
+        let tree = Tree {
+            symbolic,
+            lower_ptr,
+            lower,
+            supernode_of,
+            parent,
+            updaters_ptr,
+            updaters,
+        };
+        Some(IncrementalCholesky {
+            tree,
+            values: Vec::new(),
+            l_values,
+            factored: false,
+        })
+    }
+
+    /// Factorises A with the values `values` (in the analysed pattern's order), recomputing only
+    /// the supernodes that the values changed since the last factorisation reach (all of them the
+    /// first time, or after a failure). Returns the share of supernodes recomputed.
+    pub fn factorize(&mut self, values: &[f64]) -> Result<f64, FactorError> {
+        let dirty = self.dirty(values);
+        self.values.clear();
+        self.values.extend_from_slice(values);
+        self.factored = false;
+        // `analyse` keeps supernodal structures only.
+        let SymbolicCholeskyRaw::Supernodal(sn) = self.tree.symbolic.raw() else {
+            return Err(FactorError::OutOfMemory);
+        };
+        let mut scratch = Scratch::new(sn).ok_or(FactorError::OutOfMemory)?;
+        for s in (0..dirty.len()).filter(|&s| dirty[s]) {
+            let factor = (&self.values[..], &mut self.l_values[..]);
+            self.tree.factor_supernode(sn, s, factor, &mut scratch)?;
+        }
+        self.factored = true;
+        Ok(dirty.iter().filter(|&&d| d).count() as f64 / dirty.len().max(1) as f64)
+    }
+
+    /// Solves A x = rhs in place with the last factor; `None` if there is none or the solution is
+    /// not finite.
+    pub fn solve_in_place(&self, rhs: &mut [f64]) -> Option<()> {
+        if !self.factored {
+            return None;
+        }
+        let symbolic = &self.tree.symbolic;
+        let req = symbolic.solve_in_place_scratch::<f64>(1, Par::Seq);
+        let mut mem = MemBuffer::try_new(req).ok()?;
+        let n = rhs.len();
+        LltRef::new(symbolic, &self.l_values).solve_in_place_with_conj(
+            Conj::No,
+            MatMut::from_column_major_slice_mut(rhs, n, 1),
+            Par::Seq,
+            MemStack::new(&mut mem),
+        );
+        rhs.iter().all(|v| v.is_finite()).then_some(())
+    }
+
+    /// The supernodes to recompute: those with a changed value in their columns, and their
+    /// ancestors (all of them without a valid factor).
+    fn dirty(&self, values: &[f64]) -> Vec<bool> {
+        let tree = &self.tree;
+        let n_super = tree.parent.len();
+        if !self.factored || self.values.len() != values.len() {
+            return vec![true; n_super];
+        }
+        let mut dirty = vec![false; n_super];
+        for (j, column) in tree.lower_ptr.windows(2).enumerate() {
+            let changed = tree.lower[column[0]..column[1]]
+                .iter()
+                .any(|&(_, p)| values[p].to_bits() != self.values[p].to_bits());
+            let mut s = if changed { tree.supernode_of[j] } else { ROOT };
+            while s != ROOT && !dirty[s] {
+                dirty[s] = true;
+                s = tree.parent[s];
+            }
+        }
+        dirty
+    }
+}
+
+impl Tree {
+    /// Computes the columns of L of supernode `s` from A and its descendants' columns.
+    fn factor_supernode(
+        &self,
+        sn: &SymbolicSupernodalCholesky<usize>,
+        s: usize,
+        (values, l_values): (&[f64], &mut [f64]),
+        scratch: &mut Scratch,
+    ) -> Result<(), FactorError> {
+        let (start, end) = (sn.supernode_begin()[s], sn.supernode_end()[s]);
+        let pattern = sn.supernode(s).pattern();
+        let ncols = end - start;
+        for (i, &row) in pattern.iter().enumerate() {
+            scratch.local[row] = ncols + i;
+        }
+        let val_ptr = sn.col_ptr_for_val();
+        let (head, tail) = l_values.split_at_mut(val_ptr[s]);
+        let mut ls = MatMut::from_column_major_slice_mut(
+            &mut tail[..val_ptr[s + 1] - val_ptr[s]],
+            ncols + pattern.len(),
+            ncols,
+        );
+        ls.fill(0.0);
+        for j in start..end {
+            for &(i, p) in &self.lower[self.lower_ptr[j]..self.lower_ptr[j + 1]] {
+                let row = if i < end { i - start } else { scratch.local[i] };
+                ls[(row, j - start)] += values[p];
+            }
+        }
+        for &d in &self.updaters[self.updaters_ptr[s]..self.updaters_ptr[s + 1]] {
+            update(sn, d, head, (start, end), ls.as_mut(), scratch);
+        }
+        let (mut top, mut bottom) = ls.split_at_row_mut(ncols);
+        cholesky_in_place(
+            top.as_mut(),
+            LltRegularization::default(),
+            Par::Seq,
+            MemStack::new(&mut scratch.mem),
+            Default::default(),
+        )
+        .map_err(|_| FactorError::NotPositiveDefinite)?;
+        solve_lower_triangular_in_place(top.as_ref(), bottom.as_mut().transpose_mut(), Par::Seq);
+        for &row in pattern {
+            scratch.local[row] = usize::MAX;
+        }
+        Ok(())
+    }
+}
+
+/// Subtracts descendant `d`'s contribution L_d[rows ≥ start] L_d[rows in start..end]ᵀ from the
+/// block `ls` of the supernode with columns `start..end` (lower triangle only).
+fn update(
+    sn: &SymbolicSupernodalCholesky<usize>,
+    d: usize,
+    l_values: &[f64],
+    (start, end): (usize, usize),
+    mut ls: MatMut<'_, f64>,
+    scratch: &mut Scratch,
+) {
+    let d_ncols = sn.supernode_end()[d] - sn.supernode_begin()[d];
+    let d_pattern = sn.supernode(d).pattern();
+    let val_ptr = sn.col_ptr_for_val();
+    let ld = MatRef::from_column_major_slice(
+        &l_values[val_ptr[d]..val_ptr[d + 1]],
+        d_ncols + d_pattern.len(),
+        d_ncols,
+    );
+    let first = d_pattern.partition_point(|&r| r < start);
+    let rows = &d_pattern[first..];
+    let mid = rows.partition_point(|&r| r < end);
+    let below = ld.subrows(d_ncols + first, rows.len());
+    let mut t = MatMut::from_column_major_slice_mut(
+        &mut scratch.product[..rows.len() * mid],
+        rows.len(),
+        mid,
+    );
+    matmul(
+        t.as_mut(),
+        Accum::Replace,
+        below,
+        below.subrows(0, mid).transpose(),
+        1.0,
+        Par::Seq,
+    );
+    let ncols = end - start;
+    for (jj, &col) in rows[..mid].iter().enumerate() {
+        for (ii, &row) in rows.iter().enumerate().skip(jj) {
+            let at = if row < end {
+                row - start
+            } else {
+                scratch.local[row]
+            };
+            debug_assert!(at < ncols || row >= end);
+            ls[(at, col - start)] -= t[(ii, jj)];
+        }
+    }
+}
+
+/// Work space of the numeric factorisation, sized for the largest supernode.
+struct Scratch {
+    /// Position of a row inside the current supernode's block (`usize::MAX` outside it).
+    local: Vec<usize>,
+    /// A descendant's update before it is scattered.
+    product: Vec<f64>,
+    /// faer's work space of the dense Cholesky factorisation.
+    mem: MemBuffer,
+}
+
+impl Scratch {
+    fn new(sn: &SymbolicSupernodalCholesky<usize>) -> Option<Self> {
+        let mut rows = 0;
+        let mut cols = 0;
+        for s in 0..sn.n_supernodes() {
+            let ncols = sn.supernode_end()[s] - sn.supernode_begin()[s];
+            rows = rows.max(ncols + sn.supernode(s).pattern().len());
+            cols = cols.max(ncols);
+        }
+        let req: StackReq = cholesky_in_place_scratch::<f64>(cols, Par::Seq, Default::default());
+        Some(Scratch {
+            local: vec![usize::MAX; sn.nrows()],
+            product: vec![0.0; rows * cols],
+            mem: MemBuffer::try_new(req).ok()?,
+        })
+    }
+}
+
+/// The lower triangle of P A Pᵀ by permuted column: (permuted row, position in A's values).
+fn permuted_lower(
+    pattern: SymbolicSparseColMatRef<'_, usize>,
+    perm_inv: &[usize],
+) -> (Vec<usize>, Vec<(usize, usize)>) {
+    let n = pattern.ncols();
+    let (col_ptr, row_idx) = (pattern.col_ptr(), pattern.row_idx());
+    let permuted = |p: usize, c: usize| {
+        let (i, j) = (perm_inv[row_idx[p]], perm_inv[c]);
+        (i.max(j), i.min(j))
+    };
+    let mut ptr = vec![0; n + 1];
+    for c in 0..n {
+        for p in col_ptr[c]..col_ptr[c + 1] {
+            ptr[permuted(p, c).1 + 1] += 1;
+        }
+    }
+    for j in 0..n {
+        ptr[j + 1] += ptr[j];
+    }
+    let mut next = ptr.clone();
+    let mut lower = vec![(0, 0); ptr[n]];
+    for c in 0..n {
+        for p in col_ptr[c]..col_ptr[c + 1] {
+            let (i, j) = permuted(p, c);
+            lower[next[j]] = (i, p);
+            next[j] += 1;
+        }
+    }
+    (ptr, lower)
+}
+
+/// The supernode of every (permuted) column.
+fn supernode_of(sn: &SymbolicSupernodalCholesky<usize>) -> Vec<usize> {
+    let mut of = vec![0; sn.nrows()];
+    for s in 0..sn.n_supernodes() {
+        of[sn.supernode_begin()[s]..sn.supernode_end()[s]].fill(s);
+    }
+    of
+}
+
+/// Per supernode s, the supernodes d < s whose pattern has a row among s's columns, in
+/// increasing order (compressed: pointers and indices).
+fn updaters(
+    sn: &SymbolicSupernodalCholesky<usize>,
+    supernode_of: &[usize],
+) -> (Vec<usize>, Vec<usize>) {
+    let n_super = sn.n_supernodes();
+    let targets = |d: usize| {
+        let mut last = ROOT;
+        sn.supernode(d).pattern().iter().filter_map(move |&r| {
+            let s = supernode_of[r];
+            (s != last).then(|| {
+                last = s;
+                s
+            })
+        })
+    };
+    let mut ptr = vec![0; n_super + 1];
+    for d in 0..n_super {
+        for s in targets(d) {
+            ptr[s + 1] += 1;
+        }
+    }
+    for s in 0..n_super {
+        ptr[s + 1] += ptr[s];
+    }
+    let mut next = ptr.clone();
+    let mut list = vec![0; ptr[n_super]];
+    for d in 0..n_super {
+        for s in targets(d) {
+            list[next[s]] = d;
+            next[s] += 1;
+        }
+    }
+    (ptr, list)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use faer::sparse::{SparseColMat, Triplet};
+
+    /// The lower triangle of a k × k grid's 5-point Laplacian plus `shift` on the diagonal, with
+    /// the extra diagonal values `extra` (node, value).
+    fn grid(k: usize, shift: f64, extra: &[(usize, f64)]) -> SparseColMat<usize, f64> {
+        let mut trip = Vec::new();
+        for i in 0..k {
+            for j in 0..k {
+                let p = i * k + j;
+                let more: f64 = extra.iter().filter(|e| e.0 == p).map(|e| e.1).sum();
+                trip.push(Triplet::new(p, p, 4.0 + shift + more));
+                if j + 1 < k {
+                    trip.push(Triplet::new(p + 1, p, -1.0));
+                }
+                if i + 1 < k {
+                    trip.push(Triplet::new(p + k, p, -1.0));
+                }
+            }
+        }
+        SparseColMat::try_new_from_triplets(k * k, k * k, &trip).unwrap()
+    }
+
+    /// ‖A x − b‖ / ‖b‖ with A given by its lower triangle.
+    fn residual(a: &SparseColMat<usize, f64>, x: &[f64], b: &[f64]) -> f64 {
+        let mut ax = vec![0.0; x.len()];
+        let (ptr, rows, val) = (a.symbolic().col_ptr(), a.symbolic().row_idx(), a.val());
+        for c in 0..x.len() {
+            for p in ptr[c]..ptr[c + 1] {
+                let r = rows[p];
+                ax[r] += val[p] * x[c];
+                if r != c {
+                    ax[c] += val[p] * x[r];
+                }
+            }
+        }
+        let norm = |v: &[f64]| v.iter().map(|x| x * x).sum::<f64>().sqrt();
+        let diff: Vec<f64> = ax.iter().zip(b).map(|(p, q)| p - q).collect();
+        norm(&diff) / norm(b)
+    }
+
+    fn solve(f: &IncrementalCholesky, b: &[f64]) -> Vec<f64> {
+        let mut x = b.to_vec();
+        f.solve_in_place(&mut x).unwrap();
+        x
+    }
+
+    #[test]
+    fn a_partial_refactorisation_solves_the_changed_matrix() {
+        let k = 40;
+        let b: Vec<f64> = (0..k * k).map(|i| ((i * 7919) % 13) as f64 - 6.0).collect();
+        let a = grid(k, 0.01, &[]);
+        let mut f = IncrementalCholesky::analyse(a.symbolic()).unwrap();
+        assert_eq!(f.factorize(a.val()), Ok(1.0));
+        assert!(residual(&a, &solve(&f, &b), &b) < 1e-12);
+        // Stiff springs at a few nodes in one corner: only part of the tree is recomputed.
+        let changed = grid(k, 0.01, &[(0, 1e8), (1, 1e8), (k, 3e7)]);
+        let share = f.factorize(changed.val()).unwrap();
+        assert!(share > 0.0 && share < 0.5, "share {share}");
+        let x = solve(&f, &b);
+        assert!(residual(&changed, &x, &b) < 1e-10);
+        let mut fresh = IncrementalCholesky::analyse(changed.symbolic()).unwrap();
+        fresh.factorize(changed.val()).unwrap();
+        let y = solve(&fresh, &b);
+        let scale = y.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+        assert!(x
+            .iter()
+            .zip(&y)
+            .all(|(p, q)| (p - q).abs() <= 1e-12 * scale));
+        // The same values again: nothing to recompute, the same solution.
+        assert_eq!(f.factorize(changed.val()), Ok(0.0));
+        assert_eq!(solve(&f, &b), x);
+        // And back: the factor of the first matrix.
+        f.factorize(a.val()).unwrap();
+        assert!(residual(&a, &solve(&f, &b), &b) < 1e-12);
+    }
+
+    #[test]
+    fn an_indefinite_matrix_is_refused_and_the_next_one_factorised_whole() {
+        let k = 12;
+        let a = grid(k, 0.0, &[]);
+        let mut f = IncrementalCholesky::analyse(a.symbolic()).unwrap();
+        f.factorize(a.val()).unwrap();
+        let indefinite = grid(k, 0.0, &[(5, -50.0)]);
+        assert_eq!(f.factorize(indefinite.val()), Err(FactorError::NotPositiveDefinite));
+        assert!(f.solve_in_place(&mut vec![1.0; k * k]).is_none());
+        let b = vec![1.0; k * k];
+        assert_eq!(f.factorize(a.val()), Ok(1.0));
+        assert!(residual(&a, &solve(&f, &b), &b) < 1e-12);
+    }
+}
