@@ -22,15 +22,9 @@
 //! and the step is projected onto Zᵀδ = 0 as on the LU path. Refinement against the true J
 //! follows, as on the LU path.
 
-use faer::dyn_stack::{MemBuffer, MemStack};
-use faer::linalg::cholesky::llt::factor::LltRegularization;
-use faer::sparse::linalg::cholesky::{
-    factorize_symbolic_cholesky, CholeskySymbolicParams, LltRef, SymbolicCholesky,
-    SymmetricOrdering,
-};
-use faer::sparse::linalg::SupernodalThreshold;
-use faer::sparse::{SparseColMat, SparseColMatRef, Triplet};
-use faer::{Conj, Mat, MatMut, Par, Side};
+use contactdd_core::incremental_cholesky::IncrementalCholesky;
+use faer::sparse::{SparseColMat, Triplet};
+use faer::Mat;
 use nalgebra::{DMatrix, DVector};
 
 use super::{dot, norm, pin_points, System, MAX_REFINE};
@@ -52,9 +46,9 @@ pub(super) struct PrimalCache {
     /// The pattern of K + N P Nᵀ with the bodies' stiffness as values (the springs zero): built
     /// and analysed at the first step, since only the springs change.
     stiffness: Option<SparseColMat<usize, f64>>,
-    symbolic: Option<SymbolicCholesky<usize>>,
+    /// Its factor: a step recomputes only the supernodes that the changed springs reach.
+    factor: Option<IncrementalCholesky>,
     values: Vec<f64>,
-    l_values: Vec<f64>,
 }
 
 impl PrimalCache {
@@ -76,21 +70,10 @@ impl PrimalCache {
                 return false;
             };
             drop(trip);
-            self.symbolic = factorize_symbolic_cholesky(
-                a.symbolic(),
-                Side::Lower,
-                SymmetricOrdering::Amd,
-                // The strip's supernodes are small, and faer's flop ratio then picks the
-                // simplicial factor, which took twice as long on the 4000 × 16 strip.
-                CholeskySymbolicParams {
-                    supernodal_flop_ratio_threshold: SupernodalThreshold::FORCE_SUPERNODAL,
-                    ..Default::default()
-                },
-            )
-            .ok();
+            self.factor = IncrementalCholesky::analyse(a.symbolic());
             self.stiffness = Some(a);
         }
-        let (Some(a), Some(symbolic)) = (&self.stiffness, &self.symbolic) else {
+        let (Some(a), Some(factor)) = (&self.stiffness, &mut self.factor) else {
             return false;
         };
         self.values.clear();
@@ -103,38 +86,12 @@ impl PrimalCache {
                 Err(_) => return false,
             }
         }
-        self.l_values.resize(symbolic.len_val(), 0.0);
-        let req = symbolic.factorize_numeric_llt_scratch::<f64>(Par::Seq, Default::default());
-        let Ok(mut mem) = MemBuffer::try_new(req) else {
-            return false;
-        };
-        let matrix = SparseColMatRef::new(a.symbolic(), &self.values);
-        symbolic
-            .factorize_numeric_llt(
-                &mut self.l_values,
-                matrix,
-                Side::Lower,
-                LltRegularization::default(),
-                Par::Seq,
-                MemStack::new(&mut mem),
-                Default::default(),
-            )
-            .is_ok()
+        factor.factorize(&self.values).is_ok()
     }
 
     /// Solves in place with the last factor.
     fn solve(&self, rhs: &mut [f64]) -> Option<()> {
-        let symbolic = self.symbolic.as_ref()?;
-        let req = symbolic.solve_in_place_scratch::<f64>(1, Par::Seq);
-        let mut mem = MemBuffer::try_new(req).ok()?;
-        let n = rhs.len();
-        LltRef::new(symbolic, &self.l_values).solve_in_place_with_conj(
-            Conj::No,
-            MatMut::from_column_major_slice_mut(rhs, n, 1),
-            Par::Seq,
-            MemStack::new(&mut mem),
-        );
-        rhs.iter().all(|v| v.is_finite()).then_some(())
+        self.factor.as_ref()?.solve_in_place(rhs)
     }
 }
 
