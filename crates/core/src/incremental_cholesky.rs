@@ -18,12 +18,12 @@ use faer::linalg::triangular_solve::solve_lower_triangular_in_place;
 use faer::perm::PermRef;
 use faer::sparse::linalg::cholesky::supernodal::SymbolicSupernodalCholesky;
 use faer::sparse::linalg::cholesky::{
-    factorize_symbolic_cholesky, CholeskySymbolicParams, LltRef, SymbolicCholesky,
-    SymbolicCholeskyRaw, SymmetricOrdering,
+    factorize_symbolic_cholesky, CholeskySymbolicParams, SymbolicCholesky, SymbolicCholeskyRaw,
+    SymmetricOrdering,
 };
 use faer::sparse::linalg::SupernodalThreshold;
 use faer::sparse::SymbolicSparseColMatRef;
-use faer::{Accum, Conj, MatMut, MatRef, Par, Side};
+use faer::{Accum, MatMut, MatRef, Par, Side};
 
 use crate::ordering::node_amd;
 
@@ -52,6 +52,8 @@ pub struct IncrementalCholesky {
 /// What the analysis fixes: the order, the supernodes and who updates whom.
 struct Tree {
     symbolic: SymbolicCholesky<usize>,
+    /// Position k of the order holds column `perm_fwd[k]` of A.
+    perm_fwd: Vec<usize>,
     /// Per permuted column j, the entries of P A Pᵀ's lower triangle in it: rows of the permuted
     /// matrix and positions in A's value array (`lower_ptr` delimits the columns).
     lower_ptr: Vec<usize>,
@@ -81,9 +83,9 @@ impl IncrementalCholesky {
             },
         )
         .ok()?;
-        let perm_inv = match symbolic.perm() {
-            Some(perm) => perm.arrays().1.to_vec(),
-            None => (0..n).collect(),
+        let (perm_fwd, perm_inv) = match symbolic.perm() {
+            Some(perm) => (perm.arrays().0.to_vec(), perm.arrays().1.to_vec()),
+            None => ((0..n).collect(), (0..n).collect()),
         };
         let (lower_ptr, lower) = permuted_lower(pattern, &perm_inv);
         let SymbolicCholeskyRaw::Supernodal(sn) = symbolic.raw() else {
@@ -102,6 +104,7 @@ impl IncrementalCholesky {
         let l_values = vec![0.0; symbolic.len_val()];
         let tree = Tree {
             symbolic,
+            perm_fwd,
             lower_ptr,
             lower,
             supernode_of,
@@ -141,20 +144,62 @@ impl IncrementalCholesky {
     /// Solves A x = rhs in place with the last factor; `None` if there is none or the solution is
     /// not finite.
     pub fn solve_in_place(&self, rhs: &mut [f64]) -> Option<()> {
-        if !self.factored {
+        let SymbolicCholeskyRaw::Supernodal(sn) = self.tree.symbolic.raw() else {
+            return None;
+        };
+        if !self.factored || rhs.len() != sn.nrows() {
             return None;
         }
-        let symbolic = &self.tree.symbolic;
-        let req = symbolic.solve_in_place_scratch::<f64>(1, Par::Seq);
-        let mut mem = MemBuffer::try_new(req).ok()?;
-        let n = rhs.len();
-        LltRef::new(symbolic, &self.l_values).solve_in_place_with_conj(
-            Conj::No,
-            MatMut::from_column_major_slice_mut(rhs, n, 1),
-            Par::Seq,
-            MemStack::new(&mut mem),
-        );
+        // y = P rhs, L Lᵀ x = y, rhs = Pᵀ x.
+        let mut x: Vec<f64> = self.tree.perm_fwd.iter().map(|&i| rhs[i]).collect();
+        for s in 0..sn.n_supernodes() {
+            let (block, rows, cols, pattern) = self.block(sn, s);
+            let start = sn.supernode_begin()[s];
+            for j in 0..cols {
+                let column = &block[j * rows..(j + 1) * rows];
+                let xj = x[start + j] / column[j];
+                x[start + j] = xj;
+                for i in j + 1..cols {
+                    x[start + i] -= column[i] * xj;
+                }
+                for (&row, l) in pattern.iter().zip(&column[cols..]) {
+                    x[row] -= l * xj;
+                }
+            }
+        }
+        for s in (0..sn.n_supernodes()).rev() {
+            let (block, rows, cols, pattern) = self.block(sn, s);
+            let start = sn.supernode_begin()[s];
+            for j in (0..cols).rev() {
+                let column = &block[j * rows..(j + 1) * rows];
+                let mut xj = x[start + j];
+                for i in j + 1..cols {
+                    xj -= column[i] * x[start + i];
+                }
+                for (&row, l) in pattern.iter().zip(&column[cols..]) {
+                    xj -= l * x[row];
+                }
+                x[start + j] = xj / column[j];
+            }
+        }
+        for (&i, v) in self.tree.perm_fwd.iter().zip(&x) {
+            rhs[i] = *v;
+        }
         rhs.iter().all(|v| v.is_finite()).then_some(())
+    }
+
+    /// Supernode s's block of L (column-major), its rows and columns, and its rows below the
+    /// diagonal block.
+    fn block<'a>(
+        &'a self,
+        sn: &'a SymbolicSupernodalCholesky<usize>,
+        s: usize,
+    ) -> (&'a [f64], usize, usize, &'a [usize]) {
+        let pattern = sn.supernode(s).pattern();
+        let cols = sn.supernode_end()[s] - sn.supernode_begin()[s];
+        let val_ptr = sn.col_ptr_for_val();
+        let block = &self.l_values[val_ptr[s]..val_ptr[s + 1]];
+        (block, cols + pattern.len(), cols, pattern)
     }
 
     /// The supernodes to recompute: those with a changed value in their columns, and their
@@ -197,21 +242,19 @@ impl Tree {
         }
         let val_ptr = sn.col_ptr_for_val();
         let (head, tail) = l_values.split_at_mut(val_ptr[s]);
-        let mut ls = MatMut::from_column_major_slice_mut(
-            &mut tail[..val_ptr[s + 1] - val_ptr[s]],
-            ncols + pattern.len(),
-            ncols,
-        );
-        ls.fill(0.0);
+        let rows = ncols + pattern.len();
+        let block = &mut tail[..val_ptr[s + 1] - val_ptr[s]];
+        block.fill(0.0);
         for j in start..end {
+            let column = &mut block[(j - start) * rows..(j - start + 1) * rows];
             for &(i, p) in &self.lower[self.lower_ptr[j]..self.lower_ptr[j + 1]] {
-                let row = if i < end { i - start } else { scratch.local[i] };
-                ls[(row, j - start)] += values[p];
+                column[if i < end { i - start } else { scratch.local[i] }] += values[p];
             }
         }
         for &d in &self.updaters[self.updaters_ptr[s]..self.updaters_ptr[s + 1]] {
-            update(sn, d, head, (start, end), ls.as_mut(), scratch);
+            update(sn, d, head, (start, end), (&mut *block, rows), scratch);
         }
+        let ls = MatMut::from_column_major_slice_mut(block, rows, ncols);
         let (mut top, mut bottom) = ls.split_at_row_mut(ncols);
         cholesky_in_place(
             top.as_mut(),
@@ -236,7 +279,7 @@ fn update(
     d: usize,
     l_values: &[f64],
     (start, end): (usize, usize),
-    mut ls: MatMut<'_, f64>,
+    (ls, ls_rows): (&mut [f64], usize),
     scratch: &mut Scratch,
 ) {
     let d_ncols = sn.supernode_end()[d] - sn.supernode_begin()[d];
@@ -249,31 +292,33 @@ fn update(
     );
     let first = d_pattern.partition_point(|&r| r < start);
     let rows = &d_pattern[first..];
-    let mid = rows.partition_point(|&r| r < end);
-    let below = ld.subrows(d_ncols + first, rows.len());
-    let mut t = MatMut::from_column_major_slice_mut(
-        &mut scratch.product[..rows.len() * mid],
-        rows.len(),
-        mid,
-    );
+    let (nr, mid) = (rows.len(), rows.partition_point(|&r| r < end));
+    let below = ld.subrows(d_ncols + first, nr);
+    let product = &mut scratch.product[..nr * mid];
     matmul(
-        t.as_mut(),
+        MatMut::from_column_major_slice_mut(product, nr, mid),
         Accum::Replace,
         below,
         below.subrows(0, mid).transpose(),
         1.0,
         Par::Seq,
     );
-    let ncols = end - start;
-    for (jj, &col) in rows[..mid].iter().enumerate() {
-        for (ii, &row) in rows.iter().enumerate().skip(jj) {
-            let at = if row < end {
-                row - start
-            } else {
-                scratch.local[row]
-            };
-            debug_assert!(at < ncols || row >= end);
-            ls[(at, col - start)] -= t[(ii, jj)];
+    // Where each of the rows sits in the supernode's block.
+    let at = &mut scratch.at;
+    at.clear();
+    at.extend(rows.iter().map(|&row| {
+        if row < end {
+            row - start
+        } else {
+            scratch.local[row]
+        }
+    }));
+    // The lower triangle only: row ii of the product is at or below column jj's row.
+    for jj in 0..mid {
+        let column = &mut ls[at[jj] * ls_rows..(at[jj] + 1) * ls_rows];
+        let src = &product[jj * nr..(jj + 1) * nr];
+        for ii in jj..nr {
+            column[at[ii]] -= src[ii];
         }
     }
 }
@@ -282,8 +327,9 @@ fn update(
 struct Scratch {
     /// Position of a row inside the current supernode's block (`usize::MAX` outside it).
     local: Vec<usize>,
-    /// A descendant's update before it is scattered.
+    /// A descendant's update before it is scattered, and where its rows go.
     product: Vec<f64>,
+    at: Vec<usize>,
     /// faer's work space of the dense Cholesky factorisation.
     mem: MemBuffer,
 }
@@ -301,6 +347,7 @@ impl Scratch {
         Some(Scratch {
             local: vec![usize::MAX; sn.nrows()],
             product: vec![0.0; rows * cols],
+            at: Vec::with_capacity(rows),
             mem: MemBuffer::try_new(req).ok()?,
         })
     }
@@ -470,7 +517,10 @@ mod tests {
         let mut f = IncrementalCholesky::analyse(a.symbolic()).unwrap();
         f.factorize(a.val()).unwrap();
         let indefinite = grid(k, 0.0, &[(5, -50.0)]);
-        assert_eq!(f.factorize(indefinite.val()), Err(FactorError::NotPositiveDefinite));
+        assert_eq!(
+            f.factorize(indefinite.val()),
+            Err(FactorError::NotPositiveDefinite)
+        );
         assert!(f.solve_in_place(&mut vec![1.0; k * k]).is_none());
         let b = vec![1.0; k * k];
         assert_eq!(f.factorize(a.val()), Ok(1.0));
