@@ -150,11 +150,15 @@ impl IncrementalCholesky {
         if !self.factored || rhs.len() != sn.nrows() {
             return None;
         }
-        // y = P rhs, L Lᵀ x = y, rhs = Pᵀ x.
+        // y = P rhs, L Lᵀ x = y, rhs = Pᵀ x. Each supernode's rows below its diagonal block are
+        // gathered into `below` once, so that its columns are used as contiguous slices.
         let mut x: Vec<f64> = self.tree.perm_fwd.iter().map(|&i| rhs[i]).collect();
+        let mut below = Vec::new();
         for s in 0..sn.n_supernodes() {
             let (block, rows, cols, pattern) = self.block(sn, s);
             let start = sn.supernode_begin()[s];
+            below.clear();
+            below.resize(pattern.len(), 0.0);
             for j in 0..cols {
                 let column = &block[j * rows..(j + 1) * rows];
                 let xj = x[start + j] / column[j];
@@ -162,23 +166,26 @@ impl IncrementalCholesky {
                 for i in j + 1..cols {
                     x[start + i] -= column[i] * xj;
                 }
-                for (&row, l) in pattern.iter().zip(&column[cols..]) {
-                    x[row] -= l * xj;
+                for (b, l) in below.iter_mut().zip(&column[cols..]) {
+                    *b += l * xj;
                 }
+            }
+            for (&row, b) in pattern.iter().zip(&below) {
+                x[row] -= b;
             }
         }
         for s in (0..sn.n_supernodes()).rev() {
             let (block, rows, cols, pattern) = self.block(sn, s);
             let start = sn.supernode_begin()[s];
+            below.clear();
+            below.extend(pattern.iter().map(|&row| x[row]));
             for j in (0..cols).rev() {
                 let column = &block[j * rows..(j + 1) * rows];
                 let mut xj = x[start + j];
                 for i in j + 1..cols {
                     xj -= column[i] * x[start + i];
                 }
-                for (&row, l) in pattern.iter().zip(&column[cols..]) {
-                    xj -= l * x[row];
-                }
+                xj -= column[cols..].iter().zip(&below).map(|(l, b)| l * b).sum::<f64>();
                 x[start + j] = xj / column[j];
             }
         }
