@@ -27,6 +27,7 @@ use faer::{Conj, Mat, MatMut, Par, Side};
 
 use crate::error::BodyError;
 use crate::geometry::{component_of, node_of};
+use crate::incremental_cholesky::{FactorError, SupernodalTree};
 use crate::ordering::node_amd;
 use crate::supports::Constraints;
 
@@ -39,6 +40,26 @@ pub struct FactorValues {
     values: Vec<f64>,
     l_values: Vec<f64>,
     factored: bool,
+}
+
+/// How a body's factor is computed and applied.
+enum Analysis {
+    /// faer's numeric factorisation and solve: with interface DOFs (ordered last, so that the
+    /// Schur factor is read off the supernodes).
+    Faer(SymbolicCholesky<usize>),
+    /// This crate's supernodal factorisation and solve (`incremental_cholesky`): without interface
+    /// DOFs (the sparse path). On the thin bodies of long contact zones faer picks its simplicial
+    /// factor, whose numeric factorisation and solve took about twice as long.
+    Own(SupernodalTree),
+}
+
+impl Analysis {
+    fn symbolic(&self) -> &SymbolicCholesky<usize> {
+        match self {
+            Analysis::Faer(symbolic) => symbolic,
+            Analysis::Own(tree) => tree.symbolic(),
+        }
+    }
 }
 
 /// A body's stiffness with supports eliminated, factorised by sparse Cholesky.
@@ -63,7 +84,7 @@ pub struct FactoredBody {
     /// (those of nodes on inclined supports).
     mixed: Vec<(usize, usize, f64)>,
     values: Vec<f64>,
-    symbolic: SymbolicCholesky<usize>,
+    analysis: Analysis,
     l_values: Vec<f64>,
     /// Reduced indices of the interface DOFs, in the order given (prescribed ones dropped).
     interface: Vec<usize>,
@@ -118,24 +139,26 @@ impl FactoredBody {
         } else {
             last_ordering(&lower, &interface).map_err(|e| fail(format!("{e:?}")))?
         };
-        let (perm, inv) = if interface.is_empty() {
-            node_amd(lower.as_ref()).ok_or_else(|| fail("no fill-reducing order".into()))?
+        let analysis = if interface.is_empty() {
+            let order =
+                node_amd(lower.as_ref()).ok_or_else(|| fail("no fill-reducing order".into()))?;
+            let tree = SupernodalTree::analyse(lower.as_ref(), (&order.0, &order.1))
+                .ok_or_else(|| fail("the symbolic analysis failed".into()))?;
+            Analysis::Own(tree)
         } else {
             let inv = inverse(&perm);
-            (perm, inv)
+            let ordering =
+                SymmetricOrdering::Custom(faer::perm::PermRef::new_checked(&perm, &inv, n));
+            let params = CholeskySymbolicParams {
+                // The Schur factor is read off supernodes; small bodies would otherwise go simplicial.
+                supernodal_flop_ratio_threshold: SupernodalThreshold::FORCE_SUPERNODAL,
+                ..Default::default()
+            };
+            let symbolic =
+                factorize_symbolic_cholesky(lower.as_ref(), Side::Lower, ordering, params)
+                    .map_err(|e| fail(format!("{e:?}")))?;
+            Analysis::Faer(symbolic)
         };
-        let ordering = SymmetricOrdering::Custom(faer::perm::PermRef::new_checked(&perm, &inv, n));
-        let params = CholeskySymbolicParams {
-            // The Schur factor is read off supernodes; small bodies would otherwise go simplicial.
-            supernodal_flop_ratio_threshold: if interface.is_empty() {
-                SupernodalThreshold::AUTO
-            } else {
-                SupernodalThreshold::FORCE_SUPERNODAL
-            },
-            ..Default::default()
-        };
-        let symbolic = factorize_symbolic_cholesky(lower.as_ref(), Side::Lower, ordering, params)
-            .map_err(|e| fail(format!("{e:?}")))?;
         // The factor's values are allocated by the first factorisation, once the caller had the
         // chance to compare `memory_estimate` with the available memory.
         let l_values = Vec::new();
@@ -151,7 +174,7 @@ impl FactoredBody {
             gather,
             mixed,
             values,
-            symbolic,
+            analysis,
             l_values,
             interface,
             factored: false,
@@ -176,16 +199,17 @@ impl FactoredBody {
 
     /// Number of stored values of the Cholesky factor (a measure of fill-in).
     pub fn factor_len(&self) -> usize {
-        self.symbolic.len_val()
+        self.analysis.symbolic().len_val()
     }
 
     /// Bytes the numeric factorisation allocates: the factor's values and faer's workspace.
     pub fn memory_estimate(&self) -> u64 {
         let scratch = self
-            .symbolic
+            .analysis
+            .symbolic()
             .factorize_numeric_llt_scratch::<f64>(self.par, Default::default())
             .size_bytes();
-        let values = self.symbolic.len_val().saturating_mul(size_of::<f64>());
+        let values = self.factor_len().saturating_mul(size_of::<f64>());
         (values as u64).saturating_add(scratch as u64)
     }
 
@@ -215,7 +239,7 @@ impl FactoredBody {
         additions: &[(usize, usize, f64)],
         values: &mut FactorValues,
     ) -> Result<(), BodyError> {
-        let len = self.symbolic.len_val();
+        let len = self.factor_len();
         if values.l_values.len() != len {
             values.l_values = try_zeros(len).ok_or_else(|| BodyError::Factorization {
                 body: self.name.clone(),
@@ -261,15 +285,28 @@ impl FactoredBody {
                 what: format!("stiffness entry {i}"),
             });
         }
-        let req = self
-            .symbolic
-            .factorize_numeric_llt_scratch::<f64>(self.par, Default::default());
-        let mut mem = MemBuffer::try_new(req).map_err(|_| BodyError::Factorization {
+        let not_positive = |pivot| BodyError::NotPositiveDefinite {
+            body: self.name.clone(),
+            pivot,
+        };
+        let out_of_memory = || BodyError::Factorization {
             body: self.name.clone(),
             message: "out of memory".into(),
-        })?;
+        };
+        let symbolic = match &self.analysis {
+            Analysis::Faer(symbolic) => symbolic,
+            Analysis::Own(tree) => {
+                return match tree.factorize_into(&out.values, &mut out.l_values, None) {
+                    Ok(_) => Ok(()),
+                    Err(FactorError::NotPositiveDefinite(pivot)) => Err(not_positive(pivot)),
+                    Err(FactorError::OutOfMemory) => Err(out_of_memory()),
+                };
+            }
+        };
+        let req = symbolic.factorize_numeric_llt_scratch::<f64>(self.par, Default::default());
+        let mut mem = MemBuffer::try_new(req).map_err(|_| out_of_memory())?;
         let a = SparseColMatRef::new(self.lower.as_ref(), &out.values);
-        self.symbolic
+        symbolic
             .factorize_numeric_llt(
                 &mut out.l_values,
                 a,
@@ -281,10 +318,7 @@ impl FactoredBody {
             )
             .map_err(|e| match e {
                 faer::linalg::cholesky::llt::factor::LltError::NonPositivePivot { index } => {
-                    BodyError::NotPositiveDefinite {
-                        body: self.name.clone(),
-                        pivot: index,
-                    }
+                    not_positive(index)
                 }
             })?;
         Ok(())
@@ -319,7 +353,7 @@ impl FactoredBody {
     /// Allocates the factor's values on the first factorisation; a failed allocation is an error
     /// rather than an abort.
     fn allocate_factor(&mut self) -> Result<(), BodyError> {
-        let len = self.symbolic.len_val();
+        let len = self.factor_len();
         if self.l_values.len() != len {
             self.l_values = try_zeros(len).ok_or_else(|| BodyError::Factorization {
                 body: self.name.clone(),
@@ -445,13 +479,29 @@ impl FactoredBody {
                 message: "solve called before a successful factorization".into(),
             });
         }
+        let symbolic = match &self.analysis {
+            Analysis::Faer(symbolic) => symbolic,
+            Analysis::Own(tree) => {
+                return match tree.solve_in_place(l_values, rhs) {
+                    true => Ok(()),
+                    false => Err(BodyError::Factorization {
+                        body: self.name.clone(),
+                        message: format!(
+                            "a load of {} values for {} unknowns",
+                            rhs.len(),
+                            self.free.len()
+                        ),
+                    }),
+                };
+            }
+        };
         let n = rhs.len();
-        let req = self.symbolic.solve_in_place_scratch::<f64>(1, self.par);
+        let req = symbolic.solve_in_place_scratch::<f64>(1, self.par);
         let mut mem = MemBuffer::try_new(req).map_err(|_| BodyError::Factorization {
             body: self.name.clone(),
             message: "out of memory".into(),
         })?;
-        let llt = LltRef::new(&self.symbolic, l_values);
+        let llt = LltRef::new(symbolic, l_values);
         llt.solve_in_place_with_conj(
             Conj::No,
             MatMut::from_column_major_slice_mut(rhs, n, 1),
@@ -521,7 +571,7 @@ impl FactoredBody {
                 "Schur factor requested before a successful factorization",
             ));
         }
-        let SymbolicCholeskyRaw::Supernodal(sym) = self.symbolic.raw() else {
+        let SymbolicCholeskyRaw::Supernodal(sym) = self.analysis.symbolic().raw() else {
             return Err(fail(
                 "the factor is not supernodal; its Schur block cannot be read",
             ));

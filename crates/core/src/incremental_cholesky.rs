@@ -11,8 +11,8 @@
 //! factorisation is done here, supernode by supernode, with faer's dense kernels.
 
 use faer::dyn_stack::{MemBuffer, MemStack, StackReq};
-use faer::linalg::cholesky::llt::factor::LltRegularization;
 use faer::linalg::cholesky::llt::factor::{cholesky_in_place, cholesky_in_place_scratch};
+use faer::linalg::cholesky::llt::factor::{LltError, LltRegularization};
 use faer::linalg::matmul::matmul;
 use faer::linalg::triangular_solve::solve_lower_triangular_in_place;
 use faer::perm::PermRef;
@@ -33,24 +33,28 @@ const ROOT: usize = usize::MAX;
 /// Why a factorisation failed.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum FactorError {
-    /// A pivot was not positive: the matrix is not positive definite.
-    NotPositiveDefinite,
+    /// The pivot of this column (in the factor's order) was not positive: the matrix is not
+    /// positive definite.
+    NotPositiveDefinite(usize),
     /// The work space could not be allocated.
     OutOfMemory,
 }
 
 /// The Cholesky factor L Lᵀ = P A Pᵀ of a symmetric positive definite matrix A with a fixed
-/// pattern, given by its lower triangle.
+/// pattern, given by its lower triangle, refactorised incrementally.
 pub struct IncrementalCholesky {
-    tree: Tree,
+    tree: SupernodalTree,
     /// A's values at the last factorisation, and its factor (valid if `factored`).
     values: Vec<f64>,
     l_values: Vec<f64>,
     factored: bool,
 }
 
-/// What the analysis fixes: the order, the supernodes and who updates whom.
-struct Tree {
+/// The symbolic analysis of a supernodal Cholesky factorisation (faer's), with what this
+/// module's numeric factorisation needs: where A's entries go, the supernodes' tree and who
+/// updates whom. The factor's values are kept by the caller, so that one analysis serves
+/// several factors.
+pub struct SupernodalTree {
     symbolic: SymbolicCholesky<usize>,
     /// Position k of the order holds column `perm_fwd[k]` of A.
     perm_fwd: Vec<usize>,
@@ -67,17 +71,63 @@ struct Tree {
 }
 
 impl IncrementalCholesky {
-    /// Analyses the lower triangle `pattern` of A (fill-reducing AMD order, supernodal
-    /// structure); `None` if the analysis fails (out of memory, index overflow).
+    /// Analyses the lower triangle `pattern` of A (fill-reducing AMD order on the nodes,
+    /// supernodal structure); `None` if the analysis fails (out of memory, index overflow).
     pub fn analyse(pattern: SymbolicSparseColMatRef<'_, usize>) -> Option<Self> {
         let (fwd, inv) = node_amd(pattern)?;
+        let tree = SupernodalTree::analyse(pattern, (&fwd, &inv))?;
+        let l_values = vec![0.0; tree.len_val()];
+        Some(IncrementalCholesky {
+            tree,
+            values: Vec::new(),
+            l_values,
+            factored: false,
+        })
+    }
+
+    /// Factorises A with the values `values` (in the analysed pattern's order), recomputing only
+    /// the supernodes that the values changed since the last factorisation reach (all of them the
+    /// first time, or after a failure). Returns the share of supernodes recomputed.
+    pub fn factorize(&mut self, values: &[f64]) -> Result<f64, FactorError> {
+        let dirty = match self.factored {
+            true => self.tree.dirty(&self.values, values),
+            false => None,
+        };
+        self.values.clear();
+        self.values.extend_from_slice(values);
+        self.factored = false;
+        let share = self
+            .tree
+            .factorize_into(&self.values, &mut self.l_values, dirty.as_deref())?;
+        self.factored = true;
+        Ok(share)
+    }
+
+    /// Solves A x = rhs in place with the last factor; `None` if there is none or the solution is
+    /// not finite.
+    pub fn solve_in_place(&self, rhs: &mut [f64]) -> Option<()> {
+        if !self.factored || !self.tree.solve_in_place(&self.l_values, rhs) {
+            return None;
+        }
+        rhs.iter().all(|v| v.is_finite()).then_some(())
+    }
+}
+
+impl SupernodalTree {
+    /// Analyses the lower triangle `pattern` of A in the order (fwd, inv) (position k holds
+    /// column fwd[k]; column j sits at inv[j]); `None` if the analysis fails.
+    pub fn analyse(
+        pattern: SymbolicSparseColMatRef<'_, usize>,
+        (fwd, inv): (&[usize], &[usize]),
+    ) -> Option<Self> {
         let n = pattern.ncols();
-        let order = PermRef::new_checked(&fwd, &inv, n);
+        let order = PermRef::new_checked(fwd, inv, n);
         let symbolic = factorize_symbolic_cholesky(
             pattern,
             Side::Lower,
             SymmetricOrdering::Custom(order),
             CholeskySymbolicParams {
+                // The numeric factorisation and the solve below work on supernodes.
                 supernodal_flop_ratio_threshold: SupernodalThreshold::FORCE_SUPERNODAL,
                 ..Default::default()
             },
@@ -101,8 +151,7 @@ impl IncrementalCholesky {
             })
             .collect();
         let (updaters_ptr, updaters) = updaters(sn, &supernode_of);
-        let l_values = vec![0.0; symbolic.len_val()];
-        let tree = Tree {
+        Some(SupernodalTree {
             symbolic,
             perm_fwd,
             lower_ptr,
@@ -111,51 +160,81 @@ impl IncrementalCholesky {
             parent,
             updaters_ptr,
             updaters,
-        };
-        Some(IncrementalCholesky {
-            tree,
-            values: Vec::new(),
-            l_values,
-            factored: false,
         })
     }
 
-    /// Factorises A with the values `values` (in the analysed pattern's order), recomputing only
-    /// the supernodes that the values changed since the last factorisation reach (all of them the
-    /// first time, or after a failure). Returns the share of supernodes recomputed.
-    pub fn factorize(&mut self, values: &[f64]) -> Result<f64, FactorError> {
-        let dirty = self.dirty(values);
-        self.values.clear();
-        self.values.extend_from_slice(values);
-        self.factored = false;
-        // `analyse` keeps supernodal structures only.
-        let SymbolicCholeskyRaw::Supernodal(sn) = self.tree.symbolic.raw() else {
-            return Err(FactorError::OutOfMemory);
-        };
-        let mut scratch = Scratch::new(sn).ok_or(FactorError::OutOfMemory)?;
-        for s in (0..dirty.len()).filter(|&s| dirty[s]) {
-            let factor = (&self.values[..], &mut self.l_values[..]);
-            self.tree.factor_supernode(sn, s, factor, &mut scratch)?;
-        }
-        self.factored = true;
-        Ok(dirty.iter().filter(|&&d| d).count() as f64 / dirty.len().max(1) as f64)
+    /// faer's symbolic analysis.
+    pub fn symbolic(&self) -> &SymbolicCholesky<usize> {
+        &self.symbolic
     }
 
-    /// Solves A x = rhs in place with the last factor; `None` if there is none or the solution is
-    /// not finite.
-    pub fn solve_in_place(&self, rhs: &mut [f64]) -> Option<()> {
-        let SymbolicCholeskyRaw::Supernodal(sn) = self.tree.symbolic.raw() else {
+    /// The number of values of the factor.
+    pub fn len_val(&self) -> usize {
+        self.symbolic.len_val()
+    }
+
+    /// The structure: `analyse` keeps supernodal analyses only.
+    fn supernodal(&self) -> &SymbolicSupernodalCholesky<usize> {
+        match self.symbolic.raw() {
+            SymbolicCholeskyRaw::Supernodal(sn) => sn,
+            SymbolicCholeskyRaw::Simplicial(_) => unreachable!("analysed as supernodal"),
+        }
+    }
+
+    /// Computes the factor of A with the values `values` into `l_values` (`len_val` of them):
+    /// only the supernodes marked in `dirty` (from [`SupernodalTree::dirty`]; the others keep
+    /// their values), or all of them. Returns the share recomputed.
+    pub fn factorize_into(
+        &self,
+        values: &[f64],
+        l_values: &mut [f64],
+        dirty: Option<&[bool]>,
+    ) -> Result<f64, FactorError> {
+        let sn = self.supernodal();
+        let mut scratch = Scratch::new(sn).ok_or(FactorError::OutOfMemory)?;
+        let n_super = sn.n_supernodes();
+        let mut count = 0;
+        for s in (0..n_super).filter(|&s| dirty.map_or(true, |d| d[s])) {
+            self.factor_supernode(sn, s, (values, &mut *l_values), &mut scratch)?;
+            count += 1;
+        }
+        Ok(count as f64 / n_super.max(1) as f64)
+    }
+
+    /// The supernodes to recompute when A's values change from `old` to `new`: those with a
+    /// changed value in their columns, and their ancestors; `None` (all of them) if the lengths
+    /// differ.
+    pub fn dirty(&self, old: &[f64], new: &[f64]) -> Option<Vec<bool>> {
+        if old.len() != new.len() {
             return None;
-        };
-        if !self.factored || rhs.len() != sn.nrows() {
-            return None;
+        }
+        let mut dirty = vec![false; self.parent.len()];
+        for (j, column) in self.lower_ptr.windows(2).enumerate() {
+            let changed = self.lower[column[0]..column[1]]
+                .iter()
+                .any(|&(_, p)| new[p].to_bits() != old[p].to_bits());
+            let mut s = if changed { self.supernode_of[j] } else { ROOT };
+            while s != ROOT && !dirty[s] {
+                dirty[s] = true;
+                s = self.parent[s];
+            }
+        }
+        Some(dirty)
+    }
+
+    /// Solves A x = rhs in place with the factor `l_values`; false (and `rhs` unchanged) if the
+    /// sizes do not match.
+    pub fn solve_in_place(&self, l_values: &[f64], rhs: &mut [f64]) -> bool {
+        let sn = self.supernodal();
+        if rhs.len() != sn.nrows() || l_values.len() != self.len_val() {
+            return false;
         }
         // y = P rhs, L Lᵀ x = y, rhs = Pᵀ x. Each supernode's rows below its diagonal block are
         // gathered into `below` once, so that its columns are used as contiguous slices.
-        let mut x: Vec<f64> = self.tree.perm_fwd.iter().map(|&i| rhs[i]).collect();
+        let mut x: Vec<f64> = self.perm_fwd.iter().map(|&i| rhs[i]).collect();
         let mut below = Vec::new();
         for s in 0..sn.n_supernodes() {
-            let (block, rows, cols, pattern) = self.block(sn, s);
+            let (block, rows, cols, pattern) = block(sn, l_values, s);
             let start = sn.supernode_begin()[s];
             below.clear();
             below.resize(pattern.len(), 0.0);
@@ -175,7 +254,7 @@ impl IncrementalCholesky {
             }
         }
         for s in (0..sn.n_supernodes()).rev() {
-            let (block, rows, cols, pattern) = self.block(sn, s);
+            let (block, rows, cols, pattern) = block(sn, l_values, s);
             let start = sn.supernode_begin()[s];
             below.clear();
             below.extend(pattern.iter().map(|&row| x[row]));
@@ -185,54 +264,19 @@ impl IncrementalCholesky {
                 for i in j + 1..cols {
                     xj -= column[i] * x[start + i];
                 }
-                xj -= column[cols..].iter().zip(&below).map(|(l, b)| l * b).sum::<f64>();
+                xj -= column[cols..]
+                    .iter()
+                    .zip(&below)
+                    .map(|(l, b)| l * b)
+                    .sum::<f64>();
                 x[start + j] = xj / column[j];
             }
         }
-        for (&i, v) in self.tree.perm_fwd.iter().zip(&x) {
+        for (&i, v) in self.perm_fwd.iter().zip(&x) {
             rhs[i] = *v;
         }
-        rhs.iter().all(|v| v.is_finite()).then_some(())
+        true
     }
-
-    /// Supernode s's block of L (column-major), its rows and columns, and its rows below the
-    /// diagonal block.
-    fn block<'a>(
-        &'a self,
-        sn: &'a SymbolicSupernodalCholesky<usize>,
-        s: usize,
-    ) -> (&'a [f64], usize, usize, &'a [usize]) {
-        let pattern = sn.supernode(s).pattern();
-        let cols = sn.supernode_end()[s] - sn.supernode_begin()[s];
-        let val_ptr = sn.col_ptr_for_val();
-        let block = &self.l_values[val_ptr[s]..val_ptr[s + 1]];
-        (block, cols + pattern.len(), cols, pattern)
-    }
-
-    /// The supernodes to recompute: those with a changed value in their columns, and their
-    /// ancestors (all of them without a valid factor).
-    fn dirty(&self, values: &[f64]) -> Vec<bool> {
-        let tree = &self.tree;
-        let n_super = tree.parent.len();
-        if !self.factored || self.values.len() != values.len() {
-            return vec![true; n_super];
-        }
-        let mut dirty = vec![false; n_super];
-        for (j, column) in tree.lower_ptr.windows(2).enumerate() {
-            let changed = tree.lower[column[0]..column[1]]
-                .iter()
-                .any(|&(_, p)| values[p].to_bits() != self.values[p].to_bits());
-            let mut s = if changed { tree.supernode_of[j] } else { ROOT };
-            while s != ROOT && !dirty[s] {
-                dirty[s] = true;
-                s = tree.parent[s];
-            }
-        }
-        dirty
-    }
-}
-
-impl Tree {
     /// Computes the columns of L of supernode `s` from A and its descendants' columns.
     fn factor_supernode(
         &self,
@@ -270,13 +314,33 @@ impl Tree {
             MemStack::new(&mut scratch.mem),
             Default::default(),
         )
-        .map_err(|_| FactorError::NotPositiveDefinite)?;
+        .map_err(|e| match e {
+            LltError::NonPositivePivot { index } => FactorError::NotPositiveDefinite(start + index),
+        })?;
         solve_lower_triangular_in_place(top.as_ref(), bottom.as_mut().transpose_mut(), Par::Seq);
         for &row in pattern {
             scratch.local[row] = usize::MAX;
         }
         Ok(())
     }
+}
+
+/// Supernode s's block of L (column-major), its rows and columns, and its rows below the
+/// diagonal block.
+fn block<'a>(
+    sn: &'a SymbolicSupernodalCholesky<usize>,
+    l_values: &'a [f64],
+    s: usize,
+) -> (&'a [f64], usize, usize, &'a [usize]) {
+    let pattern = sn.supernode(s).pattern();
+    let cols = sn.supernode_end()[s] - sn.supernode_begin()[s];
+    let val_ptr = sn.col_ptr_for_val();
+    (
+        &l_values[val_ptr[s]..val_ptr[s + 1]],
+        cols + pattern.len(),
+        cols,
+        pattern,
+    )
 }
 
 /// Subtracts descendant `d`'s contribution L_d[rows ≥ start] L_d[rows in start..end]ᵀ from the
@@ -524,10 +588,10 @@ mod tests {
         let mut f = IncrementalCholesky::analyse(a.symbolic()).unwrap();
         f.factorize(a.val()).unwrap();
         let indefinite = grid(k, 0.0, &[(5, -50.0)]);
-        assert_eq!(
+        assert!(matches!(
             f.factorize(indefinite.val()),
-            Err(FactorError::NotPositiveDefinite)
-        );
+            Err(FactorError::NotPositiveDefinite(_))
+        ));
         assert!(f.solve_in_place(&mut vec![1.0; k * k]).is_none());
         let b = vec![1.0; k * k];
         assert_eq!(f.factorize(a.val()), Ok(1.0));
