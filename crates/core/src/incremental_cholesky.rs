@@ -25,7 +25,7 @@ use faer::sparse::linalg::SupernodalThreshold;
 use faer::sparse::SymbolicSparseColMatRef;
 use faer::{Accum, MatMut, MatRef, Par, Side};
 
-use crate::ordering::node_amd;
+use crate::ordering::{group_by, node_amd};
 
 /// Marks a supernode without a parent (a root of the elimination tree).
 const ROOT: usize = usize::MAX;
@@ -450,25 +450,14 @@ fn permuted_lower(
         let (i, j) = (perm_inv[row_idx[p]], perm_inv[c]);
         (i.max(j), i.min(j))
     };
-    let mut ptr = vec![0; n + 1];
-    for c in 0..n {
-        for p in col_ptr[c]..col_ptr[c + 1] {
-            ptr[permuted(p, c).1 + 1] += 1;
+    group_by(n, |emit| {
+        for c in 0..n {
+            for p in col_ptr[c]..col_ptr[c + 1] {
+                let (i, j) = permuted(p, c);
+                emit(j, (i, p));
+            }
         }
-    }
-    for j in 0..n {
-        ptr[j + 1] += ptr[j];
-    }
-    let mut next = ptr.clone();
-    let mut lower = vec![(0, 0); ptr[n]];
-    for c in 0..n {
-        for p in col_ptr[c]..col_ptr[c + 1] {
-            let (i, j) = permuted(p, c);
-            lower[next[j]] = (i, p);
-            next[j] += 1;
-        }
-    }
-    (ptr, lower)
+    })
 }
 
 /// The supernode of every (permuted) column.
@@ -497,24 +486,11 @@ fn updaters(
             })
         })
     };
-    let mut ptr = vec![0; n_super + 1];
-    for d in 0..n_super {
-        for s in targets(d) {
-            ptr[s + 1] += 1;
+    group_by(n_super, |emit| {
+        for d in 0..n_super {
+            targets(d).for_each(|s| emit(s, d));
         }
-    }
-    for s in 0..n_super {
-        ptr[s + 1] += ptr[s];
-    }
-    let mut next = ptr.clone();
-    let mut list = vec![0; ptr[n_super]];
-    for d in 0..n_super {
-        for s in targets(d) {
-            list[next[s]] = d;
-            next[s] += 1;
-        }
-    }
-    (ptr, list)
+    })
 }
 
 #[cfg(test)]

@@ -63,34 +63,41 @@ pub fn node_amd(lower: SymbolicSparseColMatRef<'_, usize>) -> Option<(Vec<usize>
     Some((fwd, inv))
 }
 
+/// Items grouped by their key in `0..n`, in the order emitted within a key (a counting sort):
+/// `emit` is called twice and must emit the same (key, item) pairs both times. Returns the
+/// groups' bounds (`ptr`, n + 1 of them) and the items.
+pub(crate) fn group_by<T: Copy + Default>(
+    n: usize,
+    emit: impl Fn(&mut dyn FnMut(usize, T)),
+) -> (Vec<usize>, Vec<T>) {
+    let mut ptr = vec![0; n + 1];
+    emit(&mut |key, _| ptr[key + 1] += 1);
+    for k in 0..n {
+        ptr[k + 1] += ptr[k];
+    }
+    let mut next = ptr.clone();
+    let mut items = vec![T::default(); ptr[n]];
+    emit(&mut |key, item| {
+        items[next[key]] = item;
+        next[key] += 1;
+    });
+    (ptr, items)
+}
+
 /// Every column's pattern in the full symmetric matrix, with the diagonal, sorted.
 fn adjacency(lower: SymbolicSparseColMatRef<'_, usize>) -> (Vec<usize>, Vec<usize>) {
     let n = lower.ncols();
     let (col_ptr, row_idx) = (lower.col_ptr(), lower.row_idx());
     let entries = |c: usize| row_idx[col_ptr[c]..col_ptr[c + 1]].iter().copied();
-    let mut ptr = vec![0; n + 1];
-    for c in 0..n {
-        ptr[c + 1] += 1;
-        for r in entries(c).filter(|&r| r != c) {
-            ptr[r + 1] += 1;
-            ptr[c + 1] += 1;
+    let (ptr, mut adj) = group_by(n, |emit| {
+        for c in 0..n {
+            emit(c, c);
+            for r in entries(c).filter(|&r| r != c) {
+                emit(c, r);
+                emit(r, c);
+            }
         }
-    }
-    for j in 0..n {
-        ptr[j + 1] += ptr[j];
-    }
-    let mut next = ptr.clone();
-    let mut adj = vec![0; ptr[n]];
-    for c in 0..n {
-        adj[next[c]] = c;
-        next[c] += 1;
-        for r in entries(c).filter(|&r| r != c) {
-            adj[next[c]] = r;
-            next[c] += 1;
-            adj[next[r]] = c;
-            next[r] += 1;
-        }
-    }
+    });
     // Sorted, so that equal patterns compare equal (the input's columns need not be sorted).
     for j in 0..n {
         adj[ptr[j]..ptr[j + 1]].sort_unstable();
