@@ -143,7 +143,7 @@ impl FactoredBody {
             let order =
                 node_amd(lower.as_ref()).ok_or_else(|| fail("no fill-reducing order".into()))?;
             let tree = SupernodalTree::analyse(lower.as_ref(), (&order.0, &order.1))
-                .ok_or_else(|| fail("the symbolic analysis failed".into()))?;
+                .ok_or_else(|| fail("the symbolic analysis failed (out of memory, or 2³² stiffness entries or more)".into()))?;
             Analysis::Own(tree)
         } else {
             let inv = inverse(&perm);

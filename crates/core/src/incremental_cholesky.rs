@@ -61,7 +61,8 @@ pub struct SupernodalTree {
     /// Per permuted column j, the entries of P A Pᵀ's lower triangle in it: rows of the permuted
     /// matrix and positions in A's value array (`lower_ptr` delimits the columns).
     lower_ptr: Vec<usize>,
-    lower: Vec<(usize, usize)>,
+    /// 32-bit: these are the largest arrays of the analysis (twice the stiffness's entries).
+    lower: Vec<(u32, u32)>,
     /// The supernode of every permuted column, and every supernode's parent (or [`ROOT`]).
     supernode_of: Vec<usize>,
     parent: Vec<usize>,
@@ -137,6 +138,8 @@ impl SupernodalTree {
             Some(perm) => (perm.arrays().0.to_vec(), perm.arrays().1.to_vec()),
             None => ((0..n).collect(), (0..n).collect()),
         };
+        // The 32-bit positions must hold A's entries (else `None`: the caller takes faer's path).
+        u32::try_from(pattern.row_idx().len().max(n)).ok()?;
         let (lower_ptr, lower) = permuted_lower(pattern, &perm_inv);
         let SymbolicCholeskyRaw::Supernodal(sn) = symbolic.raw() else {
             return None;
@@ -212,7 +215,7 @@ impl SupernodalTree {
         for (j, column) in self.lower_ptr.windows(2).enumerate() {
             let changed = self.lower[column[0]..column[1]]
                 .iter()
-                .any(|&(_, p)| new[p].to_bits() != old[p].to_bits());
+                .any(|&(_, p)| new[p as usize].to_bits() != old[p as usize].to_bits());
             let mut s = if changed { self.supernode_of[j] } else { ROOT };
             while s != ROOT && !dirty[s] {
                 dirty[s] = true;
@@ -295,6 +298,7 @@ impl SupernodalTree {
         for j in start..end {
             let column = &mut block[(j - start) * rows..(j - start + 1) * rows];
             for &(i, p) in &self.lower[self.lower_ptr[j]..self.lower_ptr[j + 1]] {
+                let (i, p) = (i as usize, p as usize);
                 column[if i < end { i - start } else { scratch.local[i] }] += values[p];
             }
         }
@@ -439,11 +443,12 @@ impl Scratch {
     }
 }
 
-/// The lower triangle of P A Pᵀ by permuted column: (permuted row, position in A's values).
+/// The lower triangle of P A Pᵀ by permuted column: (permuted row, position in A's values), both
+/// below 2³² (checked by the caller).
 fn permuted_lower(
     pattern: SymbolicSparseColMatRef<'_, usize>,
     perm_inv: &[usize],
-) -> (Vec<usize>, Vec<(usize, usize)>) {
+) -> (Vec<usize>, Vec<(u32, u32)>) {
     let n = pattern.ncols();
     let (col_ptr, row_idx) = (pattern.col_ptr(), pattern.row_idx());
     let permuted = |p: usize, c: usize| {
@@ -454,7 +459,7 @@ fn permuted_lower(
         for c in 0..n {
             for p in col_ptr[c]..col_ptr[c + 1] {
                 let (i, j) = permuted(p, c);
-                emit(j, (i, p));
+                emit(j, (i as u32, p as u32));
             }
         }
     })
