@@ -134,11 +134,6 @@ impl FactoredBody {
             .collect();
         // With no interface AMD on the nodes' graph is the ordering; otherwise AMD on the interior
         // and the interface last.
-        let perm = if interface.is_empty() {
-            Vec::new()
-        } else {
-            last_ordering(&lower, &interface).map_err(|e| fail(format!("{e:?}")))?
-        };
         let analysis = if interface.is_empty() {
             let order =
                 node_amd(lower.as_ref()).ok_or_else(|| fail("no fill-reducing order".into()))?;
@@ -146,6 +141,7 @@ impl FactoredBody {
                 .ok_or_else(|| fail("the symbolic analysis failed (out of memory, or 2³² stiffness entries or more)".into()))?;
             Analysis::Own(tree)
         } else {
+            let perm = last_ordering(&lower, &interface).map_err(|e| fail(format!("{e:?}")))?;
             let inv = inverse(&perm);
             let ordering =
                 SymmetricOrdering::Custom(faer::perm::PermRef::new_checked(&perm, &inv, n));
