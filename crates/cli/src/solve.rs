@@ -191,8 +191,15 @@ pub fn solve(args: SolveArgs) -> Result<Exit> {
                 count(model.bodies.len(), "body", "bodies")
             ));
         }
-        let mut prepared = prepare_on(model, &settings, ranks.exchange())
-            .map_err(|e| anyhow::anyhow!("{}: {e}", args.file.display()))?;
+        let prepared = prepare_on(model, &settings, ranks.exchange());
+        if let (Err(_), true) = (&prepared, ranks.is_root()) {
+            // The contact warnings often explain a failed setup (a body that only a pair facing
+            // nowhere would hold is singular): print them before the error.
+            if let Ok(interface) = Interface::new(model) {
+                warn_contact(&args.file, model, &interface);
+            }
+        }
+        let mut prepared = prepared.map_err(|e| anyhow::anyhow!("{}: {e}", args.file.display()))?;
         if ranks.is_root() {
             warn_contact(&args.file, model, &prepared.interface);
         }
