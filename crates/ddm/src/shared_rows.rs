@@ -68,24 +68,24 @@ impl SparseRows {
     }
 }
 
-/// Pushes the lower triangle of a sparse body's reduced stiffness K (no springs) with its
-/// unknowns at `offset..`, in the same order on every process: the symmetric Newton step's block
-/// of the body (`crate::newton::primal`). Nothing for a dense body.
-pub fn push_stiffness(
+/// Calls `f(row, col, value)` for the lower triangle of a sparse body's reduced stiffness K (no
+/// springs) with its unknowns at `offset..`, column by column with rows ascending, in the same
+/// order on every process: the symmetric Newton step's block of the body
+/// (`crate::newton::primal`). Nothing for a dense body.
+pub fn stiffness_columns(
     part: &BodyPart,
     body: Option<&CondensedBody>,
     offset: usize,
-    trip: &mut Vec<Triplet<usize, usize, f64>>,
+    f: &mut dyn FnMut(usize, usize, f64),
 ) {
     match (part, body) {
-        (BodyPart::Remote(rows), _) => trip.extend(
-            rows.stiffness
-                .iter()
-                .map(|&(r, c, v)| Triplet::new(offset + r, offset + c, v)),
-        ),
-        (BodyPart::Own { .. }, Some(body)) => stiffness_entries(body, |r, c, v| {
-            trip.push(Triplet::new(offset + r, offset + c, v))
-        }),
+        (BodyPart::Remote(rows), _) => rows
+            .stiffness
+            .iter()
+            .for_each(|&(r, c, v)| f(offset + r, offset + c, v)),
+        (BodyPart::Own { .. }, Some(body)) => {
+            stiffness_entries(body, |r, c, v| f(offset + r, offset + c, v))
+        }
         _ => {}
     }
 }

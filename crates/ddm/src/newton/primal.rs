@@ -23,13 +23,59 @@
 //! follows, as on the LU path.
 
 use contactdd_core::incremental_cholesky::IncrementalCholesky;
-use faer::sparse::{SparseColMat, Triplet};
+use faer::sparse::{SparseColMat, SymbolicSparseColMat, Triplet};
 use faer::Mat;
 use nalgebra::{DMatrix, DVector};
 
 use super::{dot, norm, pin_points, System, MAX_REFINE};
 use crate::contact::Role;
-use crate::shared_rows::push_stiffness;
+use crate::shared_rows::stiffness_columns;
+
+/// The n × n lower triangle holding the entries `stiffness` emits (column by column, rows
+/// ascending) with the springs' positions added as zeros where the stiffness has none: one merge
+/// in column order, no sort. `None` if the stiffness's entries come out of order or leave the
+/// matrix.
+fn with_springs(
+    n: usize,
+    stiffness: impl FnOnce(&mut dyn FnMut(usize, usize, f64)),
+    springs: &[Triplet<usize, usize, f64>],
+) -> Option<SparseColMat<usize, f64>> {
+    let mut extra: Vec<(usize, usize)> = springs.iter().map(|t| (t.col, t.row)).collect();
+    extra.sort_unstable();
+    extra.dedup();
+    let mut extra = extra.into_iter().peekable();
+    let (mut col_ptr, mut rows, mut values) = (vec![0], Vec::new(), Vec::new());
+    let mut last = None;
+    let mut push = |(c, r): (usize, usize), v: f64| {
+        if last.is_some_and(|l| l >= (c, r)) || c >= n || r >= n {
+            return false;
+        }
+        last = Some((c, r));
+        while col_ptr.len() <= c {
+            col_ptr.push(rows.len());
+        }
+        rows.push(r);
+        values.push(v);
+        true
+    };
+    let mut ordered = true;
+    stiffness(&mut |r, c, v| {
+        while let Some(e) = extra.next_if(|&e| e < (c, r)) {
+            ordered &= push(e, 0.0);
+        }
+        extra.next_if_eq(&(c, r));
+        ordered &= push((c, r), v);
+    });
+    for e in extra {
+        ordered &= push(e, 0.0);
+    }
+    if !ordered {
+        return None;
+    }
+    col_ptr.resize(n + 1, rows.len());
+    let pattern = SymbolicSparseColMat::new_checked(n, n, col_ptr, None, rows);
+    Some(SparseColMat::new(pattern, values))
+}
 
 /// Relative asymmetry of P below which the symmetric step takes its lower triangle (the two
 /// sides of a matching pair interpolate each other with coefficients equal up to round-off).
@@ -52,24 +98,20 @@ pub(super) struct PrimalCache {
 }
 
 impl PrimalCache {
-    /// Factorises the bodies' stiffness (`stiffness` gives its lower triangle, called at the
-    /// first step only) plus the `springs` (lower-triangle entries of N P Nᵀ, the same positions
-    /// at every step); false if the sum is not positive definite or memory fails.
+    /// Factorises the bodies' stiffness (`stiffness` emits its lower triangle column by column,
+    /// called at the first step only) plus the `springs` (lower-triangle entries of N P Nᵀ, the
+    /// same positions at every step); false if the sum is not positive definite, memory fails or
+    /// the entries come out of order.
     fn factor(
         &mut self,
-        stiffness: impl FnOnce() -> Option<Vec<Triplet<usize, usize, f64>>>,
+        stiffness: impl FnOnce(&mut dyn FnMut(usize, usize, f64)),
         springs: &[Triplet<usize, usize, f64>],
         n: usize,
     ) -> bool {
         if self.stiffness.is_none() {
-            let Some(mut trip) = stiffness() else {
+            let Some(a) = with_springs(n, stiffness, springs) else {
                 return false;
             };
-            trip.extend(springs.iter().map(|t| Triplet::new(t.row, t.col, 0.0)));
-            let Ok(a) = SparseColMat::<usize, f64>::try_new_from_triplets(n, n, &trip) else {
-                return false;
-            };
-            drop(trip);
             self.factor = IncrementalCholesky::analyse(a.symbolic());
             self.stiffness = Some(a);
         }
@@ -166,13 +208,13 @@ impl System<'_> {
         for (b, part) in self.parts.iter().enumerate() {
             n = n.max(self.sparse_offset[b]? - base + part.sparse_free()?);
         }
-        let stiffness = || {
-            let mut trip = Vec::new();
+        // Sparse bodies' offsets increase with the body, so their columns come in order.
+        let stiffness = |f: &mut dyn FnMut(usize, usize, f64)| {
             for (b, part) in self.parts.iter().enumerate() {
-                let offset = self.sparse_offset[b]? - base;
-                push_stiffness(part, self.bodies[b].as_ref(), offset, &mut trip);
+                if let Some(offset) = self.sparse_offset[b] {
+                    stiffness_columns(part, self.bodies[b].as_ref(), offset - base, f);
+                }
             }
-            Some(trip)
         };
         let pins = pin_points(z);
         let pinned = pins.iter().map(|&p| (p, p, self.d0[p]));
@@ -289,5 +331,50 @@ impl System<'_> {
         let rhs = DVector::from_fn(k, |a, _| -weighted(&z[a], r));
         let mu = gram.lu().solve(&rhs)?;
         Some(mu.iter().copied().collect())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Lower-triangle entries (row, col, value) emitted in the order given.
+    fn emit(
+        entries: &[(usize, usize, f64)],
+    ) -> impl FnOnce(&mut dyn FnMut(usize, usize, f64)) + '_ {
+        move |f: &mut dyn FnMut(usize, usize, f64)| entries.iter().for_each(|&(r, c, v)| f(r, c, v))
+    }
+
+    #[test]
+    fn springs_merge_into_the_stiffness_pattern_as_faer_sums_triplets() {
+        // A 5 × 5 lower triangle with an empty column (3) and springs inside and outside it.
+        let k = [
+            (0, 0, 4.0),
+            (2, 0, -1.0),
+            (1, 1, 3.0),
+            (4, 1, 0.5),
+            (2, 2, 5.0),
+            (3, 3, 1.0),
+            (4, 4, 2.0),
+        ];
+        let springs: Vec<_> = [(2, 0), (3, 0), (3, 1), (4, 3), (3, 0)]
+            .into_iter()
+            .map(|(r, c)| Triplet::new(r, c, 7.0))
+            .collect();
+        let a = with_springs(5, emit(&k), &springs).unwrap();
+        let mut trip: Vec<_> = k.iter().map(|&(r, c, v)| Triplet::new(r, c, v)).collect();
+        trip.extend(springs.iter().map(|t| Triplet::new(t.row, t.col, 0.0)));
+        let b = SparseColMat::<usize, f64>::try_new_from_triplets(5, 5, &trip).unwrap();
+        assert_eq!(a.symbolic().col_ptr(), b.symbolic().col_ptr());
+        assert_eq!(a.symbolic().row_idx(), b.symbolic().row_idx());
+        assert_eq!(a.val(), b.val());
+    }
+
+    #[test]
+    fn stiffness_out_of_order_is_refused() {
+        let k = [(1, 1, 1.0), (0, 0, 1.0)];
+        assert!(with_springs(2, emit(&k), &[]).is_none());
+        let k = [(0, 0, 1.0), (2, 0, 1.0)];
+        assert!(with_springs(2, emit(&k), &[]).is_none());
     }
 }
