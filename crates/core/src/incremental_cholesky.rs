@@ -26,6 +26,8 @@ use faer::sparse::SymbolicSparseColMatRef;
 use faer::{Accum, MatMut, MatRef, Par, Side};
 
 use crate::ordering::{group_by, node_amd};
+use crate::subtrees::Split;
+use std::ops::Range;
 
 /// Marks a supernode without a parent (a root of the elimination tree).
 const ROOT: usize = usize::MAX;
@@ -69,6 +71,8 @@ pub struct SupernodalTree {
     /// Per supernode s, the descendants whose pattern has rows in s (`updaters_ptr` delimits).
     updaters_ptr: Vec<usize>,
     updaters: Vec<usize>,
+    /// Two groups of subtrees factorised and solved side by side, if the tree gains from it.
+    split: Option<Box<Split>>,
 }
 
 impl IncrementalCholesky {
@@ -119,7 +123,17 @@ impl SupernodalTree {
     /// column fwd[k]; column j sits at inv[j]); `None` if the analysis fails.
     pub fn analyse(
         pattern: SymbolicSparseColMatRef<'_, usize>,
+        order: (&[usize], &[usize]),
+    ) -> Option<Self> {
+        Self::analyse_with(pattern, order, None)
+    }
+
+    /// [`SupernodalTree::analyse`], splitting the tree for two workers above `min_work` flops
+    /// (`None`: the default threshold).
+    fn analyse_with(
+        pattern: SymbolicSparseColMatRef<'_, usize>,
         (fwd, inv): (&[usize], &[usize]),
+        min_work: Option<f64>,
     ) -> Option<Self> {
         let n = pattern.ncols();
         let order = PermRef::new_checked(fwd, inv, n);
@@ -145,7 +159,7 @@ impl SupernodalTree {
             return None;
         };
         let supernode_of = supernode_of(sn);
-        let parent = (0..sn.n_supernodes())
+        let parent: Vec<usize> = (0..sn.n_supernodes())
             .map(|s| {
                 sn.supernode(s)
                     .pattern()
@@ -154,6 +168,16 @@ impl SupernodalTree {
             })
             .collect();
         let (updaters_ptr, updaters) = updaters(sn, &supernode_of);
+        // A supernode's flops: its dense factor, its triangular solve and its updates.
+        let work: Vec<f64> = (0..sn.n_supernodes())
+            .map(|s| {
+                let c = (sn.supernode_end()[s] - sn.supernode_begin()[s]) as f64;
+                let r = sn.supernode(s).pattern().len() as f64;
+                c * c * c / 3.0 + c * c * r + c * r * r
+            })
+            .collect();
+        let cols = |s: usize| sn.supernode_begin()[s]..sn.supernode_end()[s];
+        let split = Split::new(&parent, &work, ROOT, cols, min_work).map(Box::new);
         Some(SupernodalTree {
             symbolic,
             perm_fwd,
@@ -163,6 +187,7 @@ impl SupernodalTree {
             parent,
             updaters_ptr,
             updaters,
+            split,
         })
     }
 
@@ -194,14 +219,45 @@ impl SupernodalTree {
         dirty: Option<&[bool]>,
     ) -> Result<f64, FactorError> {
         let sn = self.supernodal();
-        let mut scratch = Scratch::new(sn).ok_or(FactorError::OutOfMemory)?;
         let n_super = sn.n_supernodes();
+        let scratch = || Scratch::new(sn).ok_or(FactorError::OutOfMemory);
+        let count = match &self.split {
+            None => self.factor_all((values, l_values, 0), 0..n_super, dirty, &mut scratch()?)?,
+            Some(split) => {
+                let [a, b] = carve(sn, l_values, &split.groups);
+                let group = |slices: Vec<(Range<usize>, &mut [f64])>| {
+                    let mut scratch = scratch()?;
+                    slices.into_iter().try_fold(0, |count, (range, slice)| {
+                        let offset = sn.col_ptr_for_val()[range.start];
+                        let at = (values, slice, offset);
+                        Ok(count + self.factor_all(at, range, dirty, &mut scratch)?)
+                    })
+                };
+                let (ca, cb) = rayon::join(|| group(a), || group(b));
+                let rest = split.rest.iter().copied();
+                let at = (values, l_values, 0);
+                ca? + cb? + self.factor_all(at, rest, dirty, &mut scratch()?)?
+            }
+        };
+        Ok(count as f64 / n_super.max(1) as f64)
+    }
+
+    /// Factorises the `supernodes` (in order, those marked in `dirty`, or all) into `l_values`,
+    /// which holds the factor's values from position `offset` on; returns how many.
+    fn factor_all(
+        &self,
+        (values, l_values, offset): (&[f64], &mut [f64], usize),
+        supernodes: impl Iterator<Item = usize>,
+        dirty: Option<&[bool]>,
+        scratch: &mut Scratch,
+    ) -> Result<usize, FactorError> {
+        let sn = self.supernodal();
         let mut count = 0;
-        for s in (0..n_super).filter(|&s| dirty.map_or(true, |d| d[s])) {
-            self.factor_supernode(sn, s, (values, &mut *l_values), &mut scratch)?;
+        for s in supernodes.filter(|&s| dirty.map_or(true, |d| d[s])) {
+            self.factor_supernode(sn, s, (values, &mut *l_values, offset), scratch)?;
             count += 1;
         }
-        Ok(count as f64 / n_super.max(1) as f64)
+        Ok(count)
     }
 
     /// The supernodes to recompute when A's values change from `old` to `new`: those with a
@@ -232,56 +288,28 @@ impl SupernodalTree {
         if rhs.len() != sn.nrows() || l_values.len() != self.len_val() {
             return false;
         }
-        // y = P rhs, L Lᵀ x = y, rhs = Pᵀ x. Each supernode's rows below its diagonal block are
-        // gathered into `below` once, so that its columns are used as contiguous slices.
+        // y = P rhs, L Lᵀ x = y, rhs = Pᵀ x.
         let mut x: Vec<f64> = self.perm_fwd.iter().map(|&i| rhs[i]).collect();
-        let mut below = Vec::new();
-        for s in 0..sn.n_supernodes() {
-            let (block, rows, cols, pattern) = block(sn, l_values, s);
-            let start = sn.supernode_begin()[s];
-            below.clear();
-            below.resize(pattern.len(), 0.0);
-            for j in 0..cols {
-                let column = &block[j * rows..(j + 1) * rows];
-                let xj = x[start + j] / column[j];
-                x[start + j] = xj;
-                for i in j + 1..cols {
-                    x[start + i] -= column[i] * xj;
-                }
-                for (b, l) in below.iter_mut().zip(&column[cols..]) {
-                    *b += l * xj;
-                }
+        let n_super = sn.n_supernodes();
+        match &self.split {
+            None => {
+                forward(sn, l_values, &mut x, 0..n_super);
+                backward(sn, l_values, &mut x, (0..n_super).rev());
             }
-            for (&row, b) in pattern.iter().zip(&below) {
-                x[row] -= b;
-            }
-        }
-        for s in (0..sn.n_supernodes()).rev() {
-            let (block, rows, cols, pattern) = block(sn, l_values, s);
-            let start = sn.supernode_begin()[s];
-            below.clear();
-            below.extend(pattern.iter().map(|&row| x[row]));
-            for j in (0..cols).rev() {
-                let column = &block[j * rows..(j + 1) * rows];
-                let mut xj = x[start + j];
-                for i in j + 1..cols {
-                    xj -= column[i] * x[start + i];
-                }
-                xj -= dot(&column[cols..], &below);
-                x[start + j] = xj / column[j];
-            }
+            Some(split) => split_solve(sn, split, l_values, &mut x),
         }
         for (&i, v) in self.perm_fwd.iter().zip(&x) {
             rhs[i] = *v;
         }
         true
     }
+
     /// Computes the columns of L of supernode `s` from A and its descendants' columns.
     fn factor_supernode(
         &self,
         sn: &SymbolicSupernodalCholesky<usize>,
         s: usize,
-        (values, l_values): (&[f64], &mut [f64]),
+        (values, l_values, offset): (&[f64], &mut [f64], usize),
         scratch: &mut Scratch,
     ) -> Result<(), FactorError> {
         let (start, end) = (sn.supernode_begin()[s], sn.supernode_end()[s]);
@@ -291,7 +319,7 @@ impl SupernodalTree {
             scratch.local[row] = ncols + i;
         }
         let val_ptr = sn.col_ptr_for_val();
-        let (head, tail) = l_values.split_at_mut(val_ptr[s]);
+        let (head, tail) = l_values.split_at_mut(val_ptr[s] - offset);
         let rows = ncols + pattern.len();
         let block = &mut tail[..val_ptr[s + 1] - val_ptr[s]];
         block.fill(0.0);
@@ -303,7 +331,14 @@ impl SupernodalTree {
             }
         }
         for &d in &self.updaters[self.updaters_ptr[s]..self.updaters_ptr[s + 1]] {
-            update(sn, d, head, (start, end), (&mut *block, rows), scratch);
+            update(
+                sn,
+                d,
+                (head, offset),
+                (start, end),
+                (&mut *block, rows),
+                scratch,
+            );
         }
         let ls = MatMut::from_column_major_slice_mut(block, rows, ncols);
         let (mut top, mut bottom) = ls.split_at_row_mut(ncols);
@@ -323,6 +358,140 @@ impl SupernodalTree {
         }
         Ok(())
     }
+}
+
+/// The forward solve L y = x in place over the `supernodes` (in order). Each supernode's rows
+/// below its diagonal block are gathered into `below` once, so that its columns are used as
+/// contiguous slices.
+fn forward(
+    sn: &SymbolicSupernodalCholesky<usize>,
+    l_values: &[f64],
+    x: &mut [f64],
+    supernodes: impl Iterator<Item = usize>,
+) {
+    let mut below = Vec::new();
+    for s in supernodes {
+        let (block, rows, cols, pattern) = block(sn, l_values, s);
+        let start = sn.supernode_begin()[s];
+        below.clear();
+        below.resize(pattern.len(), 0.0);
+        for j in 0..cols {
+            let column = &block[j * rows..(j + 1) * rows];
+            let xj = x[start + j] / column[j];
+            x[start + j] = xj;
+            for i in j + 1..cols {
+                x[start + i] -= column[i] * xj;
+            }
+            for (b, l) in below.iter_mut().zip(&column[cols..]) {
+                *b += l * xj;
+            }
+        }
+        for (&row, b) in pattern.iter().zip(&below) {
+            x[row] -= b;
+        }
+    }
+}
+
+/// The backward solve Lᵀ z = x in place over the `supernodes` (in reverse order of the tree).
+fn backward(
+    sn: &SymbolicSupernodalCholesky<usize>,
+    l_values: &[f64],
+    x: &mut [f64],
+    supernodes: impl Iterator<Item = usize>,
+) {
+    let mut below = Vec::new();
+    for s in supernodes {
+        let (block, rows, cols, pattern) = block(sn, l_values, s);
+        let start = sn.supernode_begin()[s];
+        below.clear();
+        below.extend(pattern.iter().map(|&row| x[row]));
+        for j in (0..cols).rev() {
+            let column = &block[j * rows..(j + 1) * rows];
+            let mut xj = x[start + j];
+            for i in j + 1..cols {
+                xj -= column[i] * x[start + i];
+            }
+            xj -= dot(&column[cols..], &below);
+            x[start + j] = xj / column[j];
+        }
+    }
+}
+
+/// The solve with the tree split: forward, the two groups side by side, each on its own buffer
+/// holding its columns of x and zeros elsewhere, where its updates of the rest's rows add up;
+/// then the rest forward and backward; then the groups backward, side by side, each reading
+/// the rest's final values from its own copy of x. The groups' order of arithmetic does not
+/// depend on the number of threads.
+fn split_solve(
+    sn: &SymbolicSupernodalCholesky<usize>,
+    split: &Split,
+    l_values: &[f64],
+    x: &mut [f64],
+) {
+    let supernodes = |g: usize| split.groups[g].iter().flat_map(Clone::clone);
+    let x0: &[f64] = x;
+    let down = |g: usize| {
+        let mut y: Vec<f64> = (0..x0.len())
+            .map(|i| {
+                if split.owner[i] == g as u8 + 1 {
+                    x0[i]
+                } else {
+                    0.0
+                }
+            })
+            .collect();
+        forward(sn, l_values, &mut y, supernodes(g));
+        y
+    };
+    let (ya, yb) = rayon::join(|| down(0), || down(1));
+    for (i, v) in x.iter_mut().enumerate() {
+        *v = match split.owner[i] {
+            1 => ya[i],
+            2 => yb[i],
+            _ => (*v + ya[i]) + yb[i],
+        };
+    }
+    forward(sn, l_values, x, split.rest.iter().copied());
+    backward(sn, l_values, x, split.rest.iter().rev().copied());
+    let x1: &[f64] = x;
+    let up = |g: usize| {
+        let mut y = x1.to_vec();
+        backward(sn, l_values, &mut y, supernodes(g).rev());
+        y
+    };
+    let (ya, yb) = rayon::join(|| up(0), || up(1));
+    for (i, v) in x.iter_mut().enumerate() {
+        match split.owner[i] {
+            1 => *v = ya[i],
+            2 => *v = yb[i],
+            _ => {}
+        }
+    }
+}
+
+/// The factor's values of every range of `groups` (supernode ranges, disjoint), cut out of
+/// `l_values` as disjoint slices, per group.
+fn carve<'a>(
+    sn: &SymbolicSupernodalCholesky<usize>,
+    l_values: &'a mut [f64],
+    groups: &[Vec<Range<usize>>; 2],
+) -> [Vec<(Range<usize>, &'a mut [f64])>; 2] {
+    let val_ptr = sn.col_ptr_for_val();
+    let mut ranges: Vec<(usize, Range<usize>)> = groups
+        .iter()
+        .enumerate()
+        .flat_map(|(g, rs)| rs.iter().map(move |r| (g, r.clone())))
+        .collect();
+    ranges.sort_by_key(|(_, r)| r.start);
+    let mut out = [Vec::new(), Vec::new()];
+    let (mut rest, mut at) = (l_values, 0);
+    for (g, r) in ranges {
+        let (_, tail) = rest.split_at_mut(val_ptr[r.start] - at);
+        let (mine, tail) = tail.split_at_mut(val_ptr[r.end] - val_ptr[r.start]);
+        out[g].push((r.clone(), mine));
+        (rest, at) = (tail, val_ptr[r.end]);
+    }
+    out
 }
 
 /// Σ a_i b_i, in four interleaved partial sums so that the compiler can use vector
@@ -367,7 +536,7 @@ fn block<'a>(
 fn update(
     sn: &SymbolicSupernodalCholesky<usize>,
     d: usize,
-    l_values: &[f64],
+    (l_values, offset): (&[f64], usize),
     (start, end): (usize, usize),
     (ls, ls_rows): (&mut [f64], usize),
     scratch: &mut Scratch,
@@ -376,7 +545,7 @@ fn update(
     let d_pattern = sn.supernode(d).pattern();
     let val_ptr = sn.col_ptr_for_val();
     let ld = MatRef::from_column_major_slice(
-        &l_values[val_ptr[d]..val_ptr[d + 1]],
+        &l_values[val_ptr[d] - offset..val_ptr[d + 1] - offset],
         d_ncols + d_pattern.len(),
         d_ncols,
     );
@@ -575,6 +744,41 @@ mod tests {
         // And back: the factor of the first matrix.
         f.factorize(a.val()).unwrap();
         assert!(residual(&a, &solve(&f, &b), &b) < 1e-12);
+    }
+
+    #[test]
+    fn a_split_tree_factorises_as_the_whole_one_and_solves_alike() {
+        let k = 40;
+        let a = grid(k, 0.01, &[]);
+        let (fwd, inv) = node_amd(a.symbolic()).unwrap();
+        let analyse = |min| SupernodalTree::analyse_with(a.symbolic(), (&fwd, &inv), Some(min));
+        let (whole, split) = (analyse(f64::INFINITY).unwrap(), analyse(0.0).unwrap());
+        assert!(whole.split.is_none() && split.split.is_some());
+        let factor = |tree: &SupernodalTree, values: &[f64], l: &mut Vec<f64>, dirty| {
+            l.resize(tree.len_val(), 0.0);
+            tree.factorize_into(values, l, dirty).unwrap()
+        };
+        let (mut lw, mut ls) = (Vec::new(), Vec::new());
+        factor(&whole, a.val(), &mut lw, None);
+        factor(&split, a.val(), &mut ls, None);
+        // Every supernode's arithmetic is the same, whoever does it.
+        assert_eq!(lw, ls);
+        // So is a partial refactorisation's, with a change in one group and in the rest.
+        let changed = grid(k, 0.01, &[(0, 1e8), (k * k - 1, 5e7)]);
+        let dirty = whole.dirty(a.val(), changed.val()).unwrap();
+        assert!(dirty.iter().any(|d| !d));
+        factor(&whole, changed.val(), &mut lw, Some(&dirty));
+        factor(&split, changed.val(), &mut ls, Some(&dirty));
+        assert_eq!(lw, ls);
+        let b: Vec<f64> = (0..k * k).map(|i| ((i * 7919) % 13) as f64 - 6.0).collect();
+        let (mut xw, mut xs) = (b.clone(), b.clone());
+        assert!(whole.solve_in_place(&lw, &mut xw) && split.solve_in_place(&ls, &mut xs));
+        assert!(residual(&changed, &xs, &b) < 1e-10);
+        let scale = xw.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+        assert!(xw
+            .iter()
+            .zip(&xs)
+            .all(|(p, q)| (p - q).abs() <= 1e-12 * scale));
     }
 
     #[test]

@@ -29,6 +29,7 @@ pub mod ordering;
 pub mod post;
 pub mod rectangle;
 pub mod rigid;
+mod subtrees;
 pub mod supports;
 
 pub use body::{ElasticBody, LinearSolution};
