@@ -7,8 +7,10 @@
 //! points whose state changed, between two Newton steps), only that part of the tree is
 //! recomputed (`docs/sparse-path.md`, "Partial refactorisation").
 //!
-//! The symbolic analysis (AMD order, supernodal structure) is faer's; so is the solve. The numeric
-//! factorisation is done here, supernode by supernode, with faer's dense kernels.
+//! The supernodal structure is faer's symbolic analysis, in the AMD order of the nodes
+//! (`ordering::node_amd`). The numeric factorisation is done here, supernode by supernode, with
+//! faer's dense kernels, and so is the solve, with plain loops. Both deal two groups of
+//! independent subtrees to two workers when the tree is large enough (`subtrees`).
 
 use faer::dyn_stack::{MemBuffer, MemStack, StackReq};
 use faer::linalg::cholesky::llt::factor::{cholesky_in_place, cholesky_in_place_scratch};
