@@ -441,7 +441,7 @@ impl FactoredBody {
 
     /// The prescribed part of a DOF: its value if prescribed, g n_c on a node held along an
     /// inclined normal n (u·n = g), 0 for a free DOF. Then
-    /// u_dof = prescribed_value(dof) + coefficient × q[index] with
+    /// u_dof = prescribed_value(dof) + coefficient × `q[index]` with
     /// [`FactoredBody::reduced_index`].
     pub fn prescribed_value(&self, dof: usize) -> f64 {
         self.fixed

@@ -122,7 +122,7 @@ impl IncrementalCholesky {
 
 impl SupernodalTree {
     /// Analyses the lower triangle `pattern` of A in the order (fwd, inv) (position k holds
-    /// column fwd[k]; column j sits at inv[j]); `None` if the analysis fails.
+    /// column `fwd[k]`; column j sits at `inv[j]`); `None` if the analysis fails.
     pub fn analyse(
         pattern: SymbolicSparseColMatRef<'_, usize>,
         order: (&[usize], &[usize]),

@@ -10,9 +10,9 @@ use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::sparse::linalg::amd;
 use faer::sparse::{SymbolicSparseColMat, SymbolicSparseColMatRef};
 
-/// The AMD order of the symmetric matrix whose lower triangle has the pattern `lower`, computed with consecutive columns of equal pattern merged. Returns
-/// (fwd, inv): position k of the order holds column fwd[k], and column j sits at inv[j]. `None`
-/// if memory or the indices fail.
+/// The AMD order of the symmetric matrix whose lower triangle has the pattern `lower`, computed
+/// with consecutive columns of equal pattern merged. Returns (fwd, inv): position k of the order
+/// holds column `fwd[k]`, and column j sits at `inv[j]`. `None` if memory or the indices fail.
 pub fn node_amd(lower: SymbolicSparseColMatRef<'_, usize>) -> Option<(Vec<usize>, Vec<usize>)> {
     let n = lower.ncols();
     let (adj_ptr, adj) = adjacency(lower);
