@@ -2,7 +2,7 @@
 //! `examples/iteration_counts.rs` share them.
 //!
 //! - [`stiff_under_soft`]: a clamped block under a ten times softer loaded block, notch gap;
-//! - [`column`]: a column of blocks on a frictionless floor, held only by their contacts;
+//! - [`column()`]: a column of blocks on a frictionless floor, held only by their contacts;
 //! - [`recess`]: two large blocks pressed together over a shallow recess (the closed form of two
 //!   pressed half-planes applies);
 //! - [`non_matching_notch`]: the paper's notch with different meshes on the two sides;

@@ -3,7 +3,7 @@
 //!
 //! The DD step is a map x̃ = G(x) of the interface state x (the normal displacements of all
 //! contact points), with residual r = G(x) − x. From the differences of the last residuals and
-//! outputs, V = [Δr], W = [Δx̃] (newest first), the next state is
+//! outputs, V = `[Δr]`, W = `[Δx̃]` (newest first), the next state is
 //!   x^{k+1} = x̃^k + W α,   α = argmin ‖V α + r^k‖,
 //! the secant (multi-secant) update that makes the linearised residual vanish on the span of the
 //! observed differences. On a linear map with unlimited memory this is GMRES on I − G.

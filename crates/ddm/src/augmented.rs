@@ -27,7 +27,7 @@ use crate::solver::Prepared;
 /// The default gap tolerance, relative to the largest normal displacement of the contact points.
 pub const GAP_TOL: f64 = 1e-6;
 
-/// Updates without coming closer to done ([`Update::distance`]: a new smallest violation, or
+/// Updates without coming closer to done (`Update::distance`: a new smallest violation, or
 /// pressures that settle further) after which the loop stops: the Signorini conditions cannot be
 /// met more closely (with non-matching meshes, both sides' nodes cannot all close exactly).
 pub const STALL: usize = 5;

@@ -606,7 +606,7 @@ impl<'m> EdgeIndex<'m> {
         }
     }
 
-    /// The nearest hit of the ray x + t n (see [`project`]): edges are searched in growing boxes
+    /// The nearest hit of the ray x + t n (see `project`): edges are searched in growing boxes
     /// around the segment [x − R n, x + R n] until a hit with |t| ≤ R is found (no nearer hit can
     /// lie outside the box) or the box holds every edge.
     pub fn project(&self, x: Point, n: Vector) -> Option<(f64, Vec<(usize, f64)>)> {

@@ -3,7 +3,7 @@
 //! The iterate lives on the interface: the normal displacements U of all contact points, plus the
 //! interface loads T that reproduce the full fields at the end. One iteration is one parallel
 //! [`RobinSweep`] (every body solves its Robin problem against its partners' last state),
-//! optionally preceded by the rigid-body [`Coarse`] correction, followed by one of two updates:
+//! optionally preceded by the rigid-body `Coarse` correction, followed by one of two updates:
 //!
 //! - **relaxation** (the paper's iteration): U^{k+1} = γ^k Ũ + (1 − γ^k) U^k, with a constant γ
 //!   or Aitken's `auto` ([`Relaxation`]); it stops when every body's relative change

@@ -4,13 +4,13 @@
 //! (docs/monolithic.md). It shares no solver code with the decomposition: only the model, the
 //! contact geometry and the finite element core.
 //!
-//! - [`reduced`]: the contact terms touch only the contact DOFs, so the interior DOFs of every
+//! - `reduced`: the contact terms touch only the contact DOFs, so the interior DOFs of every
 //!   body are eliminated once, exactly, by a sparse Cholesky factorisation with the contact DOFs
 //!   ordered last; every Newton step then refactorises only the contact block.
-//! - [`system`]: the reduced equations F(x) = 0 on the contact DOFs x, their generalised Jacobian
+//! - `system`: the reduced equations F(x) = 0 on the contact DOFs x, their generalised Jacobian
 //!   for a closed set, and the step.
-//! - [`modes`]: rigid motions that no closed contact resists, kept out of the step.
-//! - [`balance`]: the equilibrium check on the assembled system.
+//! - `modes`: rigid motions that no closed contact resists, kept out of the step.
+//! - `balance`: the equilibrium check on the assembled system.
 //!
 //! The iteration starts from u = 0 and stops when a full step leaves the closed set unchanged
 //! (then the step solved the linear equations of the final closed set); the result counts as
@@ -58,7 +58,7 @@ pub struct MonolithicSettings {
     /// own pressures).
     pub imbalance_tol: f64,
     /// Augmented Lagrangian pairs: the largest violation of the Signorini conditions (a length;
-    /// `None`: [`GAP_TOL`] times the largest normal displacement of the contact points).
+    /// `None`: `GAP_TOL` times the largest normal displacement of the contact points).
     pub gap_tol: Option<f64>,
     /// Augmented Lagrangian pairs: multiplier updates at most (plain Uzawa updates, each a
     /// Newton solve).

@@ -164,7 +164,7 @@ impl SparseContact {
         }
     }
 
-    /// An interface load T⁰ with C₀ T⁰ ≈ `rhs` by at most [`CG_MAX`] conjugate gradient steps (C₀
+    /// An interface load T⁰ with C₀ T⁰ ≈ `rhs` by at most `CG_MAX` conjugate gradient steps (C₀
     /// is SPD), one sparse solve per step; T⁰ = 0 if they break down.
     pub fn initial_load(&self, op: &FactoredBody, rhs: &[f64]) -> Vec<f64> {
         let m = rhs.len();
