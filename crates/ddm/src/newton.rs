@@ -292,10 +292,9 @@ impl<'a> System<'a> {
         self.evaluation(tau, u)
     }
 
-    /// The evaluation at τ + δ from the one at τ: U(τ) + B δ where the bodies computed B δ for
-    /// this δ (the step's residual), else fresh.
-    fn evaluate_step(&self, tau: &[f64], at_tau: &Evaluation, delta: &[f64]) -> Evaluation {
-        let next: Vec<f64> = tau.iter().zip(delta).map(|(t, d)| t + d).collect();
+    /// The evaluation at `next` = τ + δ from the one at τ: U(τ) + B δ where the bodies computed
+    /// B δ for this δ (the step's residual), else fresh.
+    fn evaluate_step(&self, next: &[f64], at_tau: &Evaluation, delta: &[f64]) -> Evaluation {
         let known = self.applied.lock().ok().and_then(|cached| {
             let (d, bd) = cached.as_ref()?;
             let same = d.len() == delta.len()
@@ -303,8 +302,8 @@ impl<'a> System<'a> {
             same.then(|| at_tau.u.iter().zip(bd).map(|(u, b)| u + b).collect())
         });
         match known {
-            Some(u) => self.evaluation(&next, u),
-            None => self.evaluate(&next),
+            Some(u) => self.evaluation(next, u),
+            None => self.evaluate(next),
         }
     }
 
@@ -1370,7 +1369,10 @@ impl<'s, 'a> Run<'s, 'a> {
         delta: Vec<f64>,
     ) -> Result<(Step, Option<Checkpoint>), Stop> {
         let mut full = (checkpoint.steps < WINDOW)
-            .then(|| self.system.evaluate_step(&self.tau, &self.state, &delta))
+            .then(|| {
+                let next = self.along(&delta, 1.0);
+                self.system.evaluate_step(&next, &self.state, &delta)
+            })
             .filter(|next| self.check(&next.u).is_none());
         // A body that nothing held, and that the step (which closed all its points) leaves held
         // by none again, is pulled away from its partners. Unless the checkpoint holds every
