@@ -11,7 +11,7 @@ use contactdd_core::{
 };
 use contactdd_ddm::benchmark::Notch;
 use contactdd_ddm::contact::Interface;
-use contactdd_ddm::iteration::iterate;
+use contactdd_ddm::solver::iterate;
 use contactdd_ddm::{
     prepare, prepare_with, solve, sweep, CoarseMode, Condensation, ContactPair, Enforcement, Gamma,
     Hooks, Method, Model, Penalty, Settings,

@@ -7,7 +7,7 @@
 
 use std::path::{Path, PathBuf};
 
-use contactdd::ddm::robin_sweep::Breakdown;
+use contactdd::ddm::outcome::Breakdown;
 use contactdd::ddm::{
     prepare, prepare_with, solve, Accelerator, Condensation, Gamma, Hooks, Method, Model, Settings,
     Solution, Stop,

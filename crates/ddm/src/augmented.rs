@@ -20,9 +20,11 @@ use std::time::Instant;
 
 use crate::anderson::Anderson;
 use crate::contact::Interface;
-use crate::iteration::{iterate_on, Hooks, Outcome, Record, Settings, Stop, ANDERSON_DEPTH};
+use crate::iteration::Iteration;
 use crate::model::{Enforcement, Model};
-use crate::solver::Prepared;
+use crate::outcome::{Hooks, Outcome, Record, Stop};
+use crate::prepared::Prepared;
+use crate::settings::{Settings, ANDERSON_DEPTH};
 
 /// The default gap tolerance, relative to the largest normal displacement of the contact points.
 pub const GAP_TOL: f64 = 1e-6;
@@ -45,17 +47,24 @@ pub struct Augmented {
 }
 
 /// Solves the model's contact problem with augmented Lagrangian enforcement on the pairs that
-/// ask for it (the others keep λ = 0, the penalty formulation); the first inner solve starts from
-/// the interface loads `warm` when given.
+/// ask for it (the others keep λ = 0, the penalty formulation), by `iteration` for every inner
+/// solve; the first inner solve starts from the interface loads `warm` when given. `settings`
+/// give the loop's tolerances and cap.
 pub fn solve(
     model: &Model,
     prepared: &Prepared,
+    iteration: &dyn Iteration,
     settings: &Settings,
     hooks: Hooks<'_>,
     warm: Option<&[f64]>,
 ) -> Augmented {
     let start = Instant::now();
-    let mut result = update_loop(model, prepared, settings, hooks, warm);
+    let inner = Inner {
+        prepared,
+        iteration,
+        hooks,
+    };
+    let mut result = update_loop(model, &inner, settings, warm);
     // The iteration's time is the whole loop's, every inner solve included.
     result.outcome.seconds = start.elapsed().as_secs_f64();
     result
@@ -64,12 +73,11 @@ pub fn solve(
 /// The multiplier updates of [`solve`].
 fn update_loop(
     model: &Model,
-    prepared: &Prepared,
+    inner: &Inner<'_>,
     settings: &Settings,
-    hooks: Hooks<'_>,
     warm: Option<&[f64]>,
 ) -> Augmented {
-    let mut interface = prepared.interface.clone();
+    let mut interface = inner.prepared.interface.clone();
     let augmented = augmented_points(model, &interface);
     let m = interface.len();
     let mut history: Vec<Record> = Vec::new();
@@ -84,14 +92,7 @@ fn update_loop(
     let mut updates = 0;
     loop {
         updates += 1;
-        let outcome = inner_solve(
-            prepared,
-            &interface,
-            warm.as_deref(),
-            settings,
-            hooks,
-            &mut history,
-        );
+        let outcome = inner.solve(&interface, warm.as_deref(), &mut history);
         if outcome.stop != Stop::Converged {
             return match best {
                 Some(b) => b.unenforced(history, updates, gap_tol),
@@ -136,15 +137,21 @@ fn update_loop(
         }
         last_distance = distance;
         memory.advance(&mut lambda, &mut loads, &next, &t_load, 1.0);
-        for (j, p) in interface.points.iter_mut().enumerate() {
-            lambda[j] = if augmented[j].is_some() {
-                lambda[j].max(0.0)
-            } else {
-                0.0
-            };
-            p.multiplier = lambda[j];
-        }
+        set_multipliers(&mut interface, &mut lambda, &augmented);
         warm = Some(loads);
+    }
+}
+
+/// Clamps the multipliers `lambda` to λ ≥ 0 on the augmented points (0 elsewhere) and gives them
+/// to the contact points.
+fn set_multipliers(interface: &mut Interface, lambda: &mut [f64], augmented: &[Option<f64>]) {
+    for (j, p) in interface.points.iter_mut().enumerate() {
+        lambda[j] = if augmented[j].is_some() {
+            lambda[j].max(0.0)
+        } else {
+            0.0
+        };
+        p.multiplier = lambda[j];
     }
 }
 
@@ -188,32 +195,39 @@ impl Best {
     }
 }
 
-/// One inner solve, its records numbered on from `history` (and appended to it).
-fn inner_solve(
-    prepared: &Prepared,
-    interface: &Interface,
-    warm: Option<&[f64]>,
-    settings: &Settings,
-    hooks: Hooks<'_>,
-    history: &mut Vec<Record>,
-) -> Outcome {
-    let offset = history.len();
-    let renumber = |r: &Record| Record {
-        k: r.k + offset,
-        ..r.clone()
-    };
-    let report = |r: &Record| {
-        if let Some(f) = hooks.on_iteration {
-            f(&renumber(r));
-        }
-    };
-    let inner = Hooks {
-        on_iteration: Some(&report),
-        cancel: hooks.cancel,
-    };
-    let mut outcome = iterate_on(prepared, interface, warm, settings, inner);
-    history.extend(outcome.history.drain(..).map(|r| renumber(&r)));
-    outcome
+/// The inner solves: one iteration on one prepared model, with the caller's hooks.
+struct Inner<'a> {
+    prepared: &'a Prepared,
+    iteration: &'a dyn Iteration,
+    hooks: Hooks<'a>,
+}
+
+impl Inner<'_> {
+    /// One inner solve, its records numbered on from `history` (and appended to it).
+    fn solve(
+        &self,
+        interface: &Interface,
+        warm: Option<&[f64]>,
+        history: &mut Vec<Record>,
+    ) -> Outcome {
+        let (offset, hooks) = (history.len(), self.hooks);
+        let renumber = |r: &Record| Record {
+            k: r.k + offset,
+            ..r.clone()
+        };
+        let report = |r: &Record| {
+            if let Some(f) = hooks.on_iteration {
+                f(&renumber(r));
+            }
+        };
+        let inner = Hooks {
+            on_iteration: Some(&report),
+            cancel: hooks.cancel,
+        };
+        let mut outcome = self.iteration.run(self.prepared, interface, warm, inner);
+        history.extend(outcome.history.drain(..).map(|r| renumber(&r)));
+        outcome
+    }
 }
 
 /// Per point of `interface`, the θ its pair gives, where the pair uses the augmented Lagrangian

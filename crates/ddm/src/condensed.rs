@@ -33,6 +33,7 @@ use rayon::prelude::*;
 
 use crate::contact::{ContactPoint, Interface};
 use crate::error::SetupError;
+pub use crate::error::Singular;
 use crate::model::Model;
 use crate::sparse_body::{spring_additions, RobinFactor, SparseContact};
 
@@ -83,10 +84,6 @@ enum Reduction {
     /// The contact points in the sparse factor's numbering.
     Sparse(SparseContact),
 }
-
-/// A singular Robin problem: the body has lost its hold.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Singular;
 
 /// One body's factorised reference operator and its condensation on the contact points.
 pub struct CondensedBody {

@@ -121,3 +121,7 @@ fn material_key(e: &MaterialError) -> &'static str {
         MaterialError::PoissonRatio(_) => "poisson",
     }
 }
+
+/// A singular Robin problem: the body has lost its hold.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Singular;

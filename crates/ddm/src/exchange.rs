@@ -22,7 +22,7 @@ use std::ops::Range;
 
 use faer::Mat;
 
-use crate::robin_sweep::Breakdown;
+use crate::outcome::Breakdown;
 
 /// How the bodies' values are shared between the processes of one solve.
 pub trait Exchange: Send + Sync {

@@ -5,11 +5,13 @@ use std::collections::BTreeMap;
 use contactdd_core::post::stresses;
 use contactdd_core::{ElasticBody, Mesh, Vector, DIM};
 
+use crate::coarse::CoarseMode;
 use crate::contact::Interface;
-use crate::iteration::{Accelerator, Breakdown, CoarseMode, Record, Settings, Stop};
 use crate::method::Method;
 use crate::model::{Forces, Model};
+use crate::outcome::{Breakdown, Record, Stop};
 use crate::relaxation::Gamma;
+use crate::settings::{Accelerator, Settings};
 
 /// Fields of one body.
 #[derive(Clone, Debug)]

@@ -15,7 +15,7 @@ use faer::sparse::Triplet;
 use contactdd_core::rigid::Holding;
 use contactdd_core::{dof, BodyError, ElasticBody, FactorValues, FactoredBody, Vector, DIM};
 
-use crate::condensed::Singular;
+use crate::error::Singular;
 
 /// Relative residual at which the conjugate gradients of [`SparseContact::initial_load`] stop.
 const CG_TOL: f64 = 1e-12;

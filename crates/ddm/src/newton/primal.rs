@@ -27,7 +27,9 @@ use faer::sparse::{SparseColMat, SymbolicSparseColMat, Triplet};
 use faer::Mat;
 use nalgebra::{DMatrix, DVector};
 
-use super::{dot, norm, pin_points, System, MAX_REFINE};
+use super::algebra::{dot, norm, pin_points};
+use super::linear::MAX_REFINE;
+use super::system::System;
 use crate::contact::Role;
 use crate::shared_rows::stiffness_columns;
 
@@ -197,6 +199,8 @@ impl System<'_> {
     /// path then takes the step.
     pub(super) fn symmetric_step(
         &self,
+        cache: &mut PrimalCache,
+        applied: &mut Option<(Vec<f64>, Vec<f64>)>,
         chi: &[bool],
         z: &[Vec<f64>],
         r: &[f64],
@@ -230,17 +234,17 @@ impl System<'_> {
                 }
             }
         }
-        let mut cache = self.primal.lock().ok()?;
         if !cache.factor(stiffness, &trip, n) {
             return None;
         }
-        let solve = |r: &[f64]| self.symmetric_solve(&cache, &springs, z, (base, n), r);
+        let cache = &*cache;
+        let solve = |r: &[f64]| self.symmetric_solve(cache, &springs, z, (base, n), r);
         let mut x = solve(r)?;
         let m = self.len();
         // Refinement while each pass halves the residual (as on the LU path).
         let mut last = f64::INFINITY;
         for _ in 0..=MAX_REFINE {
-            let res = self.bordered_residual(chi, z, None, r, &x)?;
+            let res = self.bordered_residual(applied, chi, z, None, r, &x)?;
             let size = res.norm_l2();
             if size.is_nan() || size >= 0.5 * last || size <= accuracy.max(STEP_TOL * norm(r)) {
                 last = last.min(size);

@@ -4,7 +4,7 @@
 //! each pair), every body computes its Robin coefficients φ^k and right-hand side (docs/method.md §3)
 //! and solves its condensed Robin problem. The output is the *unrelaxed* Robin solution: the normal
 //! displacements Ũ and the interface loads T̃ (so that the body's field is K₀⁻¹(f + N T̃)). The
-//! relaxation and the accelerators of [`crate::iteration`] combine these outputs.
+//! relaxation and the accelerators of [`crate::sweeps`] combine these outputs.
 //!
 //! The bodies run in parallel with rayon; each body's arithmetic is sequential and touches only
 //! its own slices, so the result does not depend on the number of threads. A process solves only
@@ -15,21 +15,7 @@ use rayon::prelude::*;
 use crate::condensed::{CondensedBody, RobinCache};
 use crate::contact::{Interface, Role};
 use crate::method::Method;
-
-/// Why a body's Robin solve failed.
-#[derive(Clone, Debug, PartialEq)]
-pub enum Breakdown {
-    /// The body's Robin problem became singular with no closed point left.
-    LostContact,
-    /// The Robin problem became singular although some points are closed.
-    Singular,
-    /// NaN or infinity appeared.
-    NonFinite,
-    /// The displacements grew beyond any physical size.
-    Growth,
-    /// The interface Newton steps no longer reduce the residual.
-    NoDescent,
-}
+use crate::outcome::Breakdown;
 
 /// Per-body buffers, allocated once per solve.
 #[derive(Default)]

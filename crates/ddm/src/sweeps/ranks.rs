@@ -18,8 +18,9 @@ use crate::contact::Interface;
 use crate::exchange::{
     decode, encode, share_outputs, share_slices, share_vectors, Exchange, Neighbours,
 };
-use crate::iteration::{body_breakdown, body_change, body_contact, Accelerator, Settings};
-use crate::robin_sweep::Breakdown;
+use crate::measures::{body_breakdown, body_change, body_contact};
+use crate::outcome::Breakdown;
+use crate::settings::{Accelerator, Settings};
 
 /// How the sweeps' outputs reach the other processes.
 pub(crate) enum Sharing {

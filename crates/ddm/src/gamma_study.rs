@@ -8,12 +8,15 @@ use std::sync::atomic::{AtomicBool, Ordering};
 
 use rayon::prelude::*;
 
-use crate::iteration::{iterate, Accelerator, CoarseMode, Hooks, Settings, Stop};
+use crate::coarse::CoarseMode;
 use crate::method::Method;
 use crate::model::Model;
+use crate::outcome::{Hooks, Stop};
+use crate::prepared::Prepared;
 use crate::relaxation::Gamma;
+use crate::settings::{Accelerator, Settings};
 use crate::solution::short_reason;
-use crate::solver::Prepared;
+use crate::solver::iterate;
 
 /// One run of a sweep.
 #[derive(Clone, Debug, PartialEq, serde::Serialize)]

@@ -1,0 +1,328 @@
+//! The driver of one Newton run: full steps watched by a non-monotone watchdog, a backtracking
+//! line search from its checkpoint, and the stopping rule.
+
+use std::sync::atomic::Ordering;
+
+use super::algebra::norm;
+use super::step::Caches;
+use super::system::{Evaluation, System};
+use crate::exchange::share_slices;
+use crate::measures::{contact_summary, relative_change, starting_values};
+use crate::outcome::{Breakdown, Hooks, Record, Stop};
+use crate::prepared::Prepared;
+use crate::settings::Settings;
+
+/// The forcing term of the inexact Newton step (Dembo, Eisenstat & Steihaug 1982) as a fraction
+/// of the convergence tolerance: a step is refined until ‖Jδ + R‖ ≤ 10⁻³ tol ‖R‖, an error that
+/// none of the iteration's decisions can see.
+const FORCING: f64 = 1e-3;
+
+/// Full steps the watchdog takes without a sufficient decrease of ‖R̂‖ before it returns to its
+/// checkpoint (the window of Grippo, Lampariello & Lucidi's non-monotone rule, 10).
+const WINDOW: usize = 10;
+
+/// Halvings of the step at most in the line search.
+const MAX_HALVINGS: usize = 12;
+
+/// Sufficient decrease of ‖R‖ per unit step length (Armijo).
+const ARMIJO: f64 = 1e-4;
+
+/// The state of one Newton run.
+pub(super) struct Run<'s, 'a> {
+    system: &'s System<'a>,
+    scale: &'s [f64],
+    pub(super) tau: Vec<f64>,
+    pub(super) state: Evaluation,
+    pub(super) history: Vec<Record>,
+    /// The last body that a step found pulled away from its partners (see [`Run::watch`]).
+    pulled: Option<usize>,
+    /// What the steps keep for the next.
+    caches: Caches,
+}
+
+/// The watchdog's reference: the last state whose ‖R̂‖ a step decreased enough, with the closed
+/// set, kernel and Newton step taken from it.
+struct Checkpoint {
+    tau: Vec<f64>,
+    state: Evaluation,
+    /// ‖R̂‖ there, the value that full steps must fall below.
+    merit: f64,
+    chi: Vec<bool>,
+    z: Vec<Vec<f64>>,
+    delta: Vec<f64>,
+    /// Full steps taken since without that decrease.
+    steps: usize,
+}
+
+/// One iteration's move: the step length, the closed set and Newton step it went along, and the
+/// state it reached.
+struct Step {
+    alpha: f64,
+    chi: Vec<bool>,
+    delta: Vec<f64>,
+    next: Evaluation,
+}
+
+impl<'s, 'a> Run<'s, 'a> {
+    /// Starts from the interface loads `warm`, or else from the paper's initial value u⁰ on
+    /// every contact point.
+    pub(super) fn new(
+        system: &'s System<'a>,
+        prepared: &'s Prepared,
+        warm: Option<&[f64]>,
+        settings: &Settings,
+    ) -> Self {
+        let mut t = vec![0.0; system.len()];
+        for (b, body) in system.bodies.iter().enumerate() {
+            let range = system.range(b);
+            match (warm, body) {
+                (Some(warm), _) => t[range.clone()].copy_from_slice(&warm[range]),
+                // Where the penalty problem has one solution, a sparse body starts unloaded:
+                // its load for u⁰ takes conjugate gradients that cost more than a Newton step.
+                (None, Some(body)) if body.sparse().is_some() && system.variational => {}
+                (None, Some(body)) => {
+                    let u0 = starting_values(system.interface, range.clone(), settings.u0);
+                    t[range].copy_from_slice(&body.initial_load(&u0))
+                }
+                (None, None) => {}
+            }
+        }
+        if warm.is_none() {
+            share_slices(system.exchange, &system.interface.body_range, &mut t);
+        }
+        let tau: Vec<f64> = t
+            .iter()
+            .zip(&system.d0)
+            .map(|(t, &d)| if d > 0.0 { t / d } else { 0.0 })
+            .collect();
+        let state = system.evaluate(&tau);
+        Run {
+            system,
+            scale: &prepared.scale,
+            tau,
+            state,
+            history: Vec::new(),
+            pulled: None,
+            caches: Caches::default(),
+        }
+    }
+
+    pub(super) fn solve(&mut self, settings: &Settings, hooks: Hooks<'_>) -> (Stop, usize) {
+        let mut watchdog: Option<Checkpoint> = None;
+        for k in 1..=settings.max_iter {
+            if hooks.cancel.is_some_and(|c| c.load(Ordering::Relaxed)) {
+                return (Stop::Interrupted, k - 1);
+            }
+            if let Some(b) = self.system.unresisted(&self.state.free) {
+                return (diverged(b, k, Breakdown::LostContact), k);
+            }
+            let chi = self.system.jacobian_set(&self.state);
+            let found;
+            let free = if chi == self.state.closed {
+                &self.state.free
+            } else {
+                found = self.system.free_motions(&chi);
+                &found
+            };
+            let z = self.system.kernel(free);
+            let r = self.system.residual(&self.tau, &self.state, &chi);
+            let Some(delta) =
+                self.system
+                    .step(&mut self.caches, &chi, &z, &r, FORCING * settings.tol)
+            else {
+                return (self.failure(k, Breakdown::Singular), k);
+            };
+            let checkpoint = watchdog.take().unwrap_or_else(|| Checkpoint {
+                tau: self.tau.clone(),
+                state: self.state.clone(),
+                merit: self.system.merit(&z, &self.state),
+                chi: chi.clone(),
+                z: z.clone(),
+                delta: delta.clone(),
+                steps: 0,
+            });
+            let step = match self.watch(k, checkpoint, chi, &z, delta) {
+                Ok((step, kept)) => {
+                    watchdog = kept;
+                    step
+                }
+                Err(stop) => return (stop, k),
+            };
+            let record = self.record(k, step.alpha, &step.next);
+            if let Some(f) = hooks.on_iteration {
+                f(&record);
+            }
+            let converged = self.converged(&step, &record, settings.tol);
+            self.history.push(record);
+            self.tau = self.along(&step.delta, step.alpha);
+            self.state = step.next;
+            if converged {
+                return (Stop::Converged, k);
+            }
+        }
+        (Stop::MaxIterations, settings.max_iter)
+    }
+
+    /// The watchdog's step `k` along `delta` (with closed set `chi` and kernel `z`): the full
+    /// step while `checkpoint` allows it, else back to the checkpoint and along its step. Also
+    /// returns the checkpoint to keep (`None` once a step decreased its ‖R̂‖ enough: the next
+    /// state is the next checkpoint), or the stop when a body is pulled away or the step fails.
+    fn watch(
+        &mut self,
+        k: usize,
+        mut checkpoint: Checkpoint,
+        chi: Vec<bool>,
+        z: &[Vec<f64>],
+        delta: Vec<f64>,
+    ) -> Result<(Step, Option<Checkpoint>), Stop> {
+        let mut full = (checkpoint.steps < WINDOW)
+            .then(|| {
+                let next = self.along(&delta, 1.0);
+                self.system
+                    .evaluate_step(&self.caches.applied, &next, &self.state, &delta)
+            })
+            .filter(|next| self.check(&next.u).is_none());
+        // A body that nothing held, and that the step (which closed all its points) leaves held
+        // by none again, is pulled away from its partners. Unless the checkpoint holds every
+        // body: the glued step can also strand a pressed body while other bodies' closed sets are
+        // still wrong (an own-side wall), so the watchdog goes back there; a failure later names
+        // the body.
+        let pulled = self
+            .state
+            .stranded
+            .filter(|&b| full.as_ref().is_some_and(|next| next.stranded == Some(b)));
+        if let Some(body) = pulled {
+            if checkpoint.merit.is_infinite() {
+                return Err(diverged(body, k, Breakdown::LostContact));
+            }
+            self.pulled = Some(body);
+            full = None;
+        }
+        if let Some(next) = full {
+            let kept =
+                (!decreases(self.system.merit(z, &next), checkpoint.merit, 1.0)).then(|| {
+                    checkpoint.steps += 1;
+                    checkpoint
+                });
+            let step = Step {
+                alpha: 1.0,
+                chi,
+                delta,
+                next,
+            };
+            return Ok((step, kept));
+        }
+        // Back to the checkpoint, and along its step as far as its ‖R̂‖ decreases.
+        self.tau = checkpoint.tau;
+        self.state = checkpoint.state;
+        let Some((alpha, next)) =
+            self.line_search(&checkpoint.z, &checkpoint.delta, checkpoint.merit)
+        else {
+            return Err(self.failure(k, Breakdown::NoDescent));
+        };
+        if let Some((body, reason)) = self.check(&next.u) {
+            return Err(diverged(body, k, reason));
+        }
+        let step = Step {
+            alpha,
+            chi: checkpoint.chi,
+            delta: checkpoint.delta,
+            next,
+        };
+        Ok((step, None))
+    }
+
+    /// Whether `step` ends the solve. A full step that leaves the closed set as it was solved the
+    /// (then linear) equations: the primal–dual active set method's own stopping rule, confirmed
+    /// by the residual (it keeps any part along the kernel). Otherwise the relative change
+    /// decides. A floating body that nothing holds has no determined position: never a solution.
+    fn converged(&self, step: &Step, record: &Record, tol: f64) -> bool {
+        let next = &step.next;
+        let exact = step.chi == self.state.closed
+            && next.closed == step.chi
+            && norm(&next.scaled_residual(&self.system.rho)) <= tol * norm(&next.u);
+        step.alpha == 1.0
+            && (exact || record.rel_change.iter().all(|&r| r <= tol))
+            && next.stranded.is_none()
+    }
+
+    /// τ + α δ.
+    fn along(&self, delta: &[f64], alpha: f64) -> Vec<f64> {
+        self.tau
+            .iter()
+            .zip(delta)
+            .map(|(t, d)| t + alpha * d)
+            .collect()
+    }
+
+    /// Backtracks along δ from half a step until ‖R̂‖ falls enough below `merit` (the full step
+    /// was tried by the watchdog); the step length and the state there, or `None` when no step
+    /// length decreases it.
+    fn line_search(&self, z: &[Vec<f64>], delta: &[f64], merit: f64) -> Option<(f64, Evaluation)> {
+        let mut alpha = 0.5;
+        for _ in 1..=MAX_HALVINGS {
+            let eval = self.system.evaluate(&self.along(delta, alpha));
+            let f = self.system.merit(z, &eval);
+            if decreases(f, merit, alpha) {
+                return Some((alpha, eval));
+            }
+            alpha *= 0.5;
+        }
+        None
+    }
+
+    /// The first body with non-finite or too large normal displacements.
+    fn check(&self, u: &[f64]) -> Option<(usize, Breakdown)> {
+        (0..self.system.bodies.len()).find_map(|b| {
+            let v = &u[self.system.range(b)];
+            if !v.iter().all(|x| x.is_finite()) {
+                Some((b, Breakdown::NonFinite))
+            } else if v.iter().any(|x| x.abs() > self.scale[b]) {
+                Some((b, Breakdown::Growth))
+            } else {
+                None
+            }
+        })
+    }
+
+    /// The body that nothing holds in the current state, if any.
+    fn stranded(&self) -> Option<usize> {
+        self.state.stranded
+    }
+
+    /// The stop when the steps make no progress or J is singular: a body that lost its hold (now,
+    /// or at a step the watchdog went back from), or `otherwise`.
+    fn failure(&self, k: usize, otherwise: Breakdown) -> Stop {
+        match self.stranded().or(self.pulled) {
+            Some(b) => diverged(b, k, Breakdown::LostContact),
+            None => diverged(0, k, otherwise),
+        }
+    }
+
+    fn record(&self, k: usize, alpha: f64, next: &Evaluation) -> Record {
+        let interface = self.system.interface;
+        let (active, contact_force) = contact_summary(interface, &next.s, self.system.bodies.len());
+        Record {
+            k,
+            gamma: alpha,
+            rel_change: relative_change(interface, &next.u, &self.state.u),
+            active,
+            contact_force,
+        }
+    }
+}
+
+/// The stop of a solve that broke down at iteration `k` because of `body`.
+fn diverged(body: usize, k: usize, reason: Breakdown) -> Stop {
+    Stop::Diverged {
+        body,
+        iteration: k,
+        reason,
+    }
+}
+
+/// Whether ‖R̂‖ = `f` after a step of length `alpha` falls enough below `reference` (Armijo); a
+/// state that nothing holds (infinite ‖R̂‖) never does.
+fn decreases(f: f64, reference: f64, alpha: f64) -> bool {
+    f.is_finite() && f <= (1.0 - ARMIJO * alpha) * reference
+}

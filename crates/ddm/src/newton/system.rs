@@ -1,0 +1,398 @@
+//! The condensed interface problem of the Newton method: the bodies' responses, the reference
+//! springs, the complementarity rule's scales, and the residual R(τ) with its closed set.
+
+use std::ops::Range;
+
+use faer::Mat;
+use nalgebra::DVector;
+use rayon::prelude::*;
+
+use super::algebra::{dot, norm};
+use crate::condensed::CondensedBody;
+use crate::contact::{Interface, Role};
+use crate::exchange::{share_matrices, share_slices, Exchange};
+use crate::prepared::Prepared;
+use crate::shared_rows::{body_parts, BodyPart};
+
+/// The condensed interface problem.
+pub(super) struct System<'a> {
+    pub(super) interface: &'a Interface,
+    /// The bodies this process owns.
+    pub(super) bodies: &'a [Option<CondensedBody>],
+    pub(super) exchange: &'a dyn Exchange,
+    /// B_b = C₀D₀ of every dense body (`None` on the sparse path).
+    pub(super) response: Vec<Option<Mat<f64>>>,
+    /// The reference springs D₀ of every point.
+    pub(super) d0: Vec<f64>,
+    /// How every body enters the Newton system (dense block, or sparse rows of its own or of
+    /// another process).
+    pub(super) parts: Vec<BodyPart>,
+    /// Per body on the sparse path, the first column of its reduced unknowns in the Newton
+    /// system (after the m interface unknowns and the kernel multipliers).
+    pub(super) sparse_offset: Vec<Option<usize>>,
+    /// Free rigid modes of the floating bodies: mode range per body, normal values per point.
+    pub(super) mode_range: &'a [Range<usize>],
+    pub(super) modes: &'a [Vec<f64>],
+    /// The work of the bodies' loads along every free mode, and its norm.
+    pub(super) mode_load: &'a [f64],
+    pub(super) mode_load_norm: f64,
+    /// Owning body of every point.
+    pub(super) body_of: Vec<usize>,
+    /// ρ_j = 1 − B_jj ∈ (0, 1]: the share of the body in the stiffness of point j with its
+    /// reference spring; the complementarity rule's scale.
+    pub(super) rho: Vec<f64>,
+    /// Points with zero quadrature weight (D₀ = 0): they carry no force, and τ_j = 0.
+    pub(super) weightless: Vec<bool>,
+    /// Unknowns of balanced pairs: their contact force gathers the pressures of several points
+    /// (`Interface::carried`), and their points close where s > d (ρ = 1).
+    pub(super) balanced: Vec<bool>,
+    /// Whether the step may take the symmetric form (`primal`).
+    pub(super) symmetric: bool,
+    /// Whether the penalty problem minimises an energy (every pair balanced, or own-side with
+    /// matching sides), so that it has one solution whatever the start. Own-side pairs on
+    /// non-matching meshes derive from no energy and can have several (a start decides which).
+    pub(super) variational: bool,
+}
+
+/// U, s and R at one τ.
+#[derive(Clone)]
+pub(super) struct Evaluation {
+    pub(super) u: Vec<f64>,
+    pub(super) s: Vec<f64>,
+    pub(super) r: Vec<f64>,
+    /// The points the complementarity rule counts as closed.
+    pub(super) closed: Vec<bool>,
+    /// The rigid motions of floating bodies that the closed points leave free (weights of the
+    /// free modes), and the body that nothing holds there, if any.
+    pub(super) free: Vec<DVector<f64>>,
+    pub(super) stranded: Option<usize>,
+}
+
+impl Evaluation {
+    /// R̂: the residual of the complementarity function, whose closed rows are ρ R.
+    pub(super) fn scaled_residual(&self, rho: &[f64]) -> Vec<f64> {
+        (0..self.r.len())
+            .map(|j| {
+                if self.closed[j] {
+                    rho[j] * self.r[j]
+                } else {
+                    self.r[j]
+                }
+            })
+            .collect()
+    }
+}
+
+impl<'a> System<'a> {
+    pub(super) fn new(prepared: &'a Prepared, interface: &'a Interface) -> System<'a> {
+        let (mode_range, modes) = prepared.coarse.floating_modes();
+        let exchange = &*prepared.exchange;
+        let parts = body_parts(&prepared.bodies, exchange);
+        // The dense bodies' responses B_b, shared between processes; sparse bodies have none.
+        let dense: Vec<Mat<f64>> = prepared
+            .bodies
+            .par_iter()
+            .map(|b| {
+                b.as_ref()
+                    .and_then(CondensedBody::load_response)
+                    .unwrap_or_else(Mat::new)
+            })
+            .collect();
+        let response: Vec<Option<Mat<f64>>> = share_matrices(exchange, dense)
+            .into_iter()
+            .zip(&parts)
+            .map(|(m, part)| part.sparse_free().is_none().then_some(m))
+            .collect();
+        let mut d0 = vec![0.0; interface.len()];
+        for (b, body) in prepared.bodies.iter().enumerate() {
+            if let Some(body) = body {
+                d0[interface.body_range[b].clone()].copy_from_slice(body.reference_springs());
+            }
+        }
+        share_slices(exchange, &interface.body_range, &mut d0);
+        let balanced: Vec<bool> = interface
+            .points
+            .iter()
+            .map(|p| p.role != Role::OwnSide)
+            .collect();
+        let rho = scales(prepared, interface, &response, &balanced);
+        let mut next = interface.len() + modes_bound(mode_range);
+        let sparse_offset = parts
+            .iter()
+            .map(|part| {
+                part.sparse_free().map(|free| {
+                    let offset = next;
+                    next += free;
+                    offset
+                })
+            })
+            .collect();
+        let mut system = System {
+            interface,
+            bodies: &prepared.bodies,
+            exchange,
+            response,
+            parts,
+            sparse_offset,
+            mode_range,
+            modes,
+            mode_load: prepared.coarse.floating_loads(),
+            mode_load_norm: norm(prepared.coarse.floating_loads()),
+            body_of: interface.points.iter().map(|p| p.body).collect(),
+            rho,
+            weightless: d0.iter().map(|&d| d == 0.0).collect(),
+            balanced,
+            d0,
+            symmetric: false,
+            variational: false,
+        };
+        system.symmetric = system.every_body_sparse();
+        system.variational = system.springs(&vec![true; system.len()]).is_some();
+        system
+    }
+
+    pub(super) fn len(&self) -> usize {
+        self.interface.len()
+    }
+
+    pub(super) fn range(&self, b: usize) -> Range<usize> {
+        self.interface.body_range[b].clone()
+    }
+
+    /// U(τ), s(U) and R(τ); the bodies in parallel.
+    pub(super) fn evaluate(&self, tau: &[f64]) -> Evaluation {
+        let u = self.displacements(tau);
+        self.evaluation(tau, u)
+    }
+
+    /// U(τ): a solve per sparse body, B τ for a dense one; the bodies in parallel.
+    pub(super) fn displacements(&self, tau: &[f64]) -> Vec<f64> {
+        let mut u: Vec<f64> = (0..self.bodies.len())
+            .into_par_iter()
+            .flat_map_iter(|b| {
+                let range = self.range(b);
+                let tau_b = &tau[range.clone()];
+                let Some(bm) = &self.response[b] else {
+                    // A sparse body (one process owns them all). A failed solve shows as
+                    // non-finite values, which the run then reports.
+                    let u = self.bodies[b].as_ref().map(|body| body.respond(tau_b));
+                    return match u {
+                        Some(Ok(u)) => u,
+                        _ => vec![f64::NAN; range.len()],
+                    };
+                };
+                let f0 = self.bodies[b].as_ref().map(|body| body.free_response());
+                (0..range.len())
+                    .map(move |i| {
+                        // Another process's body: its slot is filled in below.
+                        f0.map_or(0.0, |f0| {
+                            f0[i]
+                                + tau_b
+                                    .iter()
+                                    .enumerate()
+                                    .map(|(j, t)| bm[(i, j)] * t)
+                                    .sum::<f64>()
+                        })
+                    })
+                    .collect::<Vec<f64>>()
+            })
+            .collect();
+        share_slices(self.exchange, &self.interface.body_range, &mut u);
+        u
+    }
+
+    /// s(U), R and the closed set at τ with the displacements `u` = U(τ).
+    pub(super) fn evaluation(&self, tau: &[f64], u: Vec<f64>) -> Evaluation {
+        let mut s = vec![0.0; u.len()];
+        self.interface.sum_normal(&u, &mut s);
+        let points = &self.interface.points;
+        let closed: Vec<bool> = (0..u.len())
+            .map(|j| {
+                let p = &points[j];
+                if self.weightless[j] || !p.has_partner() {
+                    return false;
+                }
+                if self.balanced[j] {
+                    // Only carriers' pressures act; a follower's own gap is a reading.
+                    return p.carries() && s[j] > p.penalty_gap();
+                }
+                let q = u[j] - tau[j];
+                q + self.rho[j] * (s[j] - p.penalty_gap() - q) > 0.0
+            })
+            .collect();
+        // A carrier closes exactly where its overlap is negative (ρ = 1), so its linear penalty
+        // force on the closed set is its penalty force.
+        let r = self.residual_on(tau, &u, &s, &closed);
+        let free = self.free_motions(&closed);
+        let stranded = self.stranded(&closed, &free);
+        Evaluation {
+            u,
+            s,
+            r,
+            closed,
+            free,
+            stranded,
+        }
+    }
+
+    /// R at the evaluated state with the points `chi` closed: the residual whose Jacobian the
+    /// Newton step uses. It is the state's own R where `chi` is its closed set; where the step
+    /// treats more points as closed (a stranded body), their penalty forces count as linear in
+    /// s, so that the step solves the equations of that closed set (with the state's R the step
+    /// would only move the body along the springs of points that it then finds open again).
+    pub(super) fn residual(&self, tau: &[f64], eval: &Evaluation, chi: &[bool]) -> Vec<f64> {
+        if chi == eval.closed {
+            return eval.r.clone();
+        }
+        self.residual_on(tau, &eval.u, &eval.s, chi)
+    }
+
+    /// R(τ) for the displacements `u`, pair sums `s` and the points `chi` closed, their penalty
+    /// forces linear in s (F_j/w_j = (d − s)/θ).
+    pub(super) fn residual_on(&self, tau: &[f64], u: &[f64], s: &[f64], chi: &[bool]) -> Vec<f64> {
+        let points = &self.interface.points;
+        let linear = |j: usize| {
+            let p = &points[j];
+            if chi[j] {
+                (p.penalty_gap() - s[j]) / p.theta
+            } else {
+                0.0
+            }
+        };
+        (0..u.len())
+            .map(|j| {
+                if self.weightless[j] {
+                    tau[j]
+                } else if self.balanced[j] {
+                    let force: f64 = self.interface.carried[j]
+                        .iter()
+                        .map(|&(k, a)| a * (points[k].weight * linear(k)))
+                        .sum();
+                    tau[j] - u[j] - force / self.d0[j]
+                } else if chi[j] {
+                    tau[j] - u[j] - (points[j].penalty_gap() - s[j])
+                } else {
+                    tau[j] - u[j]
+                }
+            })
+            .collect()
+    }
+
+    /// The interface loads T = D₀τ.
+    pub(super) fn loads(&self, tau: &[f64]) -> Vec<f64> {
+        tau.iter().zip(&self.d0).map(|(t, d)| t * d).collect()
+    }
+
+    /// The points whose pressure loads body `b`: its own, or the carriers facing it.
+    pub(super) fn loaders(&self, b: usize) -> Vec<usize> {
+        self.range(b)
+            .flat_map(|q| self.interface.carried[q].iter().map(|&(j, _)| j))
+            .collect()
+    }
+
+    /// Whether a closed point in `closed` holds body `b` (or supports do: a body without free
+    /// rigid modes).
+    pub(super) fn holds(&self, b: usize, closed: &[bool]) -> bool {
+        self.mode_range[b].is_empty() || self.loaders(b).iter().any(|&j| closed[j])
+    }
+
+    /// The first floating body none of whose loaders is closed in `closed`: nothing holds it.
+    pub(super) fn unheld(&self, closed: &[bool]) -> Option<usize> {
+        (0..self.bodies.len()).find(|&b| !self.holds(b, closed))
+    }
+
+    /// The points treated as closed in J: the closed points, and every partnered point that loads
+    /// a floating body none of whose loading points is closed.
+    pub(super) fn jacobian_set(&self, eval: &Evaluation) -> Vec<bool> {
+        let points = &self.interface.points;
+        let mut chi = eval.closed.clone();
+        for b in 0..self.bodies.len() {
+            if self.mode_range[b].is_empty() {
+                continue;
+            }
+            let loaders = self.loaders(b);
+            if !loaders.iter().any(|&j| chi[j]) {
+                for j in loaders {
+                    chi[j] = points[j].has_partner();
+                }
+            }
+        }
+        // Bodies that closed points hold, but not along a motion their loads push them in (a
+        // column of blocks held sideways by its neighbours, open below): the points that would
+        // resist the motion count as closed.
+        for _ in 0..self.bodies.len() {
+            let found;
+            let free = if chi == eval.closed {
+                &eval.free
+            } else {
+                found = self.free_motions(&chi);
+                &found
+            };
+            let Some(v) = self.loaded_motion(free) else {
+                break;
+            };
+            let open: Vec<usize> = self
+                .resisting(&v)
+                .into_iter()
+                .filter(|&j| !chi[j])
+                .collect();
+            if open.is_empty() {
+                break;
+            }
+            open.into_iter().for_each(|j| chi[j] = true);
+        }
+        chi
+    }
+
+    /// ‖R‖ with the components along the kernel `z` removed (those are the bodies' balance,
+    /// which no step along z changes).
+    /// Infinite where a floating body has no closed point: R leaves out its balance (the
+    /// kernel), and a state that nothing holds is no solution however small R is there (with the
+    /// starting value u⁰ = 0 and a stiff penalty it is tiny).
+    pub(super) fn merit(&self, z: &[Vec<f64>], eval: &Evaluation) -> f64 {
+        if eval.stranded.is_some() {
+            return f64::INFINITY;
+        }
+        let mut r = eval.scaled_residual(&self.rho);
+        for e in z {
+            let d = dot(e, &r);
+            r.iter_mut().zip(e).for_each(|(x, y)| *x -= d * y);
+        }
+        dot(&r, &r).sqrt()
+    }
+}
+
+/// The most kernel vectors [`System::kernel`] can return: the number of free rigid modes.
+pub(super) fn modes_bound(mode_range: &[Range<usize>]) -> usize {
+    mode_range.iter().map(|r| r.end).max().unwrap_or(0)
+}
+
+/// ρ_j per point: 1 − B_jj of a dense body, the sparse body's estimate of it, and 1 on the
+/// balanced pairs' unknowns.
+fn scales(
+    prepared: &Prepared,
+    interface: &Interface,
+    response: &[Option<Mat<f64>>],
+    balanced: &[bool],
+) -> Vec<f64> {
+    let mut rho: Vec<f64> = response
+        .iter()
+        .zip(&prepared.bodies)
+        .enumerate()
+        .flat_map(|(b, (bm, body))| match (bm, body.as_ref()) {
+            (Some(bm), _) => (0..bm.nrows())
+                .map(|j| (1.0 - bm[(j, j)]).clamp(1e-8, 1.0))
+                .collect::<Vec<_>>(),
+            (None, Some(body)) => body.sparse().map_or(vec![1.0; body.len()], |s| {
+                s.share_estimate(body.operator(), body.reference_springs())
+            }),
+            // Another process's sparse body: its owner's estimate is shared below.
+            (None, None) => vec![1.0; interface.body_range[b].len()],
+        })
+        .collect();
+    share_slices(&*prepared.exchange, &interface.body_range, &mut rho);
+    rho.into_iter()
+        .zip(balanced)
+        .map(|(r, &b)| if b { 1.0 } else { r })
+        .collect()
+}

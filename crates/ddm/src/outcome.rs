@@ -1,0 +1,99 @@
+//! What an interface iteration reports: a record per iteration, how it stopped, and its final
+//! interface state; and the callbacks a caller hands it.
+
+use std::sync::atomic::AtomicBool;
+
+/// Why a body's Robin solve failed.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Breakdown {
+    /// The body's Robin problem became singular with no closed point left.
+    LostContact,
+    /// The Robin problem became singular although some points are closed.
+    Singular,
+    /// NaN or infinity appeared.
+    NonFinite,
+    /// The displacements grew beyond any physical size.
+    Growth,
+    /// The interface Newton steps no longer reduce the residual.
+    NoDescent,
+}
+
+/// What happened in one iteration.
+#[derive(Clone, Debug, PartialEq, serde::Serialize)]
+pub struct Record {
+    /// Iteration number k (1-based: the record of the k-th solve).
+    pub k: usize,
+    /// γ^k used.
+    pub gamma: f64,
+    /// ‖u^{k}_n − u^{k−1}_n‖ / ‖u^{k}_n‖ per body.
+    pub rel_change: Vec<f64>,
+    /// Number of penetrating (closed) contact points per body after the update.
+    pub active: Vec<usize>,
+    /// Total normal contact force Σ w |σ_n| per body after the update.
+    pub contact_force: Vec<f64>,
+}
+
+/// How the iteration ended.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Stop {
+    /// All bodies met the tolerance.
+    Converged,
+    /// The iteration cap was reached.
+    MaxIterations,
+    /// A body broke down at an iteration.
+    Diverged {
+        /// Body index.
+        body: usize,
+        /// Iteration at which it happened.
+        iteration: usize,
+        /// What happened.
+        reason: Breakdown,
+    },
+    /// Cancelled by the caller.
+    Interrupted,
+    /// The multiplier updates of an augmented Lagrangian pair ended (cap, no more progress, or a
+    /// failed inner solve) before the Signorini conditions held to the gap tolerance; the
+    /// result is the converged inner solve closest to them.
+    Unenforced {
+        /// Multiplier updates taken.
+        updates: usize,
+        /// The result's largest violation of the Signorini conditions (length).
+        violation: f64,
+        /// The gap tolerance it exceeds.
+        limit: f64,
+    },
+    /// The change met the tolerance, but the result is out of equilibrium (set by
+    /// [`crate::solver::solve`], never by the iteration itself).
+    Stalled {
+        /// The largest equilibrium residual of a body.
+        residual: f64,
+        /// The tolerance it exceeds.
+        limit: f64,
+    },
+}
+
+/// Interface state and history at the end of an iteration.
+#[derive(Clone, Debug)]
+pub struct Outcome {
+    /// How it ended.
+    pub stop: Stop,
+    /// Number of iterations taken.
+    pub iterations: usize,
+    /// Final normal displacements of all contact points.
+    pub un: Vec<f64>,
+    /// Final interface loads (full fields are K₀⁻¹(f + N T)).
+    pub t_load: Vec<f64>,
+    /// Per-iteration records.
+    pub history: Vec<Record>,
+    /// Wall time of the iteration.
+    pub seconds: f64,
+}
+
+/// Optional callbacks of a solve.
+#[derive(Clone, Copy, Default)]
+pub struct Hooks<'a> {
+    /// Called after every iteration.
+    pub on_iteration: Option<&'a (dyn Fn(&Record) + Sync)>,
+    /// Checked every iteration; set it to stop early.
+    pub cancel: Option<&'a AtomicBool>,
+}

@@ -1,0 +1,207 @@
+//! The settings of one DD solve: which interface iteration runs ([`Accelerator`]), its Robin
+//! rule and relaxation for the sweeps, the tolerances and caps, and their validation.
+
+use crate::coarse::CoarseMode;
+use crate::condensed::Condensation;
+use crate::error::SetupError;
+use crate::method::Method;
+use crate::relaxation::Gamma;
+
+/// Which interface iteration runs: the Robin sweeps, relaxed or accelerated, or the interface
+/// Newton method.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Accelerator {
+    /// Relaxation with γ only (the paper's iteration).
+    None,
+    /// Anderson acceleration (IQN-ILS) with at most `depth` secant pairs.
+    Anderson {
+        /// Memory: the number of secant pairs kept.
+        depth: usize,
+    },
+    /// The interface semismooth Newton method of [`crate::newton`] (the method and γ are unused).
+    Newton,
+}
+
+impl std::fmt::Display for Accelerator {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            Accelerator::None => f.write_str("none"),
+            Accelerator::Anderson { depth } => write!(f, "anderson({depth})"),
+            Accelerator::Newton => f.write_str("newton"),
+        }
+    }
+}
+
+/// Default Anderson memory: enough to act as GMRES over the few tens of iterations the two-level
+/// iteration takes, small against any interface.
+pub const ANDERSON_DEPTH: usize = 40;
+
+/// Default largest equilibrium residual of a converged result: 1 % of the total contact force.
+/// The relative-change test bounds the last step, not the remaining error; converged solves of
+/// slowly contracting problems carry residuals up to about 1e−3 at tol = 1e−6, while an iteration
+/// stopped far from its fixed point (a tiny γ) is off by tens of percent.
+pub const EQUILIBRIUM_TOL: f64 = 1e-2;
+
+/// Settings of one DD solve.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Settings {
+    /// Robin coefficient rule.
+    pub method: Method,
+    /// Relaxation parameter γ (with Anderson: the relaxation of the first step).
+    pub gamma: Gamma,
+    /// How the sweeps' outputs are combined.
+    pub accelerator: Accelerator,
+    /// Which bodies the rigid-body coarse correction moves into balance before every sweep.
+    pub coarse: CoarseMode,
+    /// Stopping tolerance on every body's relative change (relaxation) or residual (Anderson).
+    pub tol: f64,
+    /// Largest equilibrium residual (relative to the total contact force) a converged result may
+    /// have; above it the solve reports [`Stop::Stalled`].
+    pub equilibrium_tol: f64,
+    /// Iteration cap.
+    pub max_iter: usize,
+    /// Initial normal displacement u^0_n on all contact points.
+    pub u0: f64,
+    /// Initial u^{−1}_n (two-point methods).
+    pub u_prev: f64,
+    /// Augmented Lagrangian pairs: the largest violation of the Signorini conditions (a length)
+    /// of a converged result; `None`: `tol` times the largest normal displacement of the contact
+    /// points ([`crate::augmented`]).
+    pub gap_tol: Option<f64>,
+    /// Augmented Lagrangian pairs: the cap on multiplier updates (inner solves).
+    pub max_updates: usize,
+    /// How the bodies are condensed on their contact points; read by the callers of
+    /// [`crate::solver::prepare_with`] (the iteration itself works on either path).
+    pub condensation: Condensation,
+}
+
+impl Settings {
+    /// The paper's iteration: `method` with a relaxation rule `gamma`, no accelerator, no coarse
+    /// correction, the other values as in [`Settings::default`].
+    pub fn paper(method: Method, gamma: Gamma) -> Settings {
+        Settings {
+            method,
+            gamma,
+            accelerator: Accelerator::None,
+            coarse: CoarseMode::Off,
+            ..Settings::default()
+        }
+    }
+}
+
+impl Settings {
+    /// Anderson acceleration of `active-set` sweeps (γ = 1 for the first step) without coarse
+    /// correction; the other values as in [`Settings::default`].
+    pub fn anderson() -> Settings {
+        Settings {
+            method: Method::ActiveSet,
+            gamma: Gamma::Constant(1.0),
+            accelerator: Accelerator::Anderson {
+                depth: ANDERSON_DEPTH,
+            },
+            coarse: CoarseMode::Off,
+            ..Settings::default()
+        }
+    }
+}
+
+impl Settings {
+    /// The two-level sweeps: `newton-kurchatov` Robin sweeps with Aitken's `auto` relaxation and
+    /// the rigid-body coarse correction of chains of floating bodies; the other values as in
+    /// [`Settings::default`].
+    pub fn two_level() -> Settings {
+        Settings {
+            method: Method::NewtonKurchatov,
+            gamma: Gamma::Auto,
+            accelerator: Accelerator::None,
+            coarse: CoarseMode::Chains,
+            ..Settings::default()
+        }
+    }
+
+    /// Called when a Robin rule (a method or γ) is asked for without an accelerator: the
+    /// interface Newton method uses neither, so it gives way to the two-level sweeps.
+    pub fn use_sweeps(&mut self) {
+        if self.accelerator == Accelerator::Newton {
+            self.accelerator = Accelerator::None;
+            self.coarse = CoarseMode::Chains;
+        }
+    }
+
+    /// The iteration in words: `interface newton`, or the method and γ rule, with the accelerator
+    /// and coarse mode when used.
+    pub fn scheme(&self) -> String {
+        if self.accelerator == Accelerator::Newton {
+            return "interface newton".into();
+        }
+        let mut text = format!("{}, gamma {}", self.method, self.gamma);
+        if self.accelerator != Accelerator::None {
+            text += &format!(", accelerator {}", self.accelerator);
+        }
+        if self.coarse != CoarseMode::Off {
+            text += &format!(", coarse {}", self.coarse);
+        }
+        text
+    }
+}
+
+impl Settings {
+    /// Checks the values a caller can get wrong: positive finite tolerances and γ, at least one
+    /// multiplier update. The problem-file reader, the command line and Python all go through
+    /// it (via [`crate::solver::solve`]).
+    pub fn validate(&self) -> Result<(), SetupError> {
+        let settings = self;
+        if !(settings.tol > 0.0 && settings.tol.is_finite()) {
+            return Err(SetupError::Solver(format!(
+                "tolerance must be positive, got {}",
+                settings.tol
+            )));
+        }
+        if settings.equilibrium_tol.is_nan() || settings.equilibrium_tol <= 0.0 {
+            return Err(SetupError::Solver(format!(
+                "equilibrium-tol must be positive, got {}",
+                settings.equilibrium_tol
+            )));
+        }
+        if let Gamma::Constant(g) = settings.gamma {
+            if !(g > 0.0 && g.is_finite()) {
+                return Err(SetupError::Solver(format!(
+                    "gamma must be positive, got {g}"
+                )));
+            }
+        }
+        if settings.max_updates == 0 {
+            return Err(SetupError::Solver("max-updates must be at least 1".into()));
+        }
+        if let Some(g) = settings.gap_tol {
+            if !(g > 0.0 && g.is_finite()) {
+                return Err(SetupError::Solver(format!(
+                    "gap-tol must be a positive length, got {g}"
+                )));
+            }
+        }
+        Ok(())
+    }
+}
+
+impl Default for Settings {
+    /// The interface Newton method ([`crate::newton`]); tolerance 1e−6; the paper's initial
+    /// values u^0 = 1e−4, u^{−1} = 2e−4. The method and γ (`newton-kurchatov`, `auto`) are those of
+    /// the sweeps a caller switches to with [`Settings::use_sweeps`].
+    fn default() -> Settings {
+        Settings {
+            method: Method::NewtonKurchatov,
+            gamma: Gamma::Auto,
+            accelerator: Accelerator::Newton,
+            coarse: CoarseMode::Off,
+            tol: 1e-6,
+            equilibrium_tol: EQUILIBRIUM_TOL,
+            max_iter: 500,
+            u0: 1e-4,
+            u_prev: 2e-4,
+            gap_tol: None,
+            max_updates: 100,
+            condensation: Condensation::Auto,
+        }
+    }
+}
