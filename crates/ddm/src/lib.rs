@@ -12,12 +12,10 @@
 
 pub mod anderson;
 pub mod augmented;
-pub mod balance;
 pub mod benchmark;
 pub mod coarse;
 pub mod condensed;
 pub mod contact;
-pub mod contact_check;
 pub mod error;
 pub mod exchange;
 pub mod facts;
@@ -25,9 +23,7 @@ pub mod iteration;
 pub mod method;
 pub mod model;
 pub mod monolithic;
-mod mortar;
 pub mod newton;
-pub mod profile;
 pub mod relaxation;
 pub mod robin_sweep;
 pub mod shared_rows;
@@ -39,14 +35,20 @@ pub mod sweep;
 mod sweep_sharing;
 
 pub use condensed::Condensation;
+pub use contact::gap_profile::GapProfile;
+pub use contact::Formulation;
 pub use error::SetupError;
 pub use facts::BodyFacts;
 pub use iteration::{Accelerator, CoarseMode, Hooks, Record, Settings, Stop};
 pub use method::Method;
 pub use model::{ContactPair, Enforcement, Forces, InnerPenalty, Model, Penalty, Remote};
 pub use monolithic::{solve_monolithic, MonolithicSolution};
-pub use profile::GapProfile;
 pub use relaxation::Gamma;
 pub use solution::Solution;
 pub use solver::{prepare, prepare_on, prepare_with, solve, solve_from, Preparation, Prepared};
 pub use sweep::{sweep, sweep_with, SweepHooks, SweepRun};
+
+// The contact checks and gap profiles at their paths outside `contact` (`contact_check::check`,
+// `profile::Along`), which the other crates use.
+pub use contact::check as contact_check;
+pub use contact::gap_profile as profile;
