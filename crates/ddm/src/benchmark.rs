@@ -34,9 +34,9 @@ use contactdd_core::{
     Plane, Rectangle,
 };
 
+use crate::contact::gap_profile::{Along, GapProfile};
 use crate::error::SetupError;
 use crate::model::{ContactPair, Enforcement, Model, Penalty};
-use crate::profile::{Along, GapProfile};
 
 /// Parameters of the notch benchmark (defaults: the paper's values).
 #[derive(Clone, Debug, PartialEq)]

@@ -12,12 +12,10 @@
 
 pub mod anderson;
 pub mod augmented;
-pub mod balance;
 pub mod benchmark;
 pub mod coarse;
 pub mod condensed;
 pub mod contact;
-pub mod contact_check;
 pub mod equilibrium;
 pub mod error;
 pub mod exchange;
@@ -28,11 +26,9 @@ mod measures;
 pub mod method;
 pub mod model;
 pub mod monolithic;
-mod mortar;
 pub mod newton;
 pub mod outcome;
 pub mod prepared;
-pub mod profile;
 pub mod relaxation;
 pub mod settings;
 pub mod shared_rows;
@@ -44,6 +40,8 @@ pub mod sweeps;
 
 pub use coarse::CoarseMode;
 pub use condensed::Condensation;
+pub use contact::gap_profile::GapProfile;
+pub use contact::Formulation;
 pub use error::SetupError;
 pub use facts::BodyFacts;
 /// The γ study under its former name, for the other crates.
@@ -53,8 +51,12 @@ pub use method::Method;
 pub use model::{ContactPair, Enforcement, Forces, InnerPenalty, Model, Penalty, Remote};
 pub use monolithic::{solve_monolithic, MonolithicSolution};
 pub use outcome::{Hooks, Record, Stop};
-pub use profile::GapProfile;
 pub use relaxation::Gamma;
 pub use settings::{Accelerator, Settings};
 pub use solution::Solution;
 pub use solver::{prepare, prepare_on, prepare_with, solve, solve_from, Preparation, Prepared};
+
+// The contact checks and gap profiles at their paths outside `contact` (`contact_check::check`,
+// `profile::Along`), which the other crates use.
+pub use contact::check as contact_check;
+pub use contact::gap_profile as profile;

@@ -4,93 +4,11 @@
 
 use contactdd_core::{Constraints, ElasticBody, Material, Mesh, Plane, Point, DIM};
 
+use crate::contact::formulation::Formulation;
+pub use crate::contact::formulation::{Enforcement, Forces, InnerPenalty, Penalty};
+use crate::contact::gap_profile::GapProfile;
+use crate::error::SetupError;
 use crate::facts::BodyFacts;
-use crate::profile::GapProfile;
-
-/// How the penalty parameter θ of a contact pair is chosen.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub enum Penalty {
-    /// θ given directly (length / stress units).
-    Theta(f64),
-    /// The rod model of docs/method.md §2: θ = c · h · (1/E*_α + 1/E*_β), which for equal materials is
-    /// θ = 2 c h (1 − ν²)/E in plane strain (2 c h / E in plane stress). `c` is dimensionless, `h` a
-    /// characteristic body height.
-    RodModel {
-        /// Dimensionless factor c (the benchmark uses 0.05).
-        c: f64,
-        /// Characteristic height h.
-        h: f64,
-    },
-}
-
-impl Penalty {
-    /// θ for a pair of materials.
-    pub fn theta(&self, a: &ElasticBody, b: &ElasticBody) -> f64 {
-        let modulus = |body: &ElasticBody| body.material.plane_modulus(body.plane);
-        match *self {
-            Penalty::Theta(t) => t,
-            Penalty::RodModel { c, h } => c * h * (1.0 / modulus(a) + 1.0 / modulus(b)),
-        }
-    }
-}
-
-/// The inner penalty of the augmented balanced pairs (`docs/augmented-lagrangian.md`, "Speed").
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub enum InnerPenalty {
-    /// Every point's θ at most the rod model's with c = [`crate::contact::AUGMENTED_C`] and h
-    /// the point's share of its boundary: each multiplier update then contracts by about the
-    /// same factor whatever the pair's θ and the mesh. For the interface Newton method, whose
-    /// count does not depend on θ.
-    #[default]
-    Stiffened,
-    /// The pair's θ as given: for the Robin sweeps, whose count grows as θ stiffens.
-    AsGiven,
-}
-
-/// How a contact pair enforces non-penetration.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub enum Enforcement {
-    /// The paper's penalty formulation: the contact pressure is (s − d)⁺/θ, and the answer
-    /// depends on θ (the bodies interpenetrate by θ·p).
-    #[default]
-    Penalty,
-    /// The augmented Lagrangian (Uzawa) loop of [`crate::augmented`] around the penalty solves:
-    /// converges to the exact unilateral (Signorini) contact for any fixed θ.
-    Augmented,
-}
-
-impl std::fmt::Display for Enforcement {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.write_str(match self {
-            Enforcement::Penalty => "penalty",
-            Enforcement::Augmented => "augmented",
-        })
-    }
-}
-
-/// How a contact pair's pressure loads its two bodies (docs/method.md §4, "Which normal the gap
-/// uses").
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub enum Forces {
-    /// Both sides read the gap along the normals of the flatter side, whose pressure loads both
-    /// bodies with equal and opposite forces (dual mortar coefficients): the pair's forces
-    /// balance on non-matching and curved zones. A pair whose sides match node for node on a
-    /// flat zone is the same discrete problem as `OwnSide` and keeps its arithmetic.
-    #[default]
-    Balanced,
-    /// The paper's formulation: each side is loaded only by its own points' pressure along its own
-    /// normal, with the partner's displacement read along the partner's normal.
-    OwnSide,
-}
-
-impl std::fmt::Display for Forces {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.write_str(match self {
-            Forces::Balanced => "balanced",
-            Forces::OwnSide => "own-side",
-        })
-    }
-}
 
 /// A contact pair: boundary `boundaries[0]` of body `bodies[0]` may touch boundary
 /// `boundaries[1]` of body `bodies[1]`.
@@ -110,6 +28,31 @@ pub struct ContactPair {
     pub enforcement: Enforcement,
     /// How the pressure loads the two bodies.
     pub forces: Forces,
+}
+
+impl ContactPair {
+    /// The pair's formulation between its bodies in `bodies`, under the solve's inner penalty
+    /// `inner` of the augmented balanced pairs; an error if its θ is not positive and finite.
+    pub fn formulation(
+        &self,
+        bodies: &[ElasticBody],
+        inner: InnerPenalty,
+    ) -> Result<Formulation, SetupError> {
+        let (a, b) = (&bodies[self.bodies[0]], &bodies[self.bodies[1]]);
+        let theta = self.penalty.theta(a, b);
+        if !(theta.is_finite() && theta > 0.0) {
+            return Err(SetupError::Pair {
+                pair: self.name.clone(),
+                message: format!("the penalty θ must be positive and finite, got {theta}"),
+            });
+        }
+        Ok(Formulation::new(
+            theta,
+            self.enforcement,
+            self.forces,
+            inner,
+        ))
+    }
 }
 
 /// Bodies and contact pairs.

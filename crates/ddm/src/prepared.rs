@@ -116,7 +116,7 @@ pub fn prepare_on(
     } = how.into();
     let t = Instant::now();
     let interface = Interface::with_inner(model, inner)?;
-    crate::contact_check::refuse(&crate::contact_check::check(model, &interface))?;
+    crate::contact::check::refuse(&crate::contact::check::check(model, &interface))?;
     let t_contact = t.elapsed().as_secs_f64();
     let t = Instant::now();
     // One level of parallelism: over bodies when there are several, inside faer otherwise. A

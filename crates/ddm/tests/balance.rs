@@ -308,9 +308,47 @@ fn pairs_that_match_node_for_node_keep_their_arithmetic() {
     let (a, b) = (model(Forces::Balanced), model(Forces::OwnSide));
     let interface = Interface::new(&a).unwrap();
     assert!(interface.points.iter().all(|p| p.role == Role::OwnSide));
+    assert_eq!(interface.formulations[0].forces, Forces::OwnSide);
     let s = settings(Accelerator::Newton, Condensation::Dense);
     let (sa, sb) = (run(&a, &s), run(&b, &s));
     assert_eq!(sa.iterations, sb.iterations);
     assert_eq!(sa.contact[0].pressure, sb.contact[0].pressure);
     assert_eq!(sa.bodies[1].displacement, sb.bodies[1].displacement);
+}
+
+/// A pair's formulation: the stiffened inner penalty only for an augmented balanced pair under
+/// [`InnerPenalty::Stiffened`], never stiffer than the rod model allows; a θ that is not positive
+/// is refused.
+#[test]
+fn only_augmented_balanced_pairs_get_the_stiffened_inner_penalty() {
+    let model = disc_on_block(1.0, Forces::Balanced);
+    let (a, b) = (&model.bodies[0], &model.bodies[1]);
+    let stiffened = |enforcement, forces, inner| {
+        let pair = ContactPair {
+            enforcement,
+            forces,
+            ..model.pairs[0].clone()
+        };
+        let f = pair.formulation(&model.bodies, inner).unwrap();
+        assert_eq!(
+            (f.enforcement, f.forces, f.theta),
+            (enforcement, forces, 1e-4)
+        );
+        f.inner == InnerPenalty::Stiffened
+    };
+    use Enforcement::{Augmented, Penalty as Plain};
+    use InnerPenalty::{AsGiven, Stiffened};
+    assert!(stiffened(Augmented, Forces::Balanced, Stiffened));
+    assert!(!stiffened(Augmented, Forces::Balanced, AsGiven));
+    assert!(!stiffened(Augmented, Forces::OwnSide, Stiffened));
+    assert!(!stiffened(Plain, Forces::Balanced, Stiffened));
+    let f = Formulation::new(1e-4, Augmented, Forces::Balanced, Stiffened);
+    let rod = Penalty::RodModel { c: 0.05, h: 1e-3 }.theta(a, b);
+    assert_eq!(f.point_theta(1e-3, a, b), rod.min(1e-4));
+    assert_eq!(f.point_theta(0.0, a, b), 1e-4);
+    let bad = ContactPair {
+        penalty: Penalty::Theta(0.0),
+        ..model.pairs[0].clone()
+    };
+    assert!(bad.formulation(&model.bodies, AsGiven).is_err());
 }

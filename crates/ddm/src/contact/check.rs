@@ -22,7 +22,7 @@ use std::fmt;
 
 use contactdd_core::Point;
 
-use crate::contact::{ContactPoint, Interface};
+use super::points::{ContactPoint, Interface};
 use crate::error::SetupError;
 use crate::model::Model;
 

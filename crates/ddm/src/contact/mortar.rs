@@ -24,7 +24,7 @@ use std::collections::HashMap;
 use contactdd_core::element::edge_shape;
 use contactdd_core::{Edge, Mesh, Order, Vector};
 
-use crate::contact::EdgeIndex;
+use super::edge_index::EdgeIndex;
 
 /// Three-point Gauss–Legendre rule on [0, 1]: exact to degree 5.
 const GAUSS: [(f64, f64); 3] = [
@@ -45,7 +45,7 @@ fn dual(order: Order) -> [[f64; 3]; 3] {
 /// The dual mortar integrals of one node over the part of its edges whose normal rays hit the
 /// partner (the caller normalises by Σ_k `coupling[k]`, which is ∫ ψ there).
 #[derive(Clone, Debug, Default)]
-pub(crate) struct Integrals {
+pub(super) struct Integrals {
     /// ∫ ψ φ_k per partner node k.
     pub coupling: HashMap<usize, f64>,
     /// ∫ ψ t n_e: the rays' lengths t along their edge's normal n_e, as a vector, so that the
@@ -57,7 +57,7 @@ pub(crate) struct Integrals {
 
 /// Per node of `edges`, its [`Integrals`] against the partner boundary, with the pair's gap
 /// `profile`.
-pub(crate) fn dual_integrals(
+pub(super) fn dual_integrals(
     mesh: &Mesh,
     edges: &[Edge],
     partner: &EdgeIndex,
@@ -102,6 +102,44 @@ pub(crate) fn dual_integrals(
         }
     }
     out
+}
+
+/// A point's dual mortar coefficients and weighted gap ([`Integrals`] normalised by ∫ ψ).
+#[derive(Clone, Debug)]
+pub(super) struct Mortar {
+    /// Coefficients over the partner's (normal) points.
+    pub coefficients: Vec<(usize, f64)>,
+    /// The weighted ray vector ∫ ψ t n_e / ∫ ψ: its component along ν is the distance.
+    pub ray: Vector,
+    /// The weighted gap profile.
+    pub profile: f64,
+}
+
+/// The mortar integrals of one point normalised by ∫ ψ: the coefficients over the partner's
+/// points (they sum to 1, which makes the gap invariant under a joint translation), in point
+/// order, with the weighted ray vector and profile; `None` where ∫ ψ is not a positive share of
+/// the point.
+pub(super) fn normalised(
+    node: &Integrals,
+    partner_index: &HashMap<usize, usize>,
+) -> Option<Mortar> {
+    let mut out: Vec<(usize, f64)> = node
+        .coupling
+        .iter()
+        .filter_map(|(node, &c)| partner_index.get(node).map(|&g| (g, c)))
+        .collect();
+    out.sort_by_key(|e| e.0);
+    let total: f64 = out.iter().map(|e| e.1).sum();
+    let size: f64 = out.iter().map(|e| e.1.abs()).sum();
+    // Also refuses NaN.
+    if total.is_nan() || total <= 1e-9 * size {
+        return None;
+    }
+    Some(Mortar {
+        coefficients: out.into_iter().map(|(g, c)| (g, c / total)).collect(),
+        ray: [node.ray[0] / total, node.ray[1] / total],
+        profile: node.profile / total,
+    })
 }
 
 #[cfg(test)]

@@ -20,25 +20,16 @@
 //! on its own unknown and, with the opposite sign, on the partner's unknowns through its gap row
 //! ([`ContactPoint::load_row`]); the other side's points follow. s_j is invariant under a joint
 //! translation, so the two sides' forces, the derivatives of Σ_j w_j/(2θ) ((d_j − s_j)⁻)², are
-//! equal and opposite. The partner's coefficients are the dual mortar ones (`crate::mortar`).
+//! equal and opposite. The partner's coefficients are the dual mortar ones (`contact::mortar`).
 
 use std::ops::Range;
 
 use contactdd_core::geometry::dot;
 use contactdd_core::Vector;
 
-use crate::contact::{carried, ContactPoint, Role};
-
-/// A point's dual mortar coefficients and weighted gap (`crate::mortar`, normalised).
-#[derive(Clone, Debug)]
-pub(crate) struct Mortar {
-    /// Coefficients over the partner's (normal) points.
-    pub coefficients: Vec<(usize, f64)>,
-    /// The weighted ray vector ∫ ψ t n_e / ∫ ψ: its component along ν is the distance.
-    pub ray: Vector,
-    /// The weighted gap profile.
-    pub profile: f64,
-}
+use super::formulation::{Forces, Formulation};
+use super::mortar::Mortar;
+use super::points::{carried, ContactPoint, Role};
 
 /// What a coefficient of a balanced gap row multiplies.
 #[derive(Clone, Copy, PartialEq)]
@@ -49,30 +40,48 @@ enum Target {
     Tangent(usize),
 }
 
-/// Rewrites the points of the pairs that `pairs` selects (balanced, with the body of side 0) into
-/// balanced form: carriers and followers, new gap rows, tangential unknowns appended to each
-/// body's points, and reference springs. Pairs whose sides match node for node (the same
-/// discrete problem either way) keep their own-side arithmetic.
-pub(crate) fn balance(
+/// The points of every pair, found once.
+fn of_pairs(points: &[ContactPoint], pairs: usize) -> Vec<Vec<usize>> {
+    let mut of_pair: Vec<Vec<usize>> = vec![Vec::new(); pairs];
+    for (j, p) in points.iter().enumerate() {
+        of_pair[p.pair].push(j);
+    }
+    of_pair
+}
+
+/// Resolves the pairs' forces against their points: a balanced pair whose sides match node for
+/// node (the same discrete problem either way) is the own-side formulation and keeps its
+/// arithmetic.
+pub(super) fn resolve(points: &[ContactPoint], formulations: &mut [Formulation]) {
+    let of_pair = of_pairs(points, formulations.len());
+    for (f, of_pair) in formulations.iter_mut().zip(&of_pair) {
+        if f.forces == Forces::Balanced && matches_node_for_node(points, of_pair) {
+            f.forces = Forces::OwnSide;
+        }
+    }
+}
+
+/// Rewrites the points of the balanced pairs (`formulations` resolved by [`resolve`], `first`
+/// the body of side 0 of every pair) into balanced form: carriers and followers, new gap rows,
+/// tangential unknowns appended to each body's points, and reference springs.
+pub(super) fn balance(
     points: Vec<ContactPoint>,
     body_range: Vec<Range<usize>>,
     hits: &[Option<f64>],
     mortar: &[Option<Mortar>],
-    pairs: &[(bool, usize)],
+    formulations: &[Formulation],
+    first: &[usize],
 ) -> (Vec<ContactPoint>, Vec<Range<usize>>) {
-    // The points of every pair, found once.
-    let mut of_pair: Vec<Vec<usize>> = vec![Vec::new(); pairs.len()];
-    for (j, p) in points.iter().enumerate() {
-        of_pair[p.pair].push(j);
-    }
-    let rewrite: Vec<bool> = (0..pairs.len())
-        .map(|pair| pairs[pair].0 && !matches_node_for_node(&points, &of_pair[pair]))
+    let rewrite: Vec<bool> = formulations
+        .iter()
+        .map(|f| f.forces == Forces::Balanced)
         .collect();
     if !rewrite.iter().any(|&b| b) {
         return (points, body_range);
     }
-    let reference: Vec<usize> = (0..pairs.len())
-        .map(|pair| reference_body(&points, &of_pair[pair], pairs[pair].1))
+    let of_pair = of_pairs(&points, formulations.len());
+    let reference: Vec<usize> = (0..formulations.len())
+        .map(|pair| reference_body(&points, &of_pair[pair], first[pair]))
         .collect();
     let rows: Vec<(Vec<(Target, f64)>, Vector)> = (0..points.len())
         .map(|j| row(&points, j, mortar[j].as_ref(), reference[points[j].pair]))
@@ -192,7 +201,7 @@ fn lump_springs(points: &mut [ContactPoint]) {
 /// The gap row of point j read along ν_j (see the module docs), and ν_j. The row holds its own
 /// normal unknown's coefficient less 1 (the 1 is implicit in `partner`), its own tangential
 /// unknown, and the partner's normal and tangential unknowns with the dual mortar coefficients
-/// (`crate::mortar`; the ray's interpolation where there are none); zero coefficients left out.
+/// (`contact::mortar`; the ray's interpolation where there are none); zero coefficients left out.
 fn row(
     points: &[ContactPoint],
     j: usize,
