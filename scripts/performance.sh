@@ -121,7 +121,7 @@ for section in "${sections[@]}"; do
   case "$section" in
   core)
     if [ $run_benches = 1 ]; then
-      CONTACTDD_BENCH_LARGE=1 cargo bench -q --bench core >/dev/null
+      CONTACTDD_BENCH_LARGE=1 cargo bench -q --bench core >&2
     fi
     tables core
     if [ $run_benches = 1 ]; then
@@ -131,13 +131,13 @@ for section in "${sections[@]}"; do
     ;;
   ddm)
     if [ $run_benches = 1 ]; then
-      cargo bench -q --bench ddm -- "^(notch|stack8|column|hertz|contact_search)/" >/dev/null
+      cargo bench -q --bench ddm -- "^(notch|stack8|column|hertz|contact_search)/" >&2
     fi
     tables ddm
     ;;
   condensation)
     if [ $run_benches = 1 ]; then
-      CONTACTDD_BENCH_LARGE=1 cargo bench -q --bench ddm -- "^condensation/" >/dev/null
+      CONTACTDD_BENCH_LARGE=1 cargo bench -q --bench ddm -- "^condensation/" >&2
     fi
     tables condensation
     [ $run_benches = 1 ] || continue
