@@ -230,7 +230,8 @@ fn hertz_settles_within_25_steps() {
 /// Every shipped example, at its full load (load steps aside): the monolithic reference settles
 /// within 25 Newton steps, in equilibrium, and agrees with the DD to 1e-8 in every pair's
 /// pressures and gaps. That includes the cylinder between two plates (two curved non-matching
-/// pairs), on which full active-set steps to ever new closed sets used to wander for 50 steps.
+/// pairs), on which full active-set steps without globalisation wander from closed set to
+/// closed set.
 #[test]
 fn every_example_settles_and_agrees_with_the_decomposition() {
     let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("examples");

@@ -1,14 +1,16 @@
 //! # contactdd-ddm
 //!
-//! Frictionless unilateral contact of several linear elastic bodies by the penalty Robin domain
-//! decomposition of Prokopyshyn & Shakhno (see `docs/method.md`): every body solves its own linear
-//! elasticity problem with Robin conditions on its contact zones, in parallel, followed by a
-//! relaxation with parameter γ. Five Robin coefficient rules are available ([`Method`]).
+//! Unilateral contact of several linear elastic bodies by domain decomposition: every body is
+//! factorised once and condensed onto its contact points, and an interface iteration couples
+//! them. By default that is the interface Newton method ([`newton`]); the penalty Robin domain
+//! decomposition of Prokopyshyn & Shakhno (see `docs/method.md`), with its five Robin
+//! coefficient rules ([`Method`]) and relaxation γ, runs as the Robin sweeps ([`sweeps`]).
 //!
 //! Data flow: a problem description (the `contactdd-io` crate reads files) → [`Model`] →
-//! [`solver::prepare`] (contact geometry, per-body factorisation and condensation, the coarse
-//! space) → [`iteration`] (parallel [`robin_sweep`]s, [`coarse`] correction, relaxation or
-//! [`anderson`] acceleration) → [`Solution`]. This crate reads and writes no file format.
+//! [`prepared`] (the contact geometry of [`contact`], per-body factorisation and condensation of
+//! [`condensed`], the [`coarse`] space) → an [`iteration::Iteration`] (inside the [`augmented`]
+//! Lagrangian loop where pairs ask for it) → [`Solution`], checked by [`equilibrium`]. [`solver`]
+//! runs that flow. This crate reads and writes no file format.
 
 pub mod anderson;
 pub mod augmented;

@@ -9,6 +9,11 @@ use contactdd_ddm::benchmark::Notch;
 use contactdd_ddm::solution::PairResult;
 use contactdd_ddm::*;
 
+/// Solves a prepared model with `settings`: a solve of a valid model must return a result.
+fn run(model: &Model, prepared: &Prepared, settings: &Settings) -> Solution {
+    solve(model, prepared, settings, Hooks::default()).expect("a valid model solves")
+}
+
 fn settings(method: Method, gamma: f64, tol: f64) -> Settings {
     Settings {
         tol,
@@ -101,13 +106,7 @@ fn dd_methods_converge_to_the_monolithic_solution_of_the_notch_benchmark() {
         (Method::NewtonChord, 0.3),
         (Method::NewtonKurchatov, 0.5),
     ] {
-        let sol = solve(
-            &model,
-            &prepared,
-            &settings(method, gamma, 1e-10),
-            Hooks::default(),
-        )
-        .unwrap();
+        let sol = run(&model, &prepared, &settings(method, gamma, 1e-10));
         assert!(sol.converged, "{method}: {:?}", sol.message);
         let diff = max_rel_diff(&sol.contact[0].pressure, &reference.contact[0].pressure);
         assert!(
@@ -121,13 +120,7 @@ fn dd_methods_converge_to_the_monolithic_solution_of_the_notch_benchmark() {
 fn neumann_fails_cleanly_on_floating_bodies() {
     let model = Notch::default().model().unwrap();
     let prepared = prepare(&model).unwrap();
-    let sol = solve(
-        &model,
-        &prepared,
-        &settings(Method::Neumann, 0.5, 1e-3),
-        Hooks::default(),
-    )
-    .unwrap();
+    let sol = run(&model, &prepared, &settings(Method::Neumann, 0.5, 1e-3));
     assert!(!sol.converged);
     let msg = sol.message.unwrap();
     assert!(msg.contains("neumann") && msg.contains("lower"), "{msg}");
@@ -142,13 +135,7 @@ fn contact_force_balances_the_applied_load() {
     let notch = Notch::default();
     let model = notch.model().unwrap();
     let prepared = prepare(&model).unwrap();
-    let sol = solve(
-        &model,
-        &prepared,
-        &settings(Method::NewtonKurchatov, 0.5, 1e-12),
-        Hooks::default(),
-    )
-    .unwrap();
+    let sol = run(&model, &prepared, &settings(Method::NewtonKurchatov, 0.5, 1e-12));
     let applied = notch.pressure() * contactdd_ddm::benchmark::L;
     for side in 0..2 {
         let f = sol.contact[0].force_on(side);
@@ -172,13 +159,7 @@ fn result_is_independent_of_the_number_of_threads() {
             .unwrap();
         pool.install(|| {
             let prepared = prepare(&model).unwrap();
-            let sol = solve(
-                &model,
-                &prepared,
-                &settings(Method::NewtonChord, 0.3, 1e-8),
-                Hooks::default(),
-            )
-            .unwrap();
+            let sol = run(&model, &prepared, &settings(Method::NewtonChord, 0.3, 1e-8));
             (
                 sol.iterations,
                 sol.contact[0].pressure.clone(),
@@ -229,13 +210,7 @@ fn flat_non_matching_interface_carries_uniform_pressure() {
         );
         let model = two_bodies("patch", lower, upper, Penalty::Theta(1e-4));
         let prepared = prepare(&model).unwrap();
-        let sol = solve(
-            &model,
-            &prepared,
-            &settings(Method::ActiveSet, 0.5, 1e-12),
-            Hooks::default(),
-        )
-        .unwrap();
+        let sol = run(&model, &prepared, &settings(Method::ActiveSet, 0.5, 1e-12));
         assert!(sol.converged, "{order:?}: {:?}", sol.message);
         for (i, sn) in sol.contact[0].pressure.iter().enumerate() {
             assert!(
@@ -300,13 +275,7 @@ fn three_body_stack_and_p2_agree_with_monolithic_and_balance_forces() {
         let model = stack(order, 3);
         let reference = solve_monolithic(&model).unwrap();
         let prepared = prepare(&model).unwrap();
-        let sol = solve(
-            &model,
-            &prepared,
-            &settings(Method::NewtonKurchatov, 0.5, 1e-11),
-            Hooks::default(),
-        )
-        .unwrap();
+        let sol = run(&model, &prepared, &settings(Method::NewtonKurchatov, 0.5, 1e-11));
         assert!(sol.converged, "{order:?}: {:?}", sol.message);
         for (pair, refp) in sol.contact.iter().zip(&reference.contact) {
             let diff = max_rel_diff(&pair.pressure, &refp.pressure);
@@ -334,13 +303,7 @@ fn p2_notch_matches_monolithic() {
     .unwrap();
     let reference = solve_monolithic(&model).unwrap();
     let prepared = prepare(&model).unwrap();
-    let sol = solve(
-        &model,
-        &prepared,
-        &settings(Method::ActiveSet, 0.4, 1e-10),
-        Hooks::default(),
-    )
-    .unwrap();
+    let sol = run(&model, &prepared, &settings(Method::ActiveSet, 0.4, 1e-10));
     assert!(sol.converged, "{:?}", sol.message);
     let diff = max_rel_diff(&sol.contact[0].pressure, &reference.contact[0].pressure);
     assert!(diff <= 1e-8, "{diff:e}");
@@ -432,13 +395,7 @@ fn hertz_half_disc_on_block_matches_analytic_solution() {
         // 15 × 60 mesh.
         model.pairs[0].forces = Forces::OwnSide;
         let prepared = prepare(&model).unwrap();
-        let sol = solve(
-            &model,
-            &prepared,
-            &settings(Method::ActiveSet, 0.5, 1e-8),
-            Hooks::default(),
-        )
-        .unwrap();
+        let sol = run(&model, &prepared, &settings(Method::ActiveSet, 0.5, 1e-8));
         assert!(sol.converged, "{nr}x{nt}: {:?}", sol.message);
         let (a, peak) = half_width_and_peak(&sol.contact[0], 0);
         let p0 = 2.0 * total / (std::f64::consts::PI * a_target);
@@ -498,13 +455,7 @@ fn short_body_on_long_body_balances_forces() {
             let mut model = two_bodies("step", base, top, Penalty::RodModel { c: 0.05, h: 1.0 });
             model.pairs[0].forces = forces;
             let prepared = prepare(&model).unwrap();
-            let sol = solve(
-                &model,
-                &prepared,
-                &settings(Method::ActiveSet, 0.5, 1e-12),
-                Hooks::default(),
-            )
-            .unwrap();
+            let sol = run(&model, &prepared, &settings(Method::ActiveSet, 0.5, 1e-12));
             assert!(sol.converged, "{order:?}: {:?}", sol.message);
             let (base_force, top_force) = (sol.contact[0].force_on(0), sol.contact[0].force_on(1));
             println!("{order:?} ×{refine}: base {base_force:?}, top {top_force:?}");
