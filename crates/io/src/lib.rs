@@ -16,20 +16,31 @@
 //! module's docs).
 
 pub mod atomic;
+pub mod bodies;
+pub mod body_vtus;
+pub mod csv_tables;
+pub mod distributed_results;
+pub mod distributed_setup;
 pub mod error;
 pub mod fields;
+pub mod load_steps;
+pub mod meshes;
+pub mod model_builder;
 pub mod number;
 pub mod output;
 pub mod packed;
+pub mod pairs;
 pub mod problem;
 pub mod reactions;
 pub mod result_set;
 pub mod setup;
-pub mod shared_results;
-pub mod shared_setup;
+pub mod solver_settings;
 pub mod steps;
+pub mod summary;
 pub mod vtu;
 pub mod write_problem;
 
+pub use distributed_results as shared_results;
+pub use distributed_setup as shared_setup;
 pub use error::LoadError;
 pub use setup::{load_file, load_str, read_problem, resolve, Loaded, ProblemFile};
