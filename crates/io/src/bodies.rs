@@ -6,7 +6,7 @@ use contactdd_ddm::{Model, SetupError};
 
 use crate::error::{body_error, mesh_error};
 use crate::number::format_f64 as num;
-use crate::problem::{LoadSpec, SupportSpec};
+use crate::problem::SupportSpec;
 
 /// A `[materials.NAME]` table → a validated material (errors name the material and the key).
 pub fn material(name: &str, young: f64, poisson: f64) -> Result<Material, SetupError> {
@@ -85,7 +85,7 @@ pub fn body_on_mesh(
     material: Material,
     plane: Plane,
     supports: &[SupportSpec],
-    loads: &[LoadSpec],
+    loads: &[Load],
 ) -> Result<ElasticBody, SetupError> {
     let mut constraints = Constraints::new(mesh.num_nodes());
     for (i, s) in supports.iter().enumerate() {
@@ -97,25 +97,11 @@ pub fn body_on_mesh(
                 source,
             })?;
     }
-    let mut resolved = Vec::with_capacity(loads.len());
     for (i, l) in loads.iter().enumerate() {
         let key = format!("loads[{i}]");
-        let (load, values): (Load, Vec<f64>) = match l {
-            LoadSpec::Pressure { boundary, value } => (
-                Load::Pressure {
-                    boundary: boundary.clone(),
-                    value: *value,
-                },
-                vec![*value],
-            ),
-            LoadSpec::Traction { boundary, value } => (
-                Load::Traction {
-                    boundary: boundary.clone(),
-                    value: *value,
-                },
-                value.to_vec(),
-            ),
-            LoadSpec::BodyForce { value } => (Load::BodyForce(*value), value.to_vec()),
+        let values: &[f64] = match l {
+            Load::Pressure { value, .. } => std::slice::from_ref(value),
+            Load::Traction { value, .. } | Load::BodyForce { value } => value,
         };
         if let Some(v) = values.iter().find(|v| !v.is_finite()) {
             return Err(body_error(
@@ -124,13 +110,12 @@ pub fn body_on_mesh(
                 format!("must be finite, got {}", num(*v)),
             ));
         }
-        if let LoadSpec::Pressure { boundary, .. } | LoadSpec::Traction { boundary, .. } = l {
+        if let Load::Pressure { boundary, .. } | Load::Traction { boundary, .. } = l {
             mesh.boundary(boundary)
                 .map_err(|e| mesh_error(name, &format!("{key}.boundary"), e))?;
         }
-        resolved.push(load);
     }
-    let load = contactdd_core::loads::load_vector(&mesh, &resolved)
+    let load = contactdd_core::loads::load_vector(&mesh, loads)
         .map_err(|e| mesh_error(name, "loads", e))?;
     Ok(ElasticBody {
         name: name.to_string(),
