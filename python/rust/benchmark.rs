@@ -6,13 +6,13 @@
 
 use std::collections::BTreeMap;
 
-use contactdd_core::{Component, Diagonal, Order, Plane};
+use contactdd_core::{Component, Diagonal, Load, Order, Plane};
 use contactdd_ddm::benchmark::{Notch, H, L};
 use contactdd_ddm::profile::Along;
 use contactdd_ddm::Method;
 use contactdd_io::problem::{
-    BodySpec, ContactSpec, GammaSpec, GapSpec, LoadSpec, MaterialSpec, MeshSpec, PenaltySpec,
-    Problem, SolverSpec, SupportSpec,
+    BodySpec, ContactSpec, GammaSpec, GapSpec, MaterialSpec, MeshSpec, PenaltySpec, Problem,
+    SolverSpec, SupportSpec,
 };
 
 /// Depth of the notch (cm).
@@ -39,7 +39,7 @@ fn block(notch: &Notch, name: &str, y0: f64, mirror: bool, loaded: &str) -> Body
             component: Component::X,
             value: 0.0,
         }],
-        loads: vec![LoadSpec::Pressure {
+        loads: vec![Load::Pressure {
             boundary: loaded.into(),
             value: notch.pressure(),
         }],

@@ -3,11 +3,11 @@
 
 use anyhow::Result;
 
-use contactdd_core::{num_dofs, Component, ElasticBody, Order};
+use contactdd_core::{num_dofs, Component, ElasticBody, Load, Order};
 use contactdd_ddm::contact::{Interface, Role};
 use contactdd_ddm::contact_check;
 use contactdd_ddm::{Gamma, Model, Penalty};
-use contactdd_io::problem::{BodySpec, LoadSpec, MeshSpec};
+use contactdd_io::problem::{BodySpec, MeshSpec};
 use contactdd_io::Loaded;
 
 use crate::args::CheckArgs;
@@ -92,13 +92,13 @@ fn body_text(body: &ElasticBody, spec: &BodySpec) -> String {
     }
     for l in &spec.loads {
         out += &match l {
-            LoadSpec::Pressure { boundary, value } => {
+            Load::Pressure { boundary, value } => {
                 format!("  load: pressure {} on {boundary}\n", sig(*value))
             }
-            LoadSpec::Traction { boundary, value } => {
+            Load::Traction { boundary, value } => {
                 format!("  load: traction {} on {boundary}\n", vec2(*value))
             }
-            LoadSpec::BodyForce { value } => format!("  load: body force {}\n", vec2(*value)),
+            Load::BodyForce { value } => format!("  load: body force {}\n", vec2(*value)),
         };
     }
     out

@@ -5,8 +5,10 @@ use crate::error::MeshError;
 use crate::geometry::{num_dofs, Vector, DIM};
 use crate::mesh::Mesh;
 
-/// One load.
-#[derive(Clone, Debug, PartialEq)]
+/// One load. A problem file's `loads` entries are this type, selected by `kind` (`pressure`,
+/// `traction`, `body-force`), e.g. `{ kind = "pressure", boundary = "top", value = 10.0 }`.
+#[derive(Clone, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
+#[serde(tag = "kind", deny_unknown_fields, rename_all = "kebab-case")]
 pub enum Load {
     /// Uniform normal pressure on a boundary, positive into the body (traction `−p n`).
     Pressure {
@@ -15,15 +17,18 @@ pub enum Load {
         /// Pressure (force per unit length in 2D).
         value: f64,
     },
-    /// Uniform traction vector on a boundary.
+    /// Uniform traction vector `[tx, ty]` on a boundary.
     Traction {
         /// Boundary name.
         boundary: String,
         /// Force per unit length.
         value: Vector,
     },
-    /// Uniform body force per unit area (e.g. `ρ g`).
-    BodyForce(Vector),
+    /// Uniform body force `[fx, fy]` per unit area (e.g. `ρ g`).
+    BodyForce {
+        /// Force per unit area.
+        value: Vector,
+    },
 }
 
 /// The consistent load vector (2 entries per node) of a set of loads.
@@ -37,7 +42,7 @@ pub fn load_vector(mesh: &Mesh, loads: &[Load]) -> Result<Vec<f64>, MeshError> {
             Load::Traction { boundary, value } => {
                 add_edge_traction(mesh, mesh.boundary(boundary)?, |_, _| *value, &mut f)
             }
-            Load::BodyForce(b) => add_body_force(mesh, |_| *b, &mut f),
+            Load::BodyForce { value } => add_body_force(mesh, |_| *value, &mut f),
         }
     }
     Ok(f)

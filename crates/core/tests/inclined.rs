@@ -78,7 +78,9 @@ fn sliding_block(order: Order, angle: f64) -> ElasticBody {
                 boundary: "top".into(),
                 value: 2.0,
             },
-            Load::BodyForce(rot([0.5, -1.0])),
+            Load::BodyForce {
+                value: rot([0.5, -1.0]),
+            },
         ],
     )
 }

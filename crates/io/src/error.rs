@@ -1,9 +1,10 @@
 //! Errors of reading a problem: the file itself, its TOML, its Gmsh meshes, or the problem it
-//! describes ([`SetupError`], shared with the numerical crates).
+//! describes ([`SetupError`], shared with the numerical crates), and the constructors that name
+//! the body, pair or `[solver]` key of a [`SetupError`].
 
 use thiserror::Error;
 
-use contactdd_core::GmshError;
+use contactdd_core::{GmshError, MeshError};
 use contactdd_ddm::SetupError;
 
 /// A problem file or description that cannot be turned into a model.
@@ -65,6 +66,44 @@ pub fn excerpt(message: &str) -> String {
         })
         .collect();
     lines.join("\n")
+}
+
+/// The error of a problem without bodies.
+pub(crate) fn no_bodies() -> SetupError {
+    SetupError::Invalid {
+        key: "bodies".into(),
+        message: "the problem has no bodies; it needs at least one".into(),
+    }
+}
+
+/// An invalid value of body `body` at `key`.
+pub(crate) fn body_error(body: &str, key: &str, message: impl std::fmt::Display) -> SetupError {
+    SetupError::Body {
+        body: body.to_string(),
+        message: format!("{key}: {message}"),
+    }
+}
+
+/// A mesh error of body `body` at `key`.
+pub(crate) fn mesh_error(body: &str, key: &str, source: MeshError) -> SetupError {
+    SetupError::Mesh {
+        body: body.to_string(),
+        key: key.to_string(),
+        source,
+    }
+}
+
+/// An invalid value of contact pair `pair` at `key`.
+pub(crate) fn pair_error(pair: &str, key: &str, message: impl std::fmt::Display) -> SetupError {
+    SetupError::Pair {
+        pair: pair.to_string(),
+        message: format!("{key}: {message}"),
+    }
+}
+
+/// An invalid value of the `[solver]` table at `key`.
+pub(crate) fn solver_error(key: &str, message: impl std::fmt::Display) -> SetupError {
+    SetupError::Solver(format!("{key}: {message}"))
 }
 
 #[cfg(test)]

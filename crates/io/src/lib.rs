@@ -4,32 +4,50 @@
 //! crates (`contactdd-core`, `contactdd-ddm`) read and write no file format, this crate does.
 //!
 //! Data flow: a TOML problem file → [`problem`] (plain serde types, the file's schema) →
-//! [`setup`] (one resolve step: validated `Model` and `Settings`) → the solver of `contactdd-ddm`
-//! → [`output`] (`summary.json`, `contact.csv`, `history.csv`, the sweep CSV) and [`vtu`] (one
-//! `.vtu` per body, with the derived [`fields`] and the support [`reactions`]). [`atomic`] writes
-//! every file without ever leaving a half-written one, [`result_set`] a result folder so that
-//! `summary.json` exists only for a complete one; [`number`] is the one float format of the text
-//! files. docs/outputs.md describes the results.
+//! [`setup`] (one resolve step: validated `Model` and `Settings`, built by a
+//! [`model_builder::ModelBuilder`] from [`meshes`], [`bodies`] and [`pairs`], with
+//! [`solver_settings`] and [`load_steps`] for the `[solver]` table) → the solver of
+//! `contactdd-ddm` → [`output`] (`summary.json` from [`summary`], `contact.csv`, `history.csv`
+//! and the sweep CSV from [`csv_tables`], the load-step tables of [`steps`]) and [`vtu`] (one
+//! `.vtu` per body, written by [`body_vtus`], with the derived [`fields`] and the support
+//! [`reactions`]). [`atomic`] writes every file without ever leaving a half-written one,
+//! [`result_set`] a result folder so that `summary.json` exists only for a complete one;
+//! [`number`] is the one float format of the text files. The processes of a distributed solve
+//! share the resolve step through [`distributed_setup`] and the result folder through
+//! [`distributed_results`] ([`packed`] carries their data). docs/outputs.md describes the results.
 //!
 //! Gmsh meshes are read by `contactdd_core::gmsh`, not here: that reader only builds a mesh and
 //! needs no dependency, so pure-numerics users can read meshes without this crate (see that
 //! module's docs).
 
 pub mod atomic;
+pub mod bodies;
+pub mod body_vtus;
+pub mod csv_tables;
+pub mod distributed_results;
+pub mod distributed_setup;
 pub mod error;
 pub mod fields;
+pub mod load_steps;
+pub mod meshes;
+pub mod model_builder;
 pub mod number;
 pub mod output;
 pub mod packed;
+pub mod pairs;
 pub mod problem;
 pub mod reactions;
 pub mod result_set;
 pub mod setup;
-pub mod shared_results;
-pub mod shared_setup;
+pub mod solver_settings;
 pub mod steps;
+pub mod summary;
 pub mod vtu;
 pub mod write_problem;
 
+/// An alias of [`distributed_results`], the path the command line imports from.
+pub use distributed_results as shared_results;
+/// An alias of [`distributed_setup`], the path the command line imports from.
+pub use distributed_setup as shared_setup;
 pub use error::LoadError;
 pub use setup::{load_file, load_str, read_problem, resolve, Loaded, ProblemFile};

@@ -42,7 +42,7 @@ use std::path::PathBuf;
 use serde::de::{self, Deserializer, Visitor};
 use serde::{Deserialize, Serialize, Serializer};
 
-use contactdd_core::{Component, Diagonal, Order, Plane, Vector};
+use contactdd_core::{Component, Diagonal, Load, Order, Plane, Vector};
 
 use contactdd_ddm::profile::Along;
 use contactdd_ddm::{Gamma, Method};
@@ -95,9 +95,9 @@ pub struct BodySpec {
     /// Prescribed displacements.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub supports: Vec<SupportSpec>,
-    /// Applied loads.
+    /// Applied loads, each selected by `kind`.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
-    pub loads: Vec<LoadSpec>,
+    pub loads: Vec<Load>,
 }
 
 /// A body's mesh, selected by `kind`.
@@ -204,31 +204,6 @@ pub struct SupportSpec {
     /// Prescribed value (default 0).
     #[serde(default)]
     pub value: f64,
-}
-
-/// An applied load, selected by `kind`.
-#[derive(Clone, Debug, PartialEq, Deserialize, Serialize)]
-#[serde(tag = "kind", deny_unknown_fields, rename_all = "kebab-case")]
-pub enum LoadSpec {
-    /// Uniform normal pressure on a boundary, positive into the body.
-    Pressure {
-        /// Boundary name.
-        boundary: String,
-        /// Pressure (force per unit length in 2D).
-        value: f64,
-    },
-    /// Uniform traction vector `[tx, ty]` on a boundary.
-    Traction {
-        /// Boundary name.
-        boundary: String,
-        /// Force per unit length.
-        value: Vector,
-    },
-    /// Uniform body force `[fx, fy]` per unit area.
-    BodyForce {
-        /// Force per unit area.
-        value: Vector,
-    },
 }
 
 /// A contact pair.

@@ -1,9 +1,9 @@
-//! The result folder of a load-step run (`[solver] load-steps`): one row per step in
-//! `steps.csv` and in `summary.json`'s `steps`, one `<body>-step<k>.vtu` per body and step, and
-//! `results.pvd`, the ParaView collection of every body at every step (the load factor is its
-//! time). `summary.json`, `contact.csv` and `history.csv` describe the last step.
-
-use std::path::{Path, PathBuf};
+//! The tables of a load-step run (`[solver] load-steps`): one row per step in `steps.csv`
+//! ([`steps_csv`]) and in `summary.json`'s `steps` ([`steps_json`]), and `results.pvd`
+//! ([`pvd`]), the ParaView collection of every body at every step (the load factor is its time).
+//! The run's folder (written by [`crate::output::write_step_results`]) also holds one
+//! `<body>-step<k>.vtu` per body and step; its `summary.json`, `contact.csv` and `history.csv`
+//! describe the last step.
 
 use serde_json::{json, Value};
 
@@ -11,10 +11,11 @@ use contactdd_core::dof;
 use contactdd_ddm::solution::{BodyResult, PairResult};
 use contactdd_ddm::{Model, Solution};
 
+use crate::body_vtus::safe_file_name;
+use crate::csv_tables::csv_text;
+use crate::load_steps::Monitor;
 use crate::number::format_f64 as num;
-use crate::output::{csv_text, json_number, safe_file_name};
-use crate::setup::Monitor;
-use crate::shared_results::{write_step_results_shared, Part};
+use crate::summary::json_number;
 
 /// What one step reports per pair: the resultant contact force on the pair's first body, the
 /// length of its closed contact zone (the quadrature weights of its closed points) and the
@@ -156,16 +157,4 @@ fn xml_escape(s: &str) -> String {
         .replace('"', "&quot;")
         .replace('<', "&lt;")
         .replace('>', "&gt;")
-}
-
-/// Writes the result folder of a load-step run as a set (see the module docs), with the problem's
-/// `units` note in `summary.json`. Returns the paths written, `summary.json` last.
-pub fn write_step_results(
-    dir: &Path,
-    model: &Model,
-    steps: &[(f64, Solution)],
-    monitor: Option<&Monitor>,
-    units: Option<&str>,
-) -> std::io::Result<Vec<PathBuf>> {
-    write_step_results_shared(dir, model, steps, monitor, units, &Part::alone())
 }

@@ -11,9 +11,9 @@ use contactdd_ddm::exchange::{factor_cost, Exchange};
 use contactdd_ddm::{Remote, SetupError};
 
 use crate::error::LoadError;
+use crate::model_builder::ModelBuilder;
 use crate::packed::{pack_remote, unpack_remote};
 use crate::problem::{MeshSpec, Problem};
-use crate::setup::ModelBuilder;
 
 /// Each body's estimated factorisation cost, from its mesh description alone: what the partition
 /// balances before any process meshes anything.

@@ -2,7 +2,7 @@
 //! the `.vtu` files of its own bodies, the first (the root) everything else — `contact.csv`,
 //! `history.csv` (and for load steps `steps.csv`), `results.pvd` over every body's file, and
 //! `summary.json` last with the manifest of all of them. The folder is the one
-//! [`crate::output::write_results_noted`] (or [`crate::steps::write_step_results`]) writes in one
+//! [`crate::output::write_results_noted`] (or [`crate::output::write_step_results`]) writes in one
 //! process, file for file: a single process writes through the same code, as [`Part::alone`].
 //!
 //! The processes take turns through `agree`, a collective that hands every process the first
@@ -16,14 +16,14 @@ use serde_json::{json, Value};
 
 use contactdd_ddm::{Model, Solution};
 
-use crate::output::{
-    contact_csv, history_csv, summary_json_with, vtu_paths, write_solution_vtus_of,
-};
+use crate::body_vtus::{vtu_paths, write_solution_vtus_of};
+use crate::csv_tables::{contact_csv, history_csv};
+use crate::load_steps::Monitor;
 use crate::packed::{pack_reactions, unpack_reactions};
 use crate::reactions::{body_reactions, BodyReactions};
 use crate::result_set::ResultSet;
-use crate::setup::Monitor;
-use crate::steps::{monitored_displacement, steps_csv, steps_json};
+use crate::steps::{monitored_displacement, pvd, steps_csv, steps_json};
+use crate::summary::summary_json_with;
 
 /// How this process takes part in writing a shared result folder.
 pub struct Part<'a> {
@@ -110,7 +110,7 @@ pub fn write_results_shared(
 }
 
 /// [`write_results_shared`] for a load-step run: the folder of
-/// [`crate::steps::write_step_results`], file for file.
+/// [`crate::output::write_step_results`], file for file.
 pub fn write_step_results_shared(
     dir: &Path,
     model: &Model,
@@ -207,7 +207,7 @@ fn write_shared(
                 entries.push((*time, part, name));
             }
         }
-        set.write("results.pvd", crate::steps::pvd(&entries).as_bytes())
+        set.write("results.pvd", pvd(&entries).as_bytes())
     })();
     match shared {
         Ok(()) => set.finish(summary),

@@ -1,0 +1,128 @@
+//! The checks of single bodies: a material, a body's name, its supports and loads on a built
+//! mesh, and whether every body of a model is held.
+
+use contactdd_core::{BodyError, Constraints, ElasticBody, Load, Material, Mesh, Plane};
+use contactdd_ddm::{Model, SetupError};
+
+use crate::error::{body_error, mesh_error};
+use crate::number::format_f64 as num;
+use crate::problem::SupportSpec;
+
+/// A `[materials.NAME]` table → a validated material (errors name the material and the key).
+pub fn material(name: &str, young: f64, poisson: f64) -> Result<Material, SetupError> {
+    Material::new(young, poisson).map_err(|source| SetupError::MaterialValue {
+        material: name.to_string(),
+        source,
+    })
+}
+
+/// Checks the name of the next body, `bodies[i]` where i is the number of `earlier` names: not
+/// empty, and not one of them.
+pub fn check_body_name<'a>(
+    name: &str,
+    earlier: impl IntoIterator<Item = &'a str>,
+) -> Result<(), SetupError> {
+    let mut i = 0;
+    let mut duplicate = None;
+    for other in earlier {
+        if duplicate.is_none() && other == name {
+            duplicate = Some(i);
+        }
+        i += 1;
+    }
+    if name.trim().is_empty() {
+        return Err(SetupError::Invalid {
+            key: format!("bodies[{i}].name"),
+            message: "a body name must not be empty".into(),
+        });
+    }
+    match duplicate {
+        Some(j) => Err(body_error(
+            name,
+            "name",
+            format!("the name is used by both bodies[{j}] and bodies[{i}]"),
+        )),
+        None => Ok(()),
+    }
+}
+
+/// Checks that every body is held: a body without a contact pair needs supports, and they must
+/// remove all its rigid-body modes.
+pub fn check_floating(model: &Model) -> Result<(), SetupError> {
+    for (b, body) in model.bodies.iter().enumerate() {
+        // A remote body's process checks it.
+        if model.remote(b).is_some() || model.pairs.iter().any(|p| p.bodies.contains(&b)) {
+            continue;
+        }
+        if !body.constraints.any() {
+            return Err(SetupError::Floating {
+                body: body.name.clone(),
+            });
+        }
+        // Without contact the supports alone must hold the body.
+        if let Err(BodyError::Floating {
+            modes, description, ..
+        }) = body.check_held(&[])
+        {
+            return Err(body_error(
+                &body.name,
+                "supports",
+                format!(
+                    "the body has no contact pair and its supports leave {modes} rigid-body \
+                     mode(s) free ({description}): it would float"
+                ),
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// Body `name` on a built mesh: supports applied in order ([`Constraints::fix`]), loads checked
+/// (finite values, known boundaries) and summed into one load vector.
+pub fn body_on_mesh(
+    name: &str,
+    mesh: Mesh,
+    material: Material,
+    plane: Plane,
+    supports: &[SupportSpec],
+    loads: &[Load],
+) -> Result<ElasticBody, SetupError> {
+    let mut constraints = Constraints::new(mesh.num_nodes());
+    for (i, s) in supports.iter().enumerate() {
+        constraints
+            .fix(&mesh, &s.boundary, s.component, s.value)
+            .map_err(|source| SetupError::Support {
+                body: name.to_string(),
+                key: format!("supports[{i}]"),
+                source,
+            })?;
+    }
+    for (i, l) in loads.iter().enumerate() {
+        let key = format!("loads[{i}]");
+        let values: &[f64] = match l {
+            Load::Pressure { value, .. } => std::slice::from_ref(value),
+            Load::Traction { value, .. } | Load::BodyForce { value } => value,
+        };
+        if let Some(v) = values.iter().find(|v| !v.is_finite()) {
+            return Err(body_error(
+                name,
+                &format!("{key}.value"),
+                format!("must be finite, got {}", num(*v)),
+            ));
+        }
+        if let Load::Pressure { boundary, .. } | Load::Traction { boundary, .. } = l {
+            mesh.boundary(boundary)
+                .map_err(|e| mesh_error(name, &format!("{key}.boundary"), e))?;
+        }
+    }
+    let load = contactdd_core::loads::load_vector(&mesh, loads)
+        .map_err(|e| mesh_error(name, "loads", e))?;
+    Ok(ElasticBody {
+        name: name.to_string(),
+        mesh,
+        material,
+        plane,
+        constraints,
+        load,
+    })
+}

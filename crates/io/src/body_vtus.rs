@@ -1,0 +1,253 @@
+//! The `.vtu` file of each body of a result: its nodal fields (displacement, stress, principal
+//! stresses, von Mises, contact pressure), with the model the contact point data and the element
+//! von Mises. File names are the [`safe_file_name`]s of the body names, made unique.
+
+use std::collections::HashSet;
+use std::io::{Error, ErrorKind};
+use std::path::{Path, PathBuf};
+
+use contactdd_ddm::solution::{BodyResult, PairResult};
+use contactdd_ddm::Model;
+
+use crate::fields::{contact_point_data, element_von_mises, principal, tensor, ContactPointData};
+use crate::result_set::ResultSet;
+use crate::vtu::{write_vtu, Field, VtuData};
+
+/// Writes `<body>.vtu` per body into `dir` with the nodal fields of the results alone:
+/// `displacement` (vector), `stress` (3×3 tensor), `principal_stress_1` ≥ `_2` ≥ `_3`,
+/// `sigma_xx`, `sigma_yy`, `sigma_xy`, `sigma_zz`, `von_mises` and `contact_pressure` (scalars,
+/// which ParaView colours by directly). File names are [`safe_file_name`]s of the body names,
+/// made unique. [`write_solution_vtus`] adds the contact point data and the element von Mises.
+pub fn write_body_vtus(dir: &Path, bodies: &[BodyResult]) -> std::io::Result<Vec<PathBuf>> {
+    let mut written = Vec::with_capacity(bodies.len());
+    let all = |_| true;
+    write_vtus(
+        dir,
+        "",
+        bodies,
+        &all,
+        |_, _| Ok(Extra::default()),
+        &mut written,
+    )?;
+    Ok(written)
+}
+
+/// [`write_body_vtus`] into a result set, plus, from the model and the pairs' results, the point
+/// data `gap` and `contact_status` (1 closed, 0 open, −1 no partner; both NaN off the contact
+/// points) and the cell data `element_von_mises` (at each element's centroid). `bodies` are in the
+/// order of `model.bodies`. Each file joins the set as soon as it is written, so that a failure
+/// part way removes it with the set ([`ResultSet::abandon`]).
+pub fn write_solution_vtus(
+    set: &mut ResultSet,
+    model: &Model,
+    bodies: &[BodyResult],
+    contact: &[PairResult],
+) -> std::io::Result<()> {
+    write_solution_vtus_as(set, model, bodies, contact, "")
+}
+
+/// [`write_solution_vtus`] with `suffix` after each body's file name (`<body><suffix>.vtu`, e.g.
+/// the `-step3` of a load step).
+pub fn write_solution_vtus_as(
+    set: &mut ResultSet,
+    model: &Model,
+    bodies: &[BodyResult],
+    contact: &[PairResult],
+    suffix: &str,
+) -> std::io::Result<()> {
+    let mut written = Vec::with_capacity(bodies.len());
+    let dir = set.dir().to_path_buf();
+    let result = write_solution_vtus_of(
+        &dir,
+        model,
+        bodies,
+        contact,
+        suffix,
+        &|_| true,
+        &mut written,
+    );
+    set.record(written);
+    result
+}
+
+/// [`write_solution_vtus_as`] into `dir` for the bodies `owns` selects only (a process of a
+/// distributed solve writes its own); each path joins `written` once its file is there. The
+/// file names are those of all bodies: the same as when one process writes them all.
+pub(crate) fn write_solution_vtus_of(
+    dir: &Path,
+    model: &Model,
+    bodies: &[BodyResult],
+    contact: &[PairResult],
+    suffix: &str,
+    owns: &dyn Fn(usize) -> bool,
+    written: &mut Vec<PathBuf>,
+) -> std::io::Result<()> {
+    write_vtus(
+        dir,
+        suffix,
+        bodies,
+        owns,
+        |b, body| {
+            let elastic = model.bodies.get(b).ok_or_else(|| {
+                Error::new(
+                    ErrorKind::InvalidInput,
+                    "more body results than model bodies",
+                )
+            })?;
+            Ok(Extra {
+                contact: Some(contact_point_data(
+                    &body.name,
+                    body.mesh.num_nodes(),
+                    contact,
+                )),
+                element_von_mises: Some(element_von_mises(elastic, &body.displacement)),
+            })
+        },
+        written,
+    )
+}
+
+/// The fields of a body's `.vtu` that need more than its [`BodyResult`].
+#[derive(Default)]
+struct Extra {
+    contact: Option<ContactPointData>,
+    element_von_mises: Option<Vec<f64>>,
+}
+
+/// The `.vtu` path of each body: `<name><suffix>.vtu`, or `<name>-<b><suffix>.vtu` when an
+/// earlier body's name gives the same file name.
+pub(crate) fn vtu_paths(dir: &Path, suffix: &str, bodies: &[BodyResult]) -> Vec<PathBuf> {
+    let mut paths: Vec<PathBuf> = Vec::with_capacity(bodies.len());
+    // The names taken so far (a set: thousands of bodies are compared in linear time).
+    let mut taken: HashSet<PathBuf> = HashSet::with_capacity(bodies.len());
+    for (b, body) in bodies.iter().enumerate() {
+        let name = safe_file_name(&body.name);
+        let mut path = dir.join(format!("{name}{suffix}.vtu"));
+        if taken.contains(&path) {
+            path = dir.join(format!("{name}-{b}{suffix}.vtu"));
+        }
+        taken.insert(path.clone());
+        paths.push(path);
+    }
+    paths
+}
+
+/// Writes the `.vtu` of each body that `owns` selects, pushing each path to `written` once the
+/// file is there.
+fn write_vtus(
+    dir: &Path,
+    suffix: &str,
+    bodies: &[BodyResult],
+    owns: &dyn Fn(usize) -> bool,
+    extra: impl Fn(usize, &BodyResult) -> std::io::Result<Extra>,
+    written: &mut Vec<PathBuf>,
+) -> std::io::Result<()> {
+    let paths = vtu_paths(dir, suffix, bodies);
+    for ((b, body), path) in bodies.iter().enumerate().zip(paths) {
+        if !owns(b) {
+            continue;
+        }
+        let extra = extra(b, body)?;
+        let component = |k: usize| body.stress.iter().map(|s| s[k]).collect::<Vec<f64>>();
+        let (sxx, syy, sxy, szz) = (component(0), component(1), component(2), component(3));
+        let tensors: Vec<f64> = body.stress.iter().flat_map(tensor).collect();
+        let principals: Vec<[f64; 3]> = body.stress.iter().map(principal).collect();
+        let principal_k = |k: usize| principals.iter().map(|p| p[k]).collect::<Vec<f64>>();
+        let (p1, p2, p3) = (principal_k(0), principal_k(1), principal_k(2));
+        let field = |name, components, values| Field {
+            name,
+            components,
+            values,
+        };
+        let mut points = vec![
+            field("stress", 9, &tensors),
+            field("principal_stress_1", 1, &p1),
+            field("principal_stress_2", 1, &p2),
+            field("principal_stress_3", 1, &p3),
+            field("sigma_xx", 1, &sxx),
+            field("sigma_yy", 1, &syy),
+            field("sigma_xy", 1, &sxy),
+            field("sigma_zz", 1, &szz),
+            field("von_mises", 1, &body.von_mises),
+            field("contact_pressure", 1, &body.contact_pressure),
+        ];
+        if let Some(c) = &extra.contact {
+            points.push(field("gap", 1, &c.gap));
+            points.push(field("contact_status", 1, &c.status));
+        }
+        let cells: Vec<Field<'_>> = extra
+            .element_von_mises
+            .as_deref()
+            .map(|v| field("element_von_mises", 1, v))
+            .into_iter()
+            .collect();
+        let data = VtuData {
+            displacement: Some(&body.displacement),
+            points: &points,
+            cells: &cells,
+        };
+        write_vtu(&path, &body.mesh, data)?;
+        written.push(path);
+    }
+    Ok(())
+}
+
+/// A name usable as a file name on every platform: letters, digits, `-`, `_` and `.` are kept,
+/// anything else becomes `_` (an empty name becomes `_`).
+pub fn safe_file_name(name: &str) -> String {
+    let s: String = name
+        .chars()
+        .map(|c| {
+            if c.is_ascii_alphanumeric() || matches!(c, '-' | '_' | '.') {
+                c
+            } else {
+                '_'
+            }
+        })
+        .collect();
+    if s.is_empty() || s.chars().all(|c| c == '.') {
+        "_".into()
+    } else {
+        s
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Bodies whose names give the same file name get the body's index appended, in order.
+    #[test]
+    fn vtu_names_that_collide_get_the_body_index() {
+        let mesh = contactdd_core::Mesh::new(
+            vec![[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]],
+            contactdd_core::Order::P1,
+            vec![0, 1, 2],
+            Default::default(),
+            Default::default(),
+        )
+        .unwrap();
+        let body = |name: &str| BodyResult {
+            name: name.to_string(),
+            mesh: mesh.clone(),
+            displacement: Vec::new(),
+            stress: Vec::new(),
+            von_mises: Vec::new(),
+            contact_pressure: Vec::new(),
+        };
+        let bodies = ["a b", "c", "a_b", "a/b"].map(body);
+        let names: Vec<String> = vtu_paths(Path::new("out"), "", &bodies)
+            .iter()
+            .map(|p| p.file_name().unwrap().to_string_lossy().into_owned())
+            .collect();
+        assert_eq!(names, ["a_b.vtu", "c.vtu", "a_b-2.vtu", "a_b-3.vtu"]);
+    }
+
+    #[test]
+    fn file_names_are_sanitised() {
+        assert_eq!(safe_file_name("lower"), "lower");
+        assert_eq!(safe_file_name("a/b c"), "a_b_c");
+        assert_eq!(safe_file_name(".."), "_");
+        assert_eq!(safe_file_name(""), "_");
+    }
+}

@@ -1,0 +1,99 @@
+//! The text of the CSV files: `contact.csv` ([`contact_csv`], [`pairs_csv`]), `history.csv`
+//! ([`history_csv`]) and the table of a γ sweep ([`sweep_csv`]). Non-finite values are written as
+//! `inf`, `-inf` or `NaN`, which Python's `float()`, numpy and pandas read back.
+
+use contactdd_ddm::solution::{PairResult, Solution};
+use contactdd_ddm::sweep::SweepRun;
+
+use crate::number::format_f64 as num;
+use crate::summary::point_status;
+
+/// `contact.csv` of a solve: one row per contact point.
+pub fn contact_csv(sol: &Solution) -> String {
+    pairs_csv(&sol.contact)
+}
+
+/// The contact CSV of any list of pair results, with header `pair,body,x,y,gap,pressure,status`.
+pub fn pairs_csv(pairs: &[PairResult]) -> String {
+    let header = ["pair", "body", "x", "y", "gap", "pressure", "status"];
+    let rows = pairs.iter().flat_map(|p| {
+        (0..p.gap.len()).map(move |i| {
+            vec![
+                p.name.clone(),
+                p.bodies[p.side[i]].clone(),
+                num(p.x[i]),
+                num(p.y[i]),
+                num(p.gap[i]),
+                num(p.pressure[i]),
+                point_status(p, i).to_string(),
+            ]
+        })
+    });
+    csv_text(header.map(String::from), rows)
+}
+
+/// `history.csv`: one row per iteration, header
+/// `k,gamma,rel_change_<body>…,active_<body>…,normal_force_<body>…` (`normal_force` is
+/// Σ w |σ_n| over the body's contact points, see docs/outputs.md).
+pub fn history_csv(sol: &Solution) -> String {
+    let mut header = vec!["k".to_string(), "gamma".into()];
+    for prefix in ["rel_change", "active", "normal_force"] {
+        header.extend(sol.bodies.iter().map(|b| format!("{prefix}_{}", b.name)));
+    }
+    let rows = sol.history.iter().map(|r| {
+        let mut row = vec![r.k.to_string(), num(r.gamma)];
+        row.extend(r.rel_change.iter().map(|&x| num(x)));
+        row.extend(r.active.iter().map(|a| a.to_string()));
+        row.extend(r.contact_force.iter().map(|&f| num(f)));
+        row
+    });
+    csv_text(header, rows)
+}
+
+/// The table of a γ sweep, header `method,gamma,iterations,converged,reason` (γ `auto` for the
+/// Aitken rule, reason empty when converged).
+pub fn sweep_csv(runs: &[SweepRun]) -> String {
+    let header = ["method", "gamma", "iterations", "converged", "reason"];
+    let rows = runs.iter().map(|r| {
+        vec![
+            r.method.name().to_string(),
+            r.gamma.map_or_else(|| "auto".to_string(), num),
+            r.iterations.to_string(),
+            r.converged.to_string(),
+            r.reason.clone(),
+        ]
+    });
+    csv_text(header.map(String::from), rows)
+}
+
+/// The text of a CSV table (the `csv` crate's writer: fields quoted where they hold a comma, a
+/// quote or a line break; every record ends in `\n`).
+pub(crate) fn csv_text(
+    header: impl IntoIterator<Item = String>,
+    rows: impl IntoIterator<Item = Vec<String>>,
+) -> String {
+    let mut writer = csv::WriterBuilder::new()
+        .flexible(true)
+        .from_writer(Vec::new());
+    // Writing into memory cannot fail.
+    let _ = writer.write_record(header.into_iter().collect::<Vec<_>>());
+    for row in rows {
+        let _ = writer.write_record(&row);
+    }
+    let bytes = writer.into_inner().unwrap_or_default();
+    String::from_utf8(bytes).unwrap_or_default()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn csv_fields_are_quoted_where_needed() {
+        let rows = [vec!["a,b".to_string(), "say \"x\"".into(), "plain".into()]];
+        assert_eq!(
+            csv_text(["h1", "h2", "h3"].map(String::from), rows),
+            "h1,h2,h3\n\"a,b\",\"say \"\"x\"\"\",plain\n"
+        );
+    }
+}

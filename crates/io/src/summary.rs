@@ -1,0 +1,270 @@
+//! The text of `summary.json`: [`summary_json`] for a DD solve, [`monolithic_summary_json`] for
+//! the monolithic reference.
+//!
+//! Non-finite numbers: JSON has no NaN or infinity, so every non-finite value in `summary.json`
+//! becomes `null` (e.g. the gap of a contact point whose normal ray misses the partner body, or the
+//! relative change of an iteration that broke down). The CSV files write such values as `inf`,
+//! `-inf` or `NaN`, which Python's `float()`, numpy and pandas read back.
+//!
+//! `summary.json` keys:
+//!
+//! | key         | value                                                                      |
+//! |-------------|----------------------------------------------------------------------------|
+//! | `converged` | true if every body met the tolerance and the result is in equilibrium      |
+//! | `stop`      | how the iteration ended ([`stop_name`]: `converged`, `max-iterations`, …)  |
+//! | `iterations`| iterations taken (m)                                                       |
+//! | `method`    | method name (`newton-kurchatov`, …)                                         |
+//! | `gamma`     | the constant γ, or `"auto"`                                                |
+//! | `theta`     | penalty θ per contact pair                                                 |
+//! | `message`   | `null` when converged, else why not                                        |
+//! | `equilibrium` | per body, the equilibrium residual (contact forces of the fields against those of the pressures, relative to the total contact force) |
+//! | `accelerator`, `coarse` | the accelerator and coarse mode used                           |
+//! | `history`   | per iteration `{k, gamma, rel_change, active, normal_force}` (per body)    |
+//! | `bodies`    | per body `{name, nodes, elements, dofs, order, applied_load, condensation}` |
+//! | `contact`   | per pair `{name, bodies, body, node, x, y, gap, pressure, status, weight, normal, force}` |
+//! | `reactions` | per body `{body, supports: [{boundary, force}], total}` ([`reactions_json`]) |
+//! | `timing_s`  | wall time per phase, seconds                                               |
+//! | `version`   | contactdd version                                                          |
+//! | `files`     | the manifest: the other files of the result set (written last, [`crate::result_set`]) |
+//!
+//! `dofs` counts the unknowns (2 per node minus the prescribed ones); `applied_load` is the total
+//! applied force `[fx, fy]`; `condensation` is the path the body took, `dense` or `sparse`
+//! (docs/sparse-path.md). In `contact`, the arrays have one entry per contact point of both
+//! sides; `status` is `closed` (d − s < 0, the point carries pressure), `open`, or `no-partner`
+//! (the normal ray misses the other body: infinite gap, written as `null`); `force` holds the total
+//! contact force `[fx, fy]` on each of the two bodies: the resultant Σ w σ_n n. `normal_force`
+//! in `history` is a different quantity, the sum of magnitudes Σ w |σ_n| over a body's contact
+//! points. docs/outputs.md defines every quantity and says what is on disk after each exit code.
+
+use serde_json::{json, Value};
+
+use contactdd_core::{num_dofs, Order};
+use contactdd_ddm::solution::{BodyResult, PairResult, Solution};
+use contactdd_ddm::{Condensation, Gamma, Model, MonolithicSolution, Stop};
+
+use crate::reactions::{reactions, BodyReactions};
+
+/// A JSON number, or `null` for NaN and ±infinity (which JSON cannot represent).
+pub fn json_number(x: f64) -> Value {
+    // `From<f64>` maps non-finite values to `Value::Null`; spelled out here because the file
+    // format depends on it.
+    if x.is_finite() {
+        Value::from(x)
+    } else {
+        Value::Null
+    }
+}
+
+fn json_numbers(xs: &[f64]) -> Value {
+    Value::Array(xs.iter().map(|&x| json_number(x)).collect())
+}
+
+/// The status of a contact point: `closed`, `open`, or `no-partner` (infinite gap).
+pub fn point_status(pair: &PairResult, i: usize) -> &'static str {
+    if !pair.gap[i].is_finite() {
+        "no-partner"
+    } else if pair.closed[i] {
+        "closed"
+    } else {
+        "open"
+    }
+}
+
+/// `summary.json` of a DD solve (keys in the module docs).
+pub fn summary_json(model: &Model, sol: &Solution) -> Value {
+    summary_json_with(model, sol, &reactions(model, &sol.bodies, &sol.contact))
+}
+
+/// [`summary_json`] with the bodies' reactions given (a distributed solve gathers them from
+/// the processes that hold the fields).
+pub fn summary_json_with(model: &Model, sol: &Solution, reactions: &[BodyReactions]) -> Value {
+    let history: Vec<Value> = sol
+        .history
+        .iter()
+        .map(|r| {
+            json!({
+                "k": r.k,
+                "gamma": json_number(r.gamma),
+                "rel_change": json_numbers(&r.rel_change),
+                "active": r.active,
+                "normal_force": json_numbers(&r.contact_force),
+            })
+        })
+        .collect();
+    let timing: serde_json::Map<String, Value> = sol
+        .timing
+        .iter()
+        .map(|(phase, &s)| (phase.clone(), json_number(s)))
+        .collect();
+    json!({
+        "converged": sol.converged,
+        "stop": stop_name(&sol.stop),
+        "iterations": sol.iterations,
+        "tol": json_number(sol.tol),
+        "method": sol.method.name(),
+        "gamma": gamma_json(sol.gamma),
+        "theta": json_numbers(&sol.theta),
+        "message": sol.message,
+        "equilibrium": json_numbers(&sol.equilibrium),
+        "accelerator": sol.accelerator.to_string(),
+        "coarse": sol.coarse.to_string(),
+        "history": history,
+        "bodies": with_paths(bodies_json(model), &sol.condensation),
+        "contact": contact_json(&sol.contact),
+        "enforcement": model.pairs.iter().map(|p| p.enforcement.to_string()).collect::<Vec<_>>(),
+        "updates": sol.updates,
+        "gap_tol": sol.gap_tol.map(json_number),
+        "reactions": reactions_value(reactions),
+        "timing_s": timing,
+        "version": env!("CARGO_PKG_VERSION"),
+    })
+}
+
+/// `summary.json` of a monolithic reference solve: `solver = "monolithic"`, `converged`,
+/// `message` (why not, or null), `newton_steps`, `history` (per step: `step`, `active`,
+/// `residual`, `step_length`), `rigid_modes` (the rigid motions no contact resists, as text),
+/// `equilibrium` (per body, the residual of the assembled equations relative to the forces),
+/// `imbalance` (per rigid mode, the net force along it, relative), `bodies`, `contact` and
+/// `timing_s` as in [`summary_json`], and `version`.
+pub fn monolithic_summary_json(model: &Model, sol: &MonolithicSolution) -> Value {
+    let history: Vec<Value> = sol
+        .history
+        .iter()
+        .map(|r| {
+            json!({
+                "step": r.step,
+                "active": r.active,
+                "residual": json_number(r.residual),
+                "step_length": json_number(r.step_length),
+            })
+        })
+        .collect();
+    json!({
+        "solver": "monolithic",
+        "converged": sol.converged,
+        "message": sol.message,
+        "newton_steps": sol.newton_steps,
+        "enforcement": model.pairs.iter().map(|p| p.enforcement.to_string()).collect::<Vec<_>>(),
+        "updates": sol.updates,
+        "history": history,
+        "rigid_modes": sol.rigid_modes,
+        "equilibrium": json_numbers(&sol.equilibrium),
+        "imbalance": json_numbers(&sol.imbalance),
+        "bodies": bodies_json(model),
+        "contact": contact_json(&sol.contact),
+        "timing_s": { "total": json_number(sol.seconds) },
+        "version": env!("CARGO_PKG_VERSION"),
+    })
+}
+
+/// The name of how an iteration ended (`stop` in `summary.json`).
+pub fn stop_name(stop: &Stop) -> &'static str {
+    match stop {
+        Stop::Converged => "converged",
+        Stop::MaxIterations => "max-iterations",
+        Stop::Diverged { .. } => "diverged",
+        Stop::Interrupted => "interrupted",
+        Stop::Stalled { .. } => "stalled",
+        Stop::Unenforced { .. } => "unenforced",
+    }
+}
+
+fn gamma_json(gamma: Gamma) -> Value {
+    match gamma {
+        Gamma::Constant(g) => json_number(g),
+        Gamma::Auto => Value::from("auto"),
+    }
+}
+
+fn bodies_json(model: &Model) -> Value {
+    model
+        .bodies
+        .iter()
+        .enumerate()
+        .map(|(b, body)| {
+            let f = model.facts(b);
+            json!({
+                "name": body.name,
+                "nodes": f.nodes,
+                "elements": f.cells,
+                "dofs": num_dofs(f.nodes).saturating_sub(f.prescribed),
+                "order": match f.order {
+                    Order::P1 => "p1",
+                    Order::P2 => "p2",
+                },
+                "applied_load": json_numbers(&f.applied_load),
+            })
+        })
+        .collect()
+}
+
+/// `bodies` with each body's condensation path.
+fn with_paths(mut bodies: Value, paths: &[Condensation]) -> Value {
+    if let Value::Array(list) = &mut bodies {
+        for (body, path) in list.iter_mut().zip(paths) {
+            body["condensation"] = Value::from(path.to_string());
+        }
+    }
+    bodies
+}
+
+/// The `reactions` of `summary.json`: per body `{body, supports: [{boundary, force}], total}`
+/// ([`reactions`]).
+pub fn reactions_json(model: &Model, bodies: &[BodyResult], contact: &[PairResult]) -> Value {
+    reactions_value(&reactions(model, bodies, contact))
+}
+
+fn reactions_value(reactions: &[BodyReactions]) -> Value {
+    reactions
+        .iter()
+        .map(|r| {
+            let supports: Vec<Value> = r
+                .supports
+                .iter()
+                .map(|s| json!({ "boundary": s.boundary, "force": json_numbers(&s.force) }))
+                .collect();
+            json!({ "body": r.body, "supports": supports, "total": json_numbers(&r.total) })
+        })
+        .collect()
+}
+
+fn contact_json(pairs: &[PairResult]) -> Value {
+    pairs
+        .iter()
+        .map(|p| {
+            let status: Vec<&str> = (0..p.gap.len()).map(|i| point_status(p, i)).collect();
+            let body: Vec<&str> = p.side.iter().map(|&s| p.bodies[s].as_str()).collect();
+            json!({
+                "name": p.name,
+                "bodies": p.bodies,
+                "body": body,
+                "node": p.node,
+                "x": json_numbers(&p.x),
+                "y": json_numbers(&p.y),
+                "gap": json_numbers(&p.gap),
+                "pressure": json_numbers(&p.pressure),
+                "status": status,
+                "weight": json_numbers(&p.weight),
+                "normal": p.nx.iter().zip(&p.ny).map(|(&x, &y)| json_numbers(&[x, y])).collect::<Vec<_>>(),
+                "nodal_force": p.fx.iter().zip(&p.fy).map(|(&x, &y)| json_numbers(&[x, y])).collect::<Vec<_>>(),
+                "force": [json_numbers(&p.force_on(0)), json_numbers(&p.force_on(1))],
+                "max_penetration": json_number(p.max_penetration()),
+                "complementarity": json_number(p.complementarity()),
+            })
+        })
+        .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn non_finite_numbers_become_json_null() {
+        for x in [f64::NAN, f64::INFINITY, f64::NEG_INFINITY] {
+            assert_eq!(json_number(x), Value::Null);
+            assert_eq!(json!({ "v": json_number(x) }).to_string(), r#"{"v":null}"#);
+        }
+        assert_eq!(json_number(1.5), json!(1.5));
+    }
+}
