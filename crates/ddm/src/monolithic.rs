@@ -246,7 +246,7 @@ fn finish(
         .enumerate()
         .map(|(b, body)| {
             let mut x = run.x[system.offset[b]..system.offset[b] + body.dofs.len()].to_vec();
-            let rigid = modes::split_rigid(&system.rigid[b], &mut x);
+            let rigid = system.rigid[b].split(&mut x);
             body.recover(&model.bodies[b], &contact[b], &x, &rigid)
         })
         .collect::<Result<Vec<_>, _>>()?;
@@ -346,13 +346,7 @@ fn newton(
     let mut x = vec![0.0; system.n];
     let mut lam = vec![0.0; system.interface.len()];
     let mut eval = system.evaluate(&x, &lam);
-    let scale = system
-        .bodies
-        .iter()
-        .map(|b| dot(&b.g, &b.g))
-        .sum::<f64>()
-        .sqrt()
-        .max(f64::MIN_POSITIVE);
+    let scale = load_scale(system);
     let mut merits: Vec<f64> = Vec::new();
     let mut history = Vec::new();
     // Consecutive steps whose line search found no decrease.
@@ -378,17 +372,9 @@ fn newton(
             .rev()
             .take(WINDOW)
             .fold(0.0, |a: f64, &b| a.max(b));
-        // Full active-set steps while they visit new closed sets and the merit stays within the
-        // non-monotone window's worst (the rule the line search applies); the line search once a
-        // set comes back (the plain iteration would cycle) or the merit would grow past it.
-        let full = seen
-            .insert(chi.clone())
-            .then(|| full_step(system, (&x, &lam), (&dx, &dlam)))
-            .filter(|e| merit(&z, e) <= reference);
-        let (alpha, next, decreased) = match full {
-            Some(next) => (1.0, next, true),
-            None => line_search(system, &z, (&x, &lam), (&dx, &dlam), reference),
-        };
+        let new_set = seen.insert(chi.clone());
+        let (alpha, next, decreased) =
+            step_length(system, &z, new_set, (&x, &lam), (&dx, &dlam), reference);
         failures = if decreased { 0 } else { failures + 1 };
         x.iter_mut().zip(&dx).for_each(|(v, d)| *v += alpha * d);
         lam.iter_mut().zip(&dlam).for_each(|(v, d)| *v += alpha * d);
@@ -425,6 +411,38 @@ fn newton(
         settings.max_steps
     );
     end(x, eval, settings.max_steps, history, Some(stop))
+}
+
+/// The size of the condensed loads, ‖g‖₂ over all bodies: the scale of the reported residuals.
+fn load_scale(system: &System) -> f64 {
+    system
+        .bodies
+        .iter()
+        .map(|b| dot(&b.g, &b.g))
+        .sum::<f64>()
+        .sqrt()
+        .max(f64::MIN_POSITIVE)
+}
+
+/// The step length along (δx, δλ), the evaluation there and whether the merit decreased.
+/// Full active-set steps while they visit new closed sets (`new_set`) and the merit stays within
+/// the non-monotone window's worst `reference` (the rule the line search applies); the line
+/// search once a set comes back (the plain iteration would cycle) or the merit would grow past it.
+fn step_length(
+    system: &System,
+    z: &[Vec<f64>],
+    new_set: bool,
+    at: (&[f64], &[f64]),
+    dir: (&[f64], &[f64]),
+    reference: f64,
+) -> (f64, Evaluation, bool) {
+    let full = new_set
+        .then(|| full_step(system, at, dir))
+        .filter(|e| merit(z, e) <= reference);
+    match full {
+        Some(next) => (1.0, next, true),
+        None => line_search(system, z, at, dir, reference),
+    }
 }
 
 /// The points treated as closed in J: the closed points, and for a body with free rigid modes

@@ -21,13 +21,12 @@ use faer::prelude::Solve;
 use faer::sparse::{SparseColMat, Triplet};
 use faer::Mat;
 
-use contactdd_core::rigid::NUM_MODES;
+use contactdd_core::rigid::RigidSpan;
 use contactdd_core::{dof, DIM};
 
 use crate::contact::Interface;
 use crate::model::Model;
 
-use super::modes::{rigid_span, split_rigid};
 use super::reduced::ReducedBody;
 
 /// An affine function of x: Σ coef·x[index] + constant.
@@ -60,7 +59,7 @@ pub(super) struct System<'a> {
     /// Bounding box diameter of every body.
     pub size: Vec<f64>,
     /// Per body, an orthonormal basis of its free rigid motions on its part of x.
-    pub rigid: Vec<Vec<([f64; NUM_MODES], Vec<f64>)>>,
+    pub rigid: Vec<RigidSpan>,
 }
 
 /// F, Φ and the closed set at one (x, λ).
@@ -141,7 +140,7 @@ impl<'a> System<'a> {
                 .bodies
                 .iter()
                 .zip(bodies)
-                .map(|(body, reduced)| rigid_span(body, &reduced.dofs))
+                .map(|(body, reduced)| RigidSpan::new(&body.mesh, &body.constraints, &reduced.dofs))
                 .collect(),
         }
     }
@@ -180,7 +179,7 @@ impl<'a> System<'a> {
             let m = body.dofs.len();
             // S annihilates rigid motions: apply it to the deformation only.
             let mut xb = x[o..o + m].to_vec();
-            split_rigid(&self.rigid[b], &mut xb);
+            self.rigid[b].split(&mut xb);
             for i in 0..m {
                 f[o + i] = (0..m).map(|k| body.s[(i, k)] * xb[k]).sum::<f64>() - body.g[i];
             }
