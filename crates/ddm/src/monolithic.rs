@@ -33,7 +33,7 @@ use crate::solution::{body_results, pair_results, BodyResult, PairResult};
 
 use modes::{dot, project_out, Mode};
 use reduced::ReducedBody;
-use system::{Evaluation, System};
+use system::{Evaluation, ReducedSystem};
 
 /// Accepted states whose worst merit the line search compares with (Grippo, Lampariello &
 /// Lucidi's non-monotone rule).
@@ -178,7 +178,7 @@ pub fn solve_monolithic_with(
     loop {
         updates += 1;
         let next = {
-            let system = System::new(model, &interface, &bodies);
+            let system = ReducedSystem::new(model, &interface, &bodies);
             let modes = modes::free_rigid_modes(model, &system);
             let run = newton(&system, &modes, settings, on_step);
             let un: Vec<f64> = system.un.iter().map(|a| a.at(&run.x)).collect();
@@ -227,7 +227,7 @@ struct End {
 /// The fields, forces, equilibrium check and verdict of a finished run.
 fn finish(
     model: &Model,
-    system: &System,
+    system: &ReducedSystem,
     bodies: &[ReducedBody],
     modes: &[Mode],
     settings: &MonolithicSettings,
@@ -338,7 +338,7 @@ struct Run {
 
 /// The globalised semismooth Newton iteration from x = 0, λ = 0.
 fn newton(
-    system: &System,
+    system: &ReducedSystem,
     modes: &[Mode],
     settings: &MonolithicSettings,
     on_step: Option<&(dyn Fn(&MonolithicStep) + Sync)>,
@@ -414,7 +414,7 @@ fn newton(
 }
 
 /// The size of the condensed loads, ‖g‖₂ over all bodies: the scale of the reported residuals.
-fn load_scale(system: &System) -> f64 {
+fn load_scale(system: &ReducedSystem) -> f64 {
     system
         .bodies
         .iter()
@@ -429,7 +429,7 @@ fn load_scale(system: &System) -> f64 {
 /// the non-monotone window's worst `reference` (the rule the line search applies); the line
 /// search once a set comes back (the plain iteration would cycle) or the merit would grow past it.
 fn step_length(
-    system: &System,
+    system: &ReducedSystem,
     z: &[Vec<f64>],
     new_set: bool,
     at: (&[f64], &[f64]),
@@ -449,7 +449,7 @@ fn step_length(
 /// that no closed point loads, the partnered points loading it of smallest gap d − s (it moves until they
 /// touch, instead of being held still; closing every partnered point would glue it on across
 /// gaps of any size and cost the line search many short steps).
-fn jacobian_set(system: &System, modes: &[Mode], eval: &Evaluation) -> Vec<bool> {
+fn jacobian_set(system: &ReducedSystem, modes: &[Mode], eval: &Evaluation) -> Vec<bool> {
     let points = &system.interface.points;
     let mut chi = eval.closed.clone();
     for (b, range) in system.interface.body_range.iter().enumerate() {
@@ -514,7 +514,7 @@ fn loaded_motion(modes: &[Mode], chi: &[bool]) -> Option<Vec<f64>> {
 
 /// The points that can carry a force (partnered, own-side or carriers) and whose pair sum the
 /// motion with mode weights `w` changes.
-fn resisting(system: &System, modes: &[Mode], w: &[f64]) -> Vec<usize> {
+fn resisting(system: &ReducedSystem, modes: &[Mode], w: &[f64]) -> Vec<usize> {
     let points = &system.interface.points;
     let change: Vec<(usize, f64)> = (0..points.len())
         .filter(|&j| points[j].has_partner() && points[j].carries())
@@ -538,7 +538,7 @@ fn merit(z: &[Vec<f64>], eval: &Evaluation) -> f64 {
 
 /// The state after the full step.
 fn full_step(
-    system: &System,
+    system: &ReducedSystem,
     (x, lam): (&[f64], &[f64]),
     (dx, dlam): (&[f64], &[f64]),
 ) -> Evaluation {
@@ -550,7 +550,7 @@ fn full_step(
 /// `reference`; returns the step length, the state there and whether it decreased enough (if
 /// not, the shortest step).
 fn line_search(
-    system: &System,
+    system: &ReducedSystem,
     z: &[Vec<f64>],
     (x, lam): (&[f64], &[f64]),
     (dx, dlam): (&[f64], &[f64]),

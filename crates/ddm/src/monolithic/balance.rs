@@ -15,7 +15,7 @@ use contactdd_core::{component_of, node_of};
 use crate::model::Model;
 
 use super::modes::{dot, project_out, Kernel, Mode};
-use super::system::System;
+use super::system::ReducedSystem;
 
 /// The residuals of a result, relative to the size of the applied and contact forces.
 pub(super) struct Balance {
@@ -30,7 +30,7 @@ pub(super) struct Balance {
 /// `stiffness` per body; `kernel` the unresisted motions of the final closed set.
 pub(super) fn balance(
     model: &Model,
-    system: &System,
+    system: &ReducedSystem,
     u: &[Vec<f64>],
     contact: &[Vec<f64>],
     modes: &[Mode],

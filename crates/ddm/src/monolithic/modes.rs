@@ -13,7 +13,7 @@ use contactdd_core::rigid::{describe, free_modes, motion_on, NUM_MODES};
 
 use crate::model::Model;
 
-use super::system::System;
+use super::system::ReducedSystem;
 
 /// One free rigid mode of one body.
 pub(super) struct Mode {
@@ -37,7 +37,7 @@ pub(super) struct Kernel {
 }
 
 /// The free rigid modes of every body.
-pub(super) fn free_rigid_modes(model: &Model, system: &System) -> Vec<Mode> {
+pub(super) fn free_rigid_modes(model: &Model, system: &ReducedSystem) -> Vec<Mode> {
     let mut modes = Vec::new();
     for (b, body) in model.bodies.iter().enumerate() {
         for v in free_modes(&body.mesh, &body.constraints, &[]) {

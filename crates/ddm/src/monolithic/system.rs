@@ -43,7 +43,7 @@ impl Affine {
 }
 
 /// The reduced system of a model.
-pub(super) struct System<'a> {
+pub(super) struct ReducedSystem<'a> {
     pub interface: &'a Interface,
     pub bodies: &'a [ReducedBody],
     /// First x index of every body.
@@ -71,7 +71,7 @@ pub(super) struct Evaluation {
     pub phi: Vec<f64>,
 }
 
-impl<'a> System<'a> {
+impl<'a> ReducedSystem<'a> {
     pub fn new(model: &Model, interface: &'a Interface, bodies: &'a [ReducedBody]) -> Self {
         let mut offset = Vec::with_capacity(bodies.len());
         let mut n = 0;
@@ -123,7 +123,7 @@ impl<'a> System<'a> {
             })
             .collect();
         let rho = stiffness_shares(interface, bodies, &offset, &un);
-        System {
+        ReducedSystem {
             interface,
             bodies,
             offset,
