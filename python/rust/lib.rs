@@ -21,22 +21,24 @@ use contactdd_core::Order;
 use contactdd_ddm::contact::Interface;
 use contactdd_ddm::contact_check;
 use contactdd_ddm::sweep::{SweepHooks, SweepRun};
-use contactdd_ddm::{Enforcement, Gamma, Hooks, Method, Model, Record, SetupError};
-use contactdd_io::problem::EnforcementSpec;
+use contactdd_ddm::{Gamma, Hooks, Method, Record, SetupError};
 use contactdd_io::setup::MAX_RECTANGLE_CELLS;
 
 mod benchmark;
 mod convert;
 mod error;
+mod options;
 mod problem;
 mod results;
+mod schema;
 mod state;
 
 use error::{
     convergence_error, convergence_error_type, io_error_type, panic_error, setup_error,
     ContactddError,
 };
-use problem::{gamma, gamma_to_py, GammaArg, Overrides, Problem};
+use options::{gamma, gamma_to_py, GammaArg, SolverOptions};
+use problem::Problem;
 use results::{Body, Contact, MonolithicResult, SolveResult};
 
 /// How often the waiting thread checks for Ctrl-C.
@@ -170,23 +172,20 @@ fn solve(
     gap_tol: Option<f64>,
     progress: Option<Py<PyAny>>,
 ) -> PyResult<Py<SolveResult>> {
-    let (model, settings, threads) = {
-        let p = problem.borrow();
-        let o = Overrides {
-            method,
-            gamma,
-            accelerator,
-            coarse,
-            tol,
-            max_iter,
-            u0,
-            u_prev,
-            threads,
-            gap_tol,
-        };
-        let model = with_enforcement(p.model()?, enforcement.as_deref())?;
-        (model, o.apply(&p.settings)?, threads.or(p.threads))
+    let options = SolverOptions {
+        method,
+        gamma,
+        accelerator,
+        coarse,
+        tol,
+        max_iter,
+        u0,
+        u_prev,
+        threads,
+        gap_tol,
+        enforcement,
     };
+    let (model, settings, threads) = problem.borrow().configured(&options)?;
     let model = Arc::new(model);
     let m = model.clone();
     // An exception of the progress callback: it stops the solve and is raised afterwards.
@@ -246,18 +245,6 @@ fn call_progress(py: Python<'_>, callback: &Py<PyAny>, r: &Record) -> PyResult<(
     Ok(())
 }
 
-/// The model with every pair's enforcement set to `name` (``"penalty"`` or ``"augmented"``), if
-/// given.
-fn with_enforcement(mut model: Model, name: Option<&str>) -> PyResult<Model> {
-    if let Some(name) = name {
-        let e: EnforcementSpec = convert::from_name(name)
-            .map_err(|e| setup_error(SetupError::Solver(format!("enforcement: {e}"))))?;
-        let e: Enforcement = e.into();
-        model.pairs.iter_mut().for_each(|p| p.enforcement = e);
-    }
-    Ok(model)
-}
-
 /// Solves a problem at increasing loads: every load and prescribed displacement times each load
 /// factor in turn, each step starting from the last, on one factorisation of the bodies.
 /// Releases the GIL and can be interrupted with Ctrl-C.
@@ -297,19 +284,16 @@ fn solve_steps<'py>(
     };
     contactdd_ddm::steps::check_factors(&factors)
         .map_err(|m| setup_error(SetupError::Solver(format!("load_steps: {m}"))))?;
-    let (model, settings, threads) = {
-        let p = problem.borrow();
-        let o = Overrides {
-            accelerator,
-            tol,
-            max_iter,
-            threads,
-            gap_tol,
-            ..Overrides::default()
-        };
-        let model = with_enforcement(p.model()?, enforcement.as_deref())?;
-        (model, o.apply(&p.settings)?, threads.or(p.threads))
+    let options = SolverOptions {
+        accelerator,
+        tol,
+        max_iter,
+        threads,
+        gap_tol,
+        enforcement,
+        ..SolverOptions::default()
     };
+    let (model, settings, threads) = problem.borrow().configured(&options)?;
     let model = Arc::new(model);
     let m = model.clone();
     let (out, interrupt) = run_interruptible(py, move |cancel| {
@@ -416,18 +400,15 @@ fn sweep<'py>(
         None => default_gammas(),
         Some(gs) => gs.iter().map(gamma).collect::<PyResult<_>>()?,
     };
-    let (model, base, threads) = {
-        let p = problem.borrow();
-        let o = Overrides {
-            tol,
-            max_iter,
-            u0,
-            u_prev,
-            threads,
-            ..Overrides::default()
-        };
-        (p.model()?, o.apply(&p.settings)?, threads.or(p.threads))
+    let options = SolverOptions {
+        tol,
+        max_iter,
+        u0,
+        u_prev,
+        threads,
+        ..SolverOptions::default()
     };
+    let (model, base, threads) = problem.borrow().configured(&options)?;
     // An exception of the progress callback: it stops the sweep and is raised afterwards.
     let failed: Mutex<Option<PyErr>> = Mutex::new(None);
     let (out, interrupt) = run_interruptible(py, |cancel| {

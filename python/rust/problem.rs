@@ -11,111 +11,26 @@ use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
 use numpy::{AllowTypeChange, PyArrayLike2, PyUntypedArrayMethods};
-use pyo3::exceptions::PyTypeError;
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyTuple, PyType};
-use serde::de::DeserializeOwned;
 
 use contactdd_core::gmsh::parse_msh_surface;
-use contactdd_core::{Material, Mesh, Order, Plane, Vector, DIM};
-use contactdd_ddm::{Gamma, Method, Model, Settings, SetupError};
+use contactdd_core::{Material, Order, Plane, Vector, DIM};
+use contactdd_ddm::{Model, Settings, SetupError};
 use contactdd_io::problem::{
-    AcceleratorSpec, BodySpec, CoarseSpec, ContactSpec, GammaSpec, MaterialSpec, MeshSpec,
-    PenaltySpec, Problem as ProblemSpec, SolverSpec,
+    BodySpec, ContactSpec, MaterialSpec, MeshSpec, PenaltySpec, Problem as ProblemSpec, SolverSpec,
 };
 use contactdd_io::setup::{self, ModelBuilder};
 use contactdd_io::write_problem;
 use contactdd_io::{LoadError, Loaded};
 
-use crate::convert::{from_name, name_of, to_json, Bad};
+use crate::convert::{from_name, name_of};
 use crate::error::{input_error, setup_error};
-
-/// A relaxation parameter as given from Python: a number or `"auto"`.
-#[derive(FromPyObject, Clone, Debug)]
-pub enum GammaArg {
-    /// A constant γ.
-    Value(f64),
-    /// A rule name (`"auto"`).
-    Name(String),
-}
-
-/// Solver settings given as keyword arguments; `None` keeps the current value.
-#[derive(Default)]
-pub struct Overrides {
-    pub method: Option<String>,
-    pub gamma: Option<GammaArg>,
-    pub accelerator: Option<String>,
-    pub coarse: Option<String>,
-    pub tol: Option<f64>,
-    pub max_iter: Option<usize>,
-    pub u0: Option<f64>,
-    pub u_prev: Option<f64>,
-    pub threads: Option<usize>,
-    pub gap_tol: Option<f64>,
-}
-
-fn solver_error(key: &str, message: impl std::fmt::Display) -> PyErr {
-    setup_error(SetupError::Solver(format!("{key}: {message}")))
-}
-
-impl Overrides {
-    /// Applies the overrides to `base`, with the checks of a `[solver]` table.
-    pub fn apply(&self, base: &Settings) -> PyResult<Settings> {
-        let method = match &self.method {
-            Some(m) => Some(m.parse::<Method>().map_err(|e| solver_error("method", e))?),
-            None => None,
-        };
-        // The names are those of the `[solver]` table's schema, with its messages.
-        let accelerator: Option<AcceleratorSpec> = self
-            .accelerator
-            .as_deref()
-            .map(from_name)
-            .transpose()
-            .map_err(|e| solver_error("accelerator", e))?;
-        let coarse: Option<CoarseSpec> = self
-            .coarse
-            .as_deref()
-            .map(from_name)
-            .transpose()
-            .map_err(|e| solver_error("coarse", e))?;
-        let spec = SolverSpec {
-            method,
-            gamma: self.gamma.as_ref().map(gamma_spec).transpose()?,
-            accelerator,
-            coarse,
-            tol: self.tol,
-            max_iter: self.max_iter,
-            u0: self.u0,
-            u_prev: self.u_prev,
-            threads: self.threads,
-            gap_tol: self.gap_tol,
-            ..SolverSpec::default()
-        };
-        setup::settings(&spec, base).map_err(setup_error)
-    }
-}
-
-/// A γ argument as the `gamma` value of a `[solver]` table: a name is read by the schema's
-/// deserializer (only `"auto"`), whose message names the key.
-fn gamma_spec(g: &GammaArg) -> PyResult<GammaSpec> {
-    match g {
-        GammaArg::Value(v) => Ok(GammaSpec::Value(*v)),
-        GammaArg::Name(s) => from_name(s).map_err(|e| setup_error(SetupError::Solver(e))),
-    }
-}
-
-/// A γ argument as a γ rule.
-pub fn gamma(g: &GammaArg) -> PyResult<Gamma> {
-    setup::gamma(gamma_spec(g)?).map_err(setup_error)
-}
-
-/// A γ rule as a Python value: a float, or `"auto"`.
-pub fn gamma_to_py(py: Python<'_>, g: Gamma) -> PyResult<Py<PyAny>> {
-    Ok(match g {
-        Gamma::Constant(v) => v.into_pyobject(py)?.into_any().unbind(),
-        Gamma::Auto => "auto".into_pyobject(py)?.into_any().unbind(),
-    })
-}
+use crate::options::{gamma_to_py, GammaArg, SolverOptions};
+use crate::schema::{
+    absolute_mesh_paths, body_error, boundary_edges, indices, inline_spec, node_set_indices,
+    pair_option, specs,
+};
 
 /// A contact problem: materials, bodies, contact pairs and default solver settings.
 ///
@@ -202,121 +117,17 @@ impl Problem {
     pub fn model(&self) -> PyResult<Model> {
         self.model.model(&self.name).map_err(setup_error)
     }
-}
 
-/// A built mesh as an inline mesh table, which resolves to the same mesh.
-fn inline_spec(mesh: &Mesh) -> MeshSpec {
-    let npc = mesh.order().nodes_per_cell();
-    MeshSpec::Inline {
-        nodes: mesh.nodes().to_vec(),
-        triangles: mesh.cells().chunks(npc).map(<[usize]>::to_vec).collect(),
-        boundaries: mesh
-            .boundaries()
-            .iter()
-            .map(|(k, edges)| (k.clone(), edges.iter().map(|e| [e.a, e.b]).collect()))
-            .collect(),
-        node_sets: mesh.node_sets().clone(),
+    /// The solver input, settings and thread count with `options` applied (the checks of a
+    /// `[solver]` table, after those of the model).
+    pub fn configured(
+        &self,
+        options: &SolverOptions,
+    ) -> PyResult<(Model, Settings, Option<usize>)> {
+        let model = options.enforce(self.model()?)?;
+        let settings = options.apply(&self.settings)?;
+        Ok((model, settings, options.threads_or(self.threads)))
     }
-}
-
-/// Makes every relative Gmsh path of `spec` absolute (against `base_dir`, itself against the
-/// current folder), so that the problem written out reads the same meshes from any folder.
-fn absolute_mesh_paths(spec: &mut ProblemSpec, base_dir: &Path) -> PyResult<()> {
-    for body in &mut spec.bodies {
-        if let MeshSpec::Gmsh { file, .. } = &mut body.mesh {
-            if file.is_relative() {
-                *file = std::path::absolute(base_dir.join(&*file)).map_err(|e| {
-                    input_error(format!("cannot resolve the path '{}': {e}", file.display()))
-                })?;
-            }
-        }
-    }
-    Ok(())
-}
-
-fn body_error(body: &str, key: &str, message: impl std::fmt::Display) -> SetupError {
-    SetupError::Body {
-        body: body.to_string(),
-        message: format!("{key}: {message}"),
-    }
-}
-
-/// Parses one schema value at path `key`; a bad value or schema error is returned as a message
-/// (starting with the path) for the caller to attribute to a body or pair.
-fn parse<T: DeserializeOwned>(obj: &Bound<'_, PyAny>, key: &str) -> PyResult<Result<T, String>> {
-    match to_json(obj, key) {
-        Ok(value) => Ok(serde_json::from_value(value).map_err(|e| format!("{key}: {e}"))),
-        Err(Bad::Value(message)) => Ok(Err(message)),
-        Err(Bad::Py(e)) => Err(e),
-    }
-}
-
-/// An optional value `key` of contact pair `pair` (`None` and Python's `None` alike), its errors
-/// naming the pair.
-fn pair_option<T: DeserializeOwned>(
-    obj: Option<&Bound<'_, PyAny>>,
-    key: &str,
-    pair: &str,
-) -> PyResult<Option<T>> {
-    let Some(obj) = obj.filter(|o| !o.is_none()) else {
-        return Ok(None);
-    };
-    let value = parse(obj, key)?.map_err(|message| {
-        setup_error(SetupError::Pair {
-            pair: pair.to_string(),
-            message,
-        })
-    })?;
-    Ok(Some(value))
-}
-
-/// A list of support or load dicts of body `body`.
-fn specs<T: DeserializeOwned>(
-    body: &str,
-    key: &str,
-    list: Option<&Bound<'_, PyAny>>,
-) -> PyResult<Vec<T>> {
-    let Some(list) = list else {
-        return Ok(Vec::new());
-    };
-    if list.is_instance_of::<PyDict>() {
-        return Err(PyTypeError::new_err(format!(
-            "{key}: expected a list of dicts, got a single dict (wrap it in a list)"
-        )));
-    }
-    let mut out = Vec::new();
-    for (i, item) in list.try_iter()?.enumerate() {
-        let k = format!("{key}[{i}]");
-        out.push(parse(&item?, &k)?.map_err(|message| {
-            setup_error(SetupError::Body {
-                body: body.to_string(),
-                message,
-            })
-        })?);
-    }
-    Ok(out)
-}
-
-/// Converts an array of node indices. Integer arrays and floats with an integer value (`2.0`, as
-/// `numpy.loadtxt` gives) are accepted; a fraction, NaN or infinity is refused rather than
-/// truncated.
-fn indices(a: &PyArrayLike2<'_, f64, AllowTypeChange>, what: &str) -> PyResult<Vec<usize>> {
-    // Exactly representable integers only: beyond 2⁵³ a float no longer names one index.
-    const EXACT: f64 = 9_007_199_254_740_992.0;
-    a.as_array()
-        .iter()
-        .map(|&v| {
-            if !(v.fract() == 0.0 && v.abs() <= EXACT) {
-                Err(input_error(format!(
-                    "{what}: node index {v} is not an integer"
-                )))
-            } else if v < 0.0 {
-                Err(input_error(format!("{what}: node index {v} is negative")))
-            } else {
-                Ok(v as usize)
-            }
-        })
-        .collect()
 }
 
 #[pymethods]
@@ -484,38 +295,8 @@ impl Problem {
             )));
         }
         let cells = indices(&triangles, &format!("body '{name}': mesh: triangles"))?;
-        let mut edge_sets = BTreeMap::new();
-        for (key, value) in boundaries.iter() {
-            let bname: String = key.extract()?;
-            let what = format!("body '{name}': mesh: boundaries['{bname}']");
-            let arr: PyArrayLike2<'_, f64, AllowTypeChange> = value.extract()?;
-            let cols = arr.shape()[1];
-            if cols != 2 && cols != 3 {
-                return Err(mesh_error(format!(
-                    "boundaries['{bname}'] must have shape (k, 2) or (k, 3), got {:?}",
-                    arr.shape()
-                )));
-            }
-            let flat = indices(&arr, &what)?;
-            let edges: Vec<[usize; 2]> = flat.chunks(cols).map(|e| [e[0], e[1]]).collect();
-            edge_sets.insert(bname, edges);
-        }
-        let mut sets = BTreeMap::new();
-        if let Some(node_sets) = node_sets {
-            for (key, value) in node_sets.iter() {
-                let sname: String = key.extract()?;
-                let ids: Vec<i64> = value.extract()?;
-                let ids = ids
-                    .into_iter()
-                    .map(|v| {
-                        usize::try_from(v).map_err(|_| {
-                            mesh_error(format!("node_sets['{sname}']: node index {v} is negative"))
-                        })
-                    })
-                    .collect::<PyResult<Vec<usize>>>()?;
-                sets.insert(sname, ids);
-            }
-        }
+        let edge_sets = boundary_edges(name, boundaries)?;
+        let sets = node_set_indices(name, node_sets)?;
         // The arrays as given become an inline mesh table, resolved as a problem file's is (and
         // written back out by `to_toml`).
         let spec = BodySpec {
@@ -716,7 +497,7 @@ impl Problem {
         accelerator: Option<String>,
         coarse: Option<String>,
     ) -> PyResult<()> {
-        let o = Overrides {
+        let options = SolverOptions {
             method,
             gamma,
             accelerator,
@@ -726,9 +507,9 @@ impl Problem {
             u0,
             u_prev,
             threads,
-            gap_tol: None,
+            ..SolverOptions::default()
         };
-        self.settings = o.apply(&self.settings)?;
+        self.settings = options.apply(&self.settings)?;
         if threads.is_some() {
             self.threads = threads;
         }

@@ -16,7 +16,7 @@ use contactdd_io::output::{point_status, stop_name};
 
 use crate::convert::{array1, array2, name_of};
 use crate::error::input_error;
-use crate::problem::gamma_to_py;
+use crate::options::gamma_to_py;
 use crate::state::{attributes, get, reduce};
 
 /// Where a result's summary and files come from.

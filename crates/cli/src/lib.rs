@@ -51,6 +51,7 @@ mod plot_history;
 mod plot_mesh;
 mod plot_steps;
 mod plot_sweep;
+mod rank_use;
 pub mod ranks;
 mod report;
 mod solve;

@@ -13,7 +13,7 @@ use mpi::Count;
 
 use contactdd_ddm::exchange::{partition, Exchange};
 
-use crate::ranks::RankUse;
+use crate::rank_use::RankUse;
 
 /// Starts MPI for the life of the returned value (`None` if it cannot be started, or already
 /// was: then the run is a single process).

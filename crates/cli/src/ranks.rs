@@ -14,6 +14,8 @@ use contactdd_io::shared_results::{
 };
 use contactdd_io::Loaded;
 
+use crate::rank_use::peak_mib;
+pub use crate::rank_use::RankUse;
 use crate::Exit;
 #[cfg(feature = "mpi")]
 use contactdd_io::{read_problem, shared_setup::estimated_costs};
@@ -24,19 +26,6 @@ pub struct Ranks {
     size: usize,
     #[cfg(feature = "mpi")]
     mpi: Option<Arc<crate::mpi_exchange::MpiExchange>>,
-}
-
-/// What one rank spent, for the report of a distributed run.
-#[derive(Clone, Copy, Debug)]
-pub struct RankUse {
-    /// Seconds in the exchanges (including waiting for the other ranks).
-    pub communication: f64,
-    /// Values received from the other ranks by all-gathers.
-    pub gathered: f64,
-    /// Values received from the other ranks point to point.
-    pub point_to_point: f64,
-    /// Peak resident memory, MiB (0 where the system does not say).
-    pub peak_mib: f64,
 }
 
 impl Ranks {
@@ -183,14 +172,4 @@ pub fn is_root() -> bool {
         return rank == 0;
     }
     true
-}
-
-/// The peak resident memory of this process, MiB, from `/proc/self/status` (0 elsewhere).
-fn peak_mib() -> f64 {
-    let status = std::fs::read_to_string("/proc/self/status").unwrap_or_default();
-    status
-        .lines()
-        .find_map(|l| l.strip_prefix("VmHWM:"))
-        .and_then(|v| v.trim().trim_end_matches("kB").trim().parse::<f64>().ok())
-        .map_or(0.0, |kib| kib / 1024.0)
 }

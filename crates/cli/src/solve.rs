@@ -21,7 +21,8 @@ use contactdd_io::setup::Loaded;
 
 use crate::args::{Common, MonolithicArgs, SolveArgs};
 use crate::console::Status;
-use crate::ranks::{RankUse, Ranks};
+use crate::rank_use::RankUse;
+use crate::ranks::Ranks;
 use crate::report::{
     applied_loads, pair_report, progress, reaction_report, sig, status_text, timing, IterationTable,
 };
@@ -185,24 +186,7 @@ pub fn solve(args: SolveArgs) -> Result<Exit> {
     let quiet = args.quiet || !ranks.is_root();
 
     with_threads(threads, || {
-        if !quiet {
-            progress(&format!(
-                "assembling and factorising {}…",
-                count(model.bodies.len(), "body", "bodies")
-            ));
-        }
-        let prepared = prepare_on(model, &settings, ranks.exchange());
-        if let (Err(_), true) = (&prepared, ranks.is_root()) {
-            // The contact warnings often explain a failed setup (a body that only a pair facing
-            // nowhere would hold is singular): print them before the error.
-            if let Ok(interface) = Interface::new(model) {
-                warn_contact(&args.file, model, &interface);
-            }
-        }
-        let mut prepared = prepared.map_err(|e| anyhow::anyhow!("{}: {e}", args.file.display()))?;
-        if ranks.is_root() {
-            warn_contact(&args.file, model, &prepared.interface);
-        }
+        let mut prepared = prepare_shown(&args.file, model, &settings, &ranks, quiet)?;
         if let Some(factors) = &loaded.steps {
             let run = StepRun {
                 model,
@@ -238,20 +222,7 @@ pub fn solve(args: SolveArgs) -> Result<Exit> {
             });
         }
 
-        let updates = match sol.gap_tol {
-            Some(tol) => format!(
-                "; augmented Lagrangian: {} multiplier updates, gap-tol {}",
-                sol.updates,
-                sig(tol)
-            ),
-            None => String::new(),
-        };
-        let done = format!(
-            "converged in {} iterations ({}{updates})",
-            sol.iterations,
-            settings.scheme()
-        );
-        let outcome = outcome(sol.converged, done, sol.message.as_deref());
+        let outcome = solve_outcome(&sol, &settings);
         if quiet {
             say!("{outcome}; results in {}", out.display());
         } else {
@@ -270,6 +241,54 @@ pub fn solve(args: SolveArgs) -> Result<Exit> {
         }
         Ok(exit(sol.converged, &out))
     })
+}
+
+/// Assembles and factorises every body (with a progress line unless `quiet`); rank 0 prints the
+/// contact warnings, before a setup error too.
+fn prepare_shown(
+    file: &Path,
+    model: &Model,
+    settings: &contactdd_ddm::Settings,
+    ranks: &Ranks,
+    quiet: bool,
+) -> Result<Prepared> {
+    if !quiet {
+        progress(&format!(
+            "assembling and factorising {}…",
+            count(model.bodies.len(), "body", "bodies")
+        ));
+    }
+    let prepared = prepare_on(model, settings, ranks.exchange());
+    if let (Err(_), true) = (&prepared, ranks.is_root()) {
+        // The contact warnings often explain a failed setup (a body that only a pair facing
+        // nowhere would hold is singular): print them before the error.
+        if let Ok(interface) = Interface::new(model) {
+            warn_contact(file, model, &interface);
+        }
+    }
+    let prepared = prepared.map_err(|e| anyhow::anyhow!("{}: {e}", file.display()))?;
+    if ranks.is_root() {
+        warn_contact(file, model, &prepared.interface);
+    }
+    Ok(prepared)
+}
+
+/// The result line of a domain decomposition solve.
+fn solve_outcome(sol: &contactdd_ddm::Solution, settings: &contactdd_ddm::Settings) -> String {
+    let updates = match sol.gap_tol {
+        Some(tol) => format!(
+            "; augmented Lagrangian: {} multiplier updates, gap-tol {}",
+            sol.updates,
+            sig(tol)
+        ),
+        None => String::new(),
+    };
+    let done = format!(
+        "converged in {} iterations ({}{updates})",
+        sol.iterations,
+        settings.scheme()
+    );
+    outcome(sol.converged, done, sol.message.as_deref())
 }
 
 /// The timed phases of a solve, in the order the console reports them.
@@ -353,22 +372,12 @@ fn exit(converged: bool, out: &Path) -> Exit {
 pub fn monolithic(args: MonolithicArgs) -> Result<Exit> {
     let start = Instant::now();
     let loaded = load(&args.file)?;
+    let (settings, threads) = monolithic_settings(&args, &loaded);
     let mut model = loaded.model;
     if let Some(e) = args.enforcement {
         model.pairs.iter_mut().for_each(|p| p.enforcement = e);
     }
     let model = &model;
-    let threads = args
-        .threads
-        .map(|n| usize::try_from(n).unwrap_or(usize::MAX))
-        .or(loaded.threads);
-    let mut settings = MonolithicSettings {
-        gap_tol: args.gap_tol.or(loaded.settings.gap_tol),
-        ..MonolithicSettings::default()
-    };
-    if let Some(k) = args.max_steps {
-        settings.max_steps = usize::try_from(k).unwrap_or(usize::MAX);
-    }
     let out = args
         .out
         .clone()
@@ -411,15 +420,7 @@ pub fn monolithic(args: MonolithicArgs) -> Result<Exit> {
             solve_monolithic_with(model, &settings, hook).map_err(|e| anyhow::anyhow!("{e}"))?;
         let written = write_monolithic_results(&out, model, &sol)
             .with_context(|| format!("cannot write the results to '{}'", out.display()))?;
-        let done = if sol.updates > 0 {
-            format!(
-                "converged in {} semismooth Newton solves (augmented Lagrangian multiplier updates), the last {} steps",
-                sol.updates, sol.newton_steps
-            )
-        } else {
-            format!("converged in {} semismooth Newton steps", sol.newton_steps)
-        };
-        let outcome = outcome(sol.converged, done, sol.message.as_deref());
+        let outcome = monolithic_outcome(&sol);
         if quiet {
             say!("{outcome}; results in {}", out.display());
         } else {
@@ -437,6 +438,39 @@ pub fn monolithic(args: MonolithicArgs) -> Result<Exit> {
         }
         Ok(exit(sol.converged, &out))
     })
+}
+
+/// The file's settings with `monolithic`'s command-line overrides; returns them and the thread
+/// count.
+fn monolithic_settings(
+    args: &MonolithicArgs,
+    loaded: &Loaded,
+) -> (MonolithicSettings, Option<usize>) {
+    let threads = args
+        .threads
+        .map(|n| usize::try_from(n).unwrap_or(usize::MAX))
+        .or(loaded.threads);
+    let mut settings = MonolithicSettings {
+        gap_tol: args.gap_tol.or(loaded.settings.gap_tol),
+        ..MonolithicSettings::default()
+    };
+    if let Some(k) = args.max_steps {
+        settings.max_steps = usize::try_from(k).unwrap_or(usize::MAX);
+    }
+    (settings, threads)
+}
+
+/// The result line of a monolithic solve.
+fn monolithic_outcome(sol: &MonolithicSolution) -> String {
+    let done = if sol.updates > 0 {
+        format!(
+            "converged in {} semismooth Newton solves (augmented Lagrangian multiplier updates), the last {} steps",
+            sol.updates, sol.newton_steps
+        )
+    } else {
+        format!("converged in {} semismooth Newton steps", sol.newton_steps)
+    };
+    outcome(sol.converged, done, sol.message.as_deref())
 }
 
 /// Prints the warnings about the contact geometry on stderr; returns all findings.

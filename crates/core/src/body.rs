@@ -8,7 +8,8 @@ use crate::geometry::Vector;
 use crate::material::{Material, Plane};
 use crate::mesh::Mesh;
 use crate::post::{residual, stresses, Stresses};
-use crate::supports::{free_rigid_modes, Constraints};
+use crate::rigid::free_rigid_modes;
+use crate::supports::Constraints;
 
 /// A body: mesh, material, supports and applied loads.
 #[derive(Clone, Debug)]

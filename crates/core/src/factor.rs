@@ -6,7 +6,7 @@
 //! interface, `S = A₂₂ − A₂₁ A₁₁⁻¹ A₁₂ = L₂₂ L₂₂ᵀ`. This is what lets the domain decomposition
 //! iterate on contact quantities only: `(A⁻¹)₂₂ = S⁻¹`, read off the factor at no extra cost.
 //! The other DOFs keep their order by approximate minimum degree (AMD) on the nodes
-//! ([`node_amd`]).
+//! ([`crate::ordering::node_amd`]).
 //!
 //! A node held along an inclined normal n only ([`Constraints::inclined`]) keeps one unknown, its
 //! tangential displacement q = u·t (t = n turned counter-clockwise): u = g n + t q. Its two DOFs
@@ -17,21 +17,19 @@
 
 use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::linalg::cholesky::llt::factor::LltRegularization;
-use faer::sparse::linalg::cholesky::{
-    factorize_symbolic_cholesky, supernodal::SupernodalLltRef, CholeskySymbolicParams, LltRef,
-    SymbolicCholesky, SymbolicCholeskyRaw, SymmetricOrdering,
-};
-use faer::sparse::linalg::SupernodalThreshold;
+use faer::sparse::linalg::cholesky::{supernodal::SupernodalLltRef, LltRef, SymbolicCholeskyRaw};
 use faer::sparse::{SparseColMat, SparseColMatRef, SymbolicSparseColMat};
 use faer::{Conj, Mat, MatMut, Par, Side};
 
 use crate::error::BodyError;
-use crate::geometry::{component_of, node_of};
-use crate::incremental_cholesky::{FactorError, SupernodalTree};
-use crate::ordering::node_amd;
+use crate::incremental_cholesky::FactorError;
 use crate::supports::Constraints;
 
-const NONE: usize = usize::MAX;
+mod analysis;
+mod reduction;
+
+use analysis::Analysis;
+use reduction::{plain_lower, reduced_lower_pattern, Reduction, NONE};
 
 /// The values of a second numeric factorisation sharing a body's symbolic analysis
 /// ([`FactoredBody::refactorize`]).
@@ -40,26 +38,6 @@ pub struct FactorValues {
     values: Vec<f64>,
     l_values: Vec<f64>,
     factored: bool,
-}
-
-/// How a body's factor is computed and applied.
-enum Analysis {
-    /// faer's numeric factorisation and solve: with interface DOFs (ordered last, so that the
-    /// Schur factor is read off the supernodes).
-    Faer(SymbolicCholesky<usize>),
-    /// This crate's supernodal factorisation and solve (`incremental_cholesky`): without interface
-    /// DOFs (the sparse path). On the thin bodies of long contact zones faer picks its simplicial
-    /// factor, whose numeric factorisation and solve took about twice as long.
-    Own(SupernodalTree),
-}
-
-impl Analysis {
-    fn symbolic(&self) -> &SymbolicCholesky<usize> {
-        match self {
-            Analysis::Faer(symbolic) => symbolic,
-            Analysis::Own(tree) => tree.symbolic(),
-        }
-    }
 }
 
 /// A body's stiffness with supports eliminated, factorised by sparse Cholesky.
@@ -132,30 +110,7 @@ impl FactoredBody {
             .filter_map(|&d| (reduced[d] != NONE).then_some(reduced[d]))
             .filter(|&r| seen.insert(r))
             .collect();
-        // With no interface AMD on the nodes' graph is the ordering; otherwise AMD on the interior
-        // and the interface last.
-        let analysis = if interface.is_empty() {
-            let order =
-                node_amd(lower.as_ref()).ok_or_else(|| fail("no fill-reducing order".into()))?;
-            let tree = SupernodalTree::analyse(lower.as_ref(), (&order.0, &order.1))
-                .ok_or_else(|| fail("the symbolic analysis failed (out of memory, or 2³² stiffness entries or more)".into()))?;
-            Analysis::Own(tree)
-        } else {
-            let perm = last_ordering(&lower, &interface)
-                .ok_or_else(|| fail("no fill-reducing order".into()))?;
-            let inv = inverse(&perm);
-            let ordering =
-                SymmetricOrdering::Custom(faer::perm::PermRef::new_checked(&perm, &inv, n));
-            let params = CholeskySymbolicParams {
-                // The Schur factor is read off supernodes; small bodies would otherwise go simplicial.
-                supernodal_flop_ratio_threshold: SupernodalThreshold::FORCE_SUPERNODAL,
-                ..Default::default()
-            };
-            let symbolic =
-                factorize_symbolic_cholesky(lower.as_ref(), Side::Lower, ordering, params)
-                    .map_err(|e| fail(format!("{e:?}")))?;
-            Analysis::Faer(symbolic)
-        };
+        let analysis = Analysis::new(&lower, &interface, n).map_err(fail)?;
         // The factor's values are allocated by the first factorisation, once the caller had the
         // chance to compare `memory_estimate` with the available memory.
         let l_values = Vec::new();
@@ -602,166 +557,10 @@ impl FactoredBody {
     }
 }
 
-/// The reduced DOF numbering of a body's supports.
-struct Reduction {
-    reduced: Vec<usize>,
-    coef: Vec<f64>,
-    free: Vec<usize>,
-    fixed: Vec<(usize, f64)>,
-}
-
-impl Reduction {
-    /// Numbers the free DOFs in DOF order; both DOFs of a node on an inclined support share the
-    /// number of its tangential unknown, with the tangent's components as coefficients.
-    fn new(ndof: usize, constraints: &Constraints) -> Reduction {
-        let inclined: std::collections::HashMap<usize, ([f64; 2], f64)> = constraints
-            .inclined()
-            .map(|(v, n, g)| (v, (n, g)))
-            .collect();
-        let mut reduced = vec![NONE; ndof];
-        let mut coef = if inclined.is_empty() {
-            Vec::new()
-        } else {
-            vec![1.0; ndof]
-        };
-        let mut free = Vec::with_capacity(ndof);
-        let mut fixed = Vec::new();
-        for (dof, r) in reduced.iter_mut().enumerate() {
-            let c = component_of(dof);
-            match (constraints.get(dof), inclined.get(&node_of(dof))) {
-                (Some(v), _) => fixed.push((dof, v)),
-                (None, Some(&(n, g))) => {
-                    // The x DOF opens the node's unknown, the y DOF (next) shares it.
-                    if c == 0 || free.last() != Some(&(dof - 1)) {
-                        free.push(dof);
-                    }
-                    *r = free.len() - 1;
-                    coef[dof] = [-n[1], n[0]][c];
-                    fixed.push((dof, g * n[c]));
-                }
-                (None, None) => {
-                    *r = free.len();
-                    free.push(dof);
-                }
-            }
-        }
-        Reduction {
-            reduced,
-            coef,
-            free,
-            fixed,
-        }
-    }
-}
-
-/// Lower triangle of the reduced matrix without inclined supports, and for each entry its index
-/// in `k`'s values (the reduced map is monotone, so rows stay sorted).
-fn plain_lower(
-    k: &SparseColMat<usize, f64>,
-    reduced: &[usize],
-    free: &[usize],
-) -> (SymbolicSparseColMat<usize>, Vec<usize>) {
-    let n = free.len();
-    let (col_ptr, row_idx) = (k.symbolic().col_ptr(), k.symbolic().row_idx());
-    let mut l_ptr = Vec::with_capacity(n + 1);
-    let mut l_rows = Vec::new();
-    let mut gather = Vec::new();
-    l_ptr.push(0);
-    for &j in free {
-        for (p, &i) in row_idx
-            .iter()
-            .enumerate()
-            .take(col_ptr[j + 1])
-            .skip(col_ptr[j])
-        {
-            if i >= j && reduced[i] != NONE {
-                l_rows.push(reduced[i]);
-                gather.push(p);
-            }
-        }
-        l_ptr.push(l_rows.len());
-    }
-    let lower = SymbolicSparseColMat::new_checked(n, n, l_ptr, None, l_rows);
-    (lower, gather)
-}
-
-/// Lower triangle of Tᵀ K T with inclined supports: entry (R, C) sums c_i c_j K_ij over the DOFs
-/// i of R and j of C. Entries of one term with coefficient 1 are gathered as in [`plain_lower`],
-/// the others listed as (entry, index in `k`'s values, coefficient).
-fn reduced_lower_pattern(
-    k: &SparseColMat<usize, f64>,
-    reduced: &[usize],
-    coef: &[f64],
-    free: &[usize],
-) -> (
-    SymbolicSparseColMat<usize>,
-    Vec<usize>,
-    Vec<(usize, usize, f64)>,
-) {
-    let n = free.len();
-    let (col_ptr, row_idx) = (k.symbolic().col_ptr(), k.symbolic().row_idx());
-    let mut l_ptr = Vec::with_capacity(n + 1);
-    let (mut l_rows, mut gather, mut mixed) = (Vec::new(), Vec::new(), Vec::new());
-    let mut terms: Vec<(usize, usize, f64)> = Vec::new();
-    l_ptr.push(0);
-    for (col, &j0) in free.iter().enumerate() {
-        terms.clear();
-        // K is stored in full, so the columns of both DOFs of the unknown hold every term.
-        let cols = (j0..reduced.len()).take_while(|&j| reduced[j] == col);
-        for j in cols {
-            for p in col_ptr[j]..col_ptr[j + 1] {
-                let i = row_idx[p];
-                if reduced[i] != NONE && reduced[i] >= col {
-                    terms.push((reduced[i], p, coef[i] * coef[j]));
-                }
-            }
-        }
-        terms.sort_by_key(|t| t.0);
-        for group in terms.chunk_by(|a, b| a.0 == b.0) {
-            let e = l_rows.len();
-            l_rows.push(group[0].0);
-            match group {
-                [(_, p, c)] if *c == 1.0 => gather.push(*p),
-                _ => {
-                    gather.push(NONE);
-                    mixed.extend(group.iter().map(|&(_, p, c)| (e, p, c)));
-                }
-            }
-        }
-        l_ptr.push(l_rows.len());
-    }
-    let lower = SymbolicSparseColMat::new_checked(n, n, l_ptr, None, l_rows);
-    (lower, gather, mixed)
-}
-
-/// The AMD order of the whole matrix on its nodes ([`node_amd`]) with the interface DOFs moved to
-/// the end (in the given order), the rest keeping their order; `None` if the ordering fails.
-/// Measured on a body of 1000 × 500 cells with a 1001-node contact line: 5 % more factor values
-/// than [`node_amd`] without an interface. faer's AMD on the DOFs, then the interface last, gave
-/// 39 % more (`docs/sparse-path.md`).
-fn last_ordering(lower: &SymbolicSparseColMat<usize>, interface: &[usize]) -> Option<Vec<usize>> {
-    let mut is_interface = vec![false; lower.ncols()];
-    for &r in interface {
-        is_interface[r] = true;
-    }
-    let (fwd, _) = node_amd(lower.as_ref())?;
-    let mut order: Vec<usize> = fwd.into_iter().filter(|&r| !is_interface[r]).collect();
-    order.extend_from_slice(interface);
-    Some(order)
-}
-
 /// A vector of `len` zeros, or `None` if the allocation fails (an error rather than an abort).
 fn try_zeros(len: usize) -> Option<Vec<f64>> {
     let mut values = Vec::new();
     values.try_reserve_exact(len).ok()?;
     values.resize(len, 0.0);
     Some(values)
-}
-
-fn inverse(perm: &[usize]) -> Vec<usize> {
-    let mut inv = vec![0; perm.len()];
-    for (i, &p) in perm.iter().enumerate() {
-        inv[p] = i;
-    }
-    inv
 }

@@ -89,25 +89,10 @@ impl Rectangle {
 
     /// Builds the mesh with grading and mirroring in x.
     pub fn mesh_with(&self, layout: &Layout) -> Result<Mesh, MeshError> {
+        self.check(layout)?;
         let (nx, ny) = (self.nx, self.ny);
         let ([x0, y0], [x1, y1]) = (self.origin, self.corner);
-        if nx == 0 || ny == 0 {
-            return Err(MeshError::BadRectangle(format!(
-                "nx and ny must be at least 1 (got {nx} × {ny})"
-            )));
-        }
-        let finite = [x0, x1, y0, y1].iter().all(|v| v.is_finite());
-        if !finite || x1 <= x0 || y1 <= y0 {
-            return Err(MeshError::BadRectangle(format!(
-                "need x0 < x1 and y0 < y1, got [{x0}, {x1}] × [{y0}, {y1}]"
-            )));
-        }
         let [gx, gy] = layout.grading;
-        if !(gx.is_finite() && gx > 0.0 && gy.is_finite() && gy > 0.0) {
-            return Err(MeshError::BadRectangle(format!(
-                "grading must be positive and finite, got x = {gx}, y = {gy}"
-            )));
-        }
         let id = |i: usize, j: usize| j * (nx + 1) + i;
         let mut nodes = Vec::with_capacity((nx + 1) * (ny + 1));
         for j in 0..=ny {
@@ -168,5 +153,29 @@ impl Rectangle {
             Order::P1 => mesh,
             Order::P2 => mesh.to_p2(),
         })
+    }
+
+    /// Checks the sizes, the corners and the grading.
+    fn check(&self, layout: &Layout) -> Result<(), MeshError> {
+        let (nx, ny) = (self.nx, self.ny);
+        let ([x0, y0], [x1, y1]) = (self.origin, self.corner);
+        if nx == 0 || ny == 0 {
+            return Err(MeshError::BadRectangle(format!(
+                "nx and ny must be at least 1 (got {nx} × {ny})"
+            )));
+        }
+        let finite = [x0, x1, y0, y1].iter().all(|v| v.is_finite());
+        if !finite || x1 <= x0 || y1 <= y0 {
+            return Err(MeshError::BadRectangle(format!(
+                "need x0 < x1 and y0 < y1, got [{x0}, {x1}] × [{y0}, {y1}]"
+            )));
+        }
+        let [gx, gy] = layout.grading;
+        if !(gx.is_finite() && gx > 0.0 && gy.is_finite() && gy > 0.0) {
+            return Err(MeshError::BadRectangle(format!(
+                "grading must be positive and finite, got x = {gx}, y = {gy}"
+            )));
+        }
+        Ok(())
     }
 }

@@ -1,9 +1,10 @@
 //! Rigid-body motions of a 2D body as a numeric basis: two translations and a rotation about the
 //! centroid of the nodes, scaled so that all three have unit size over the body.
 //!
-//! One basis serves the support check ([`crate::supports::free_rigid_modes`]), the monolithic
-//! reference and the coarse correction of the domain decomposition: a free mode is a combination
-//! `Σ_i v_i R_i` of the basis with coefficient vector `v`.
+//! One basis serves the support check ([`free_rigid_modes`]), the monolithic reference and the
+//! coarse correction of the domain decomposition: a free mode is a combination `Σ_i v_i R_i` of
+//! the basis with coefficient vector `v`. A [`RigidSpan`] makes the free modes orthonormal on a
+//! set of DOFs, to split a displacement into its rigid part and the rest.
 
 use nalgebra::{Matrix3, SymmetricEigen};
 
@@ -71,6 +72,20 @@ pub fn describe(v: &[f64; NUM_MODES]) -> String {
         .map(|i| names[i])
         .collect::<Vec<_>>()
         .join(" + ")
+}
+
+/// Rigid-body modes of a body that neither its supports nor the given normal springs remove.
+/// `springs` are (node, unit direction) pairs of springs of any positive stiffness. Returns a
+/// human readable description of each free mode (empty if the body is held).
+pub fn free_rigid_modes(
+    mesh: &Mesh,
+    constraints: &Constraints,
+    springs: &[(usize, Vector)],
+) -> Vec<String> {
+    free_modes(mesh, constraints, springs)
+        .iter()
+        .map(describe)
+        .collect()
 }
 
 /// The rigid motions that supports and springs (node, unit direction) leave free, as orthonormal
@@ -148,6 +163,61 @@ fn add(gram: &mut Matrix3<f64>, row: [f64; NUM_MODES]) {
 fn along(basis: &RigidBasis, x: Point, dir: Vector) -> [f64; NUM_MODES] {
     let m = basis.at(x);
     [0, 1, 2].map(|k| dot(dir, std::array::from_fn(|c| m[c][k])))
+}
+
+/// The values on the DOFs `dofs` of the rigid motion with coefficients `v` in the rigid basis of
+/// `mesh`.
+pub fn motion_on(mesh: &Mesh, v: &[f64; NUM_MODES], dofs: &[usize]) -> Vec<f64> {
+    let basis = RigidBasis::new(mesh);
+    dofs.iter()
+        .map(|&d| basis.motion(mesh.nodes()[node_of(d)], v)[component_of(d)])
+        .collect()
+}
+
+/// An orthonormal basis of a body's free rigid motions on some of its DOFs, each with its
+/// coefficients in the body's rigid basis: a displacement minus its part in this span has the
+/// same strains, and far smaller entries when the body mostly moves rigidly (products with the
+/// stiffness then lose no digits to that motion).
+#[derive(Clone, Debug, PartialEq)]
+pub struct RigidSpan {
+    /// Per motion, its coefficients in the rigid basis and its values on the DOFs.
+    motions: Vec<([f64; NUM_MODES], Vec<f64>)>,
+}
+
+impl RigidSpan {
+    /// The free rigid motions that `constraints` leave `mesh`, on the DOFs `dofs`.
+    pub fn new(mesh: &Mesh, constraints: &Constraints, dofs: &[usize]) -> RigidSpan {
+        let mut motions: Vec<([f64; NUM_MODES], Vec<f64>)> = Vec::new();
+        for mut v in free_modes(mesh, constraints, &[]) {
+            let mut z = motion_on(mesh, &v, dofs);
+            for (w, e) in &motions {
+                let d = dot_slices(e, &z);
+                z.iter_mut().zip(e).for_each(|(x, y)| *x -= d * y);
+                v.iter_mut().zip(w).for_each(|(x, y)| *x -= d * y);
+            }
+            let norm = dot_slices(&z, &z).sqrt();
+            if norm > 0.0 {
+                z.iter_mut().for_each(|x| *x /= norm);
+                motions.push((v.map(|x| x / norm), z));
+            }
+        }
+        RigidSpan { motions }
+    }
+
+    /// Splits `u` (on the span's DOFs) into its rigid part's coefficients and the rest, in place.
+    pub fn split(&self, u: &mut [f64]) -> [f64; NUM_MODES] {
+        let mut c = [0.0; NUM_MODES];
+        for (w, e) in &self.motions {
+            let d = dot_slices(e, u);
+            u.iter_mut().zip(e).for_each(|(x, y)| *x -= d * y);
+            c.iter_mut().zip(w).for_each(|(x, y)| *x += d * y);
+        }
+        c
+    }
+}
+
+fn dot_slices(a: &[f64], b: &[f64]) -> f64 {
+    a.iter().zip(b).map(|(x, y)| x * y).sum()
 }
 
 #[cfg(test)]

@@ -1,4 +1,5 @@
-//! Prescribed displacements (supports) and the check that a body has no rigid-body modes left.
+//! Prescribed displacements (supports). Which rigid-body modes they leave a body is
+//! [`crate::rigid::free_rigid_modes`].
 //!
 //! A support prescribes displacement components in global x/y, or the normal component u·n of a
 //! straight boundary. On a boundary parallel to an axis that is an ordinary x or y prescription;
@@ -11,7 +12,6 @@ use std::collections::BTreeMap;
 use crate::error::SupportError;
 use crate::geometry::{dof, dot, node_of, num_dofs, Vector, DIM};
 use crate::mesh::Mesh;
-use crate::rigid::{describe, free_modes};
 
 /// Below this |sin| of the angle between two prescribed directions of one node they count as the
 /// same direction: the later replaces the earlier instead of both being solved for (which would
@@ -310,18 +310,4 @@ fn line_normal(mesh: &Mesh, name: &str) -> Result<Vector, SupportError> {
     } else {
         Err(not_straight())
     }
-}
-
-/// Rigid-body modes of a body that neither its supports nor the given normal springs remove.
-/// `springs` are (node, unit direction) pairs of springs of any positive stiffness. Returns a
-/// human readable description of each free mode (empty if the body is held).
-pub fn free_rigid_modes(
-    mesh: &Mesh,
-    constraints: &Constraints,
-    springs: &[(usize, Vector)],
-) -> Vec<String> {
-    free_modes(mesh, constraints, springs)
-        .iter()
-        .map(describe)
-        .collect()
 }

@@ -3,8 +3,7 @@
 //! multiplier solve of the constraints u·n = g.
 
 use contactdd_core::post::reaction_on;
-use contactdd_core::rigid::free_modes;
-use contactdd_core::supports::free_rigid_modes;
+use contactdd_core::rigid::{free_modes, free_rigid_modes};
 use contactdd_core::{
     dof, Component, Constraints, Diagonal, ElasticBody, Load, Material, Mesh, Order, Plane,
     Rectangle, SupportError, Vector,

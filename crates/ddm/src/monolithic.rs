@@ -33,7 +33,7 @@ use crate::solution::{body_results, pair_results, BodyResult, PairResult};
 
 use modes::{dot, project_out, Mode};
 use reduced::ReducedBody;
-use system::{Evaluation, System};
+use system::{Evaluation, ReducedSystem};
 
 /// Accepted states whose worst merit the line search compares with (Grippo, Lampariello &
 /// Lucidi's non-monotone rule).
@@ -178,7 +178,7 @@ pub fn solve_monolithic_with(
     loop {
         updates += 1;
         let next = {
-            let system = System::new(model, &interface, &bodies);
+            let system = ReducedSystem::new(model, &interface, &bodies);
             let modes = modes::free_rigid_modes(model, &system);
             let run = newton(&system, &modes, settings, on_step);
             let un: Vec<f64> = system.un.iter().map(|a| a.at(&run.x)).collect();
@@ -227,7 +227,7 @@ struct End {
 /// The fields, forces, equilibrium check and verdict of a finished run.
 fn finish(
     model: &Model,
-    system: &System,
+    system: &ReducedSystem,
     bodies: &[ReducedBody],
     modes: &[Mode],
     settings: &MonolithicSettings,
@@ -246,7 +246,7 @@ fn finish(
         .enumerate()
         .map(|(b, body)| {
             let mut x = run.x[system.offset[b]..system.offset[b] + body.dofs.len()].to_vec();
-            let rigid = modes::split_rigid(&system.rigid[b], &mut x);
+            let rigid = system.rigid[b].split(&mut x);
             body.recover(&model.bodies[b], &contact[b], &x, &rigid)
         })
         .collect::<Result<Vec<_>, _>>()?;
@@ -338,7 +338,7 @@ struct Run {
 
 /// The globalised semismooth Newton iteration from x = 0, λ = 0.
 fn newton(
-    system: &System,
+    system: &ReducedSystem,
     modes: &[Mode],
     settings: &MonolithicSettings,
     on_step: Option<&(dyn Fn(&MonolithicStep) + Sync)>,
@@ -346,13 +346,7 @@ fn newton(
     let mut x = vec![0.0; system.n];
     let mut lam = vec![0.0; system.interface.len()];
     let mut eval = system.evaluate(&x, &lam);
-    let scale = system
-        .bodies
-        .iter()
-        .map(|b| dot(&b.g, &b.g))
-        .sum::<f64>()
-        .sqrt()
-        .max(f64::MIN_POSITIVE);
+    let scale = load_scale(system);
     let mut merits: Vec<f64> = Vec::new();
     let mut history = Vec::new();
     // Consecutive steps whose line search found no decrease.
@@ -378,17 +372,9 @@ fn newton(
             .rev()
             .take(WINDOW)
             .fold(0.0, |a: f64, &b| a.max(b));
-        // Full active-set steps while they visit new closed sets and the merit stays within the
-        // non-monotone window's worst (the rule the line search applies); the line search once a
-        // set comes back (the plain iteration would cycle) or the merit would grow past it.
-        let full = seen
-            .insert(chi.clone())
-            .then(|| full_step(system, (&x, &lam), (&dx, &dlam)))
-            .filter(|e| merit(&z, e) <= reference);
-        let (alpha, next, decreased) = match full {
-            Some(next) => (1.0, next, true),
-            None => line_search(system, &z, (&x, &lam), (&dx, &dlam), reference),
-        };
+        let new_set = seen.insert(chi.clone());
+        let (alpha, next, decreased) =
+            step_length(system, &z, new_set, (&x, &lam), (&dx, &dlam), reference);
         failures = if decreased { 0 } else { failures + 1 };
         x.iter_mut().zip(&dx).for_each(|(v, d)| *v += alpha * d);
         lam.iter_mut().zip(&dlam).for_each(|(v, d)| *v += alpha * d);
@@ -427,11 +413,43 @@ fn newton(
     end(x, eval, settings.max_steps, history, Some(stop))
 }
 
+/// The size of the condensed loads, ‖g‖₂ over all bodies: the scale of the reported residuals.
+fn load_scale(system: &ReducedSystem) -> f64 {
+    system
+        .bodies
+        .iter()
+        .map(|b| dot(&b.g, &b.g))
+        .sum::<f64>()
+        .sqrt()
+        .max(f64::MIN_POSITIVE)
+}
+
+/// The step length along (δx, δλ), the evaluation there and whether the merit decreased.
+/// Full active-set steps while they visit new closed sets (`new_set`) and the merit stays within
+/// the non-monotone window's worst `reference` (the rule the line search applies); the line
+/// search once a set comes back (the plain iteration would cycle) or the merit would grow past it.
+fn step_length(
+    system: &ReducedSystem,
+    z: &[Vec<f64>],
+    new_set: bool,
+    at: (&[f64], &[f64]),
+    dir: (&[f64], &[f64]),
+    reference: f64,
+) -> (f64, Evaluation, bool) {
+    let full = new_set
+        .then(|| full_step(system, at, dir))
+        .filter(|e| merit(z, e) <= reference);
+    match full {
+        Some(next) => (1.0, next, true),
+        None => line_search(system, z, at, dir, reference),
+    }
+}
+
 /// The points treated as closed in J: the closed points, and for a body with free rigid modes
 /// that no closed point loads, the partnered points loading it of smallest gap d − s (it moves until they
 /// touch, instead of being held still; closing every partnered point would glue it on across
 /// gaps of any size and cost the line search many short steps).
-fn jacobian_set(system: &System, modes: &[Mode], eval: &Evaluation) -> Vec<bool> {
+fn jacobian_set(system: &ReducedSystem, modes: &[Mode], eval: &Evaluation) -> Vec<bool> {
     let points = &system.interface.points;
     let mut chi = eval.closed.clone();
     for (b, range) in system.interface.body_range.iter().enumerate() {
@@ -496,7 +514,7 @@ fn loaded_motion(modes: &[Mode], chi: &[bool]) -> Option<Vec<f64>> {
 
 /// The points that can carry a force (partnered, own-side or carriers) and whose pair sum the
 /// motion with mode weights `w` changes.
-fn resisting(system: &System, modes: &[Mode], w: &[f64]) -> Vec<usize> {
+fn resisting(system: &ReducedSystem, modes: &[Mode], w: &[f64]) -> Vec<usize> {
     let points = &system.interface.points;
     let change: Vec<(usize, f64)> = (0..points.len())
         .filter(|&j| points[j].has_partner() && points[j].carries())
@@ -520,7 +538,7 @@ fn merit(z: &[Vec<f64>], eval: &Evaluation) -> f64 {
 
 /// The state after the full step.
 fn full_step(
-    system: &System,
+    system: &ReducedSystem,
     (x, lam): (&[f64], &[f64]),
     (dx, dlam): (&[f64], &[f64]),
 ) -> Evaluation {
@@ -532,7 +550,7 @@ fn full_step(
 /// `reference`; returns the step length, the state there and whether it decreased enough (if
 /// not, the shortest step).
 fn line_search(
-    system: &System,
+    system: &ReducedSystem,
     z: &[Vec<f64>],
     (x, lam): (&[f64], &[f64]),
     (dx, dlam): (&[f64], &[f64]),

@@ -9,13 +9,13 @@
 //! applied loads must balance along such a motion by themselves (up to the difference of the two
 //! sides' integrations on non-matching meshes).
 
-use contactdd_core::rigid::RigidBasis;
+use contactdd_core::rigid::{RigidBasis, RigidSpan};
 use contactdd_core::{component_of, node_of};
 
 use crate::model::Model;
 
-use super::modes::{dot, project_out, rigid_span, split_rigid, Kernel, Mode};
-use super::system::System;
+use super::modes::{dot, project_out, Kernel, Mode};
+use super::system::ReducedSystem;
 
 /// The residuals of a result, relative to the size of the applied and contact forces.
 pub(super) struct Balance {
@@ -30,7 +30,7 @@ pub(super) struct Balance {
 /// `stiffness` per body; `kernel` the unresisted motions of the final closed set.
 pub(super) fn balance(
     model: &Model,
-    system: &System,
+    system: &ReducedSystem,
     u: &[Vec<f64>],
     contact: &[Vec<f64>],
     modes: &[Mode],
@@ -46,7 +46,7 @@ pub(super) fn balance(
         // K annihilates rigid motions: apply it to the deformation only.
         let all: Vec<usize> = (0..u[b].len()).collect();
         let mut deformation = u[b].clone();
-        split_rigid(&rigid_span(body, &all), &mut deformation);
+        RigidSpan::new(&body.mesh, &body.constraints, &all).split(&mut deformation);
         let (cp, ri, val) = (k.symbolic().col_ptr(), k.symbolic().row_idx(), k.val());
         for j in 0..k.ncols() {
             for p in cp[j]..cp[j + 1] {

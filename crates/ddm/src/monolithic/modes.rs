@@ -9,12 +9,11 @@
 
 use nalgebra::{DMatrix, SymmetricEigen};
 
-use contactdd_core::rigid::{describe, free_modes, RigidBasis, NUM_MODES};
-use contactdd_core::{component_of, node_of, ElasticBody};
+use contactdd_core::rigid::{describe, free_modes, motion_on, NUM_MODES};
 
 use crate::model::Model;
 
-use super::system::System;
+use super::system::ReducedSystem;
 
 /// One free rigid mode of one body.
 pub(super) struct Mode {
@@ -37,57 +36,13 @@ pub(super) struct Kernel {
     pub weights: Vec<Vec<f64>>,
 }
 
-/// The values of the rigid motion with coefficients `v` on the DOFs `dofs` of `body`.
-pub(super) fn motion_on(body: &ElasticBody, v: &[f64; NUM_MODES], dofs: &[usize]) -> Vec<f64> {
-    let basis = RigidBasis::new(&body.mesh);
-    dofs.iter()
-        .map(|&d| basis.motion(body.mesh.nodes()[node_of(d)], v)[component_of(d)])
-        .collect()
-}
-
-/// An orthonormal basis of the free rigid motions of `body` on the DOFs `dofs`, each with its
-/// coefficients in the body's rigid basis: a displacement minus its part in this span has the
-/// same strains, and far smaller entries when the body mostly moves rigidly (products with the
-/// stiffness then lose no digits to that motion).
-pub(super) fn rigid_span(body: &ElasticBody, dofs: &[usize]) -> Vec<([f64; NUM_MODES], Vec<f64>)> {
-    let mut out: Vec<([f64; NUM_MODES], Vec<f64>)> = Vec::new();
-    for mut v in free_modes(&body.mesh, &body.constraints, &[]) {
-        let mut z = motion_on(body, &v, dofs);
-        for (w, e) in &out {
-            let d = dot(e, &z);
-            z.iter_mut().zip(e).for_each(|(x, y)| *x -= d * y);
-            v.iter_mut().zip(w).for_each(|(x, y)| *x -= d * y);
-        }
-        let norm = dot(&z, &z).sqrt();
-        if norm > 0.0 {
-            z.iter_mut().for_each(|x| *x /= norm);
-            out.push((v.map(|x| x / norm), z));
-        }
-    }
-    out
-}
-
-/// Splits `u` (on the DOFs of `span`) into its rigid part's coefficients and the rest, in place.
-pub(super) fn split_rigid(
-    span: &[([f64; NUM_MODES], Vec<f64>)],
-    u: &mut [f64],
-) -> [f64; NUM_MODES] {
-    let mut c = [0.0; NUM_MODES];
-    for (w, e) in span {
-        let d = dot(e, u);
-        u.iter_mut().zip(e).for_each(|(x, y)| *x -= d * y);
-        c.iter_mut().zip(w).for_each(|(x, y)| *x += d * y);
-    }
-    c
-}
-
 /// The free rigid modes of every body.
-pub(super) fn free_rigid_modes(model: &Model, system: &System) -> Vec<Mode> {
+pub(super) fn free_rigid_modes(model: &Model, system: &ReducedSystem) -> Vec<Mode> {
     let mut modes = Vec::new();
     for (b, body) in model.bodies.iter().enumerate() {
         for v in free_modes(&body.mesh, &body.constraints, &[]) {
             let mut on_x = vec![0.0; system.n];
-            let values = motion_on(body, &v, &system.bodies[b].dofs);
+            let values = motion_on(&body.mesh, &v, &system.bodies[b].dofs);
             on_x[system.offset[b]..system.offset[b] + values.len()].copy_from_slice(&values);
             let on_s = system
                 .s
@@ -97,7 +52,7 @@ pub(super) fn free_rigid_modes(model: &Model, system: &System) -> Vec<Mode> {
             let dofs: Vec<usize> = (0..body.load.len())
                 .filter(|&d| body.constraints.get(d).is_none())
                 .collect();
-            let motion = motion_on(body, &v, &dofs);
+            let motion = motion_on(&body.mesh, &v, &dofs);
             let work = dofs
                 .iter()
                 .zip(&motion)

@@ -21,13 +21,12 @@ use faer::prelude::Solve;
 use faer::sparse::{SparseColMat, Triplet};
 use faer::Mat;
 
-use contactdd_core::rigid::NUM_MODES;
+use contactdd_core::rigid::RigidSpan;
 use contactdd_core::{dof, DIM};
 
 use crate::contact::Interface;
 use crate::model::Model;
 
-use super::modes::{rigid_span, split_rigid};
 use super::reduced::ReducedBody;
 
 /// An affine function of x: Σ coef·x[index] + constant.
@@ -44,7 +43,7 @@ impl Affine {
 }
 
 /// The reduced system of a model.
-pub(super) struct System<'a> {
+pub(super) struct ReducedSystem<'a> {
     pub interface: &'a Interface,
     pub bodies: &'a [ReducedBody],
     /// First x index of every body.
@@ -60,7 +59,7 @@ pub(super) struct System<'a> {
     /// Bounding box diameter of every body.
     pub size: Vec<f64>,
     /// Per body, an orthonormal basis of its free rigid motions on its part of x.
-    pub rigid: Vec<Vec<([f64; NUM_MODES], Vec<f64>)>>,
+    pub rigid: Vec<RigidSpan>,
 }
 
 /// F, Φ and the closed set at one (x, λ).
@@ -72,7 +71,7 @@ pub(super) struct Evaluation {
     pub phi: Vec<f64>,
 }
 
-impl<'a> System<'a> {
+impl<'a> ReducedSystem<'a> {
     pub fn new(model: &Model, interface: &'a Interface, bodies: &'a [ReducedBody]) -> Self {
         let mut offset = Vec::with_capacity(bodies.len());
         let mut n = 0;
@@ -124,7 +123,7 @@ impl<'a> System<'a> {
             })
             .collect();
         let rho = stiffness_shares(interface, bodies, &offset, &un);
-        System {
+        ReducedSystem {
             interface,
             bodies,
             offset,
@@ -141,7 +140,7 @@ impl<'a> System<'a> {
                 .bodies
                 .iter()
                 .zip(bodies)
-                .map(|(body, reduced)| rigid_span(body, &reduced.dofs))
+                .map(|(body, reduced)| RigidSpan::new(&body.mesh, &body.constraints, &reduced.dofs))
                 .collect(),
         }
     }
@@ -180,7 +179,7 @@ impl<'a> System<'a> {
             let m = body.dofs.len();
             // S annihilates rigid motions: apply it to the deformation only.
             let mut xb = x[o..o + m].to_vec();
-            split_rigid(&self.rigid[b], &mut xb);
+            self.rigid[b].split(&mut xb);
             for i in 0..m {
                 f[o + i] = (0..m).map(|k| body.s[(i, k)] * xb[k]).sum::<f64>() - body.g[i];
             }
