@@ -135,7 +135,11 @@ fn contact_force_balances_the_applied_load() {
     let notch = Notch::default();
     let model = notch.model().unwrap();
     let prepared = prepare(&model).unwrap();
-    let sol = run(&model, &prepared, &settings(Method::NewtonKurchatov, 0.5, 1e-12));
+    let sol = run(
+        &model,
+        &prepared,
+        &settings(Method::NewtonKurchatov, 0.5, 1e-12),
+    );
     let applied = notch.pressure() * contactdd_ddm::benchmark::L;
     for side in 0..2 {
         let f = sol.contact[0].force_on(side);
@@ -275,7 +279,11 @@ fn three_body_stack_and_p2_agree_with_monolithic_and_balance_forces() {
         let model = stack(order, 3);
         let reference = solve_monolithic(&model).unwrap();
         let prepared = prepare(&model).unwrap();
-        let sol = run(&model, &prepared, &settings(Method::NewtonKurchatov, 0.5, 1e-11));
+        let sol = run(
+            &model,
+            &prepared,
+            &settings(Method::NewtonKurchatov, 0.5, 1e-11),
+        );
         assert!(sol.converged, "{order:?}: {:?}", sol.message);
         for (pair, refp) in sol.contact.iter().zip(&reference.contact) {
             let diff = max_rel_diff(&pair.pressure, &refp.pressure);
