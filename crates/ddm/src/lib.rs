@@ -54,7 +54,7 @@ pub use model::{ContactPair, Enforcement, Forces, InnerPenalty, Model, Penalty, 
 pub use monolithic::{solve_monolithic, MonolithicSolution};
 pub use outcome::{Hooks, Record, Stop};
 pub use relaxation::Gamma;
-pub use settings::{Accelerator, Settings};
+pub use settings::{Accelerator, InvalidSetting, Settings};
 pub use solution::Solution;
 pub use solver::{prepare, prepare_on, prepare_with, solve, solve_from, Preparation, Prepared};
 

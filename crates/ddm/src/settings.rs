@@ -145,42 +145,127 @@ impl Settings {
     }
 }
 
+/// What a setting must be.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Requirement {
+    /// A positive finite number.
+    Positive,
+    /// A positive finite number (γ, which may also be `auto`).
+    PositiveOrAuto,
+    /// A positive finite length.
+    PositiveLength,
+    /// A count of at least 1.
+    AtLeastOne,
+    /// A finite number.
+    Finite,
+}
+
+/// A setting outside its range: its key in problem files, what it must be, and the value given.
+#[derive(Clone, Debug, PartialEq)]
+pub struct InvalidSetting {
+    /// The key, as problem files, the command line and Python name it.
+    pub key: &'static str,
+    /// What it must be.
+    pub requirement: Requirement,
+    /// The value given.
+    pub value: f64,
+}
+
+impl InvalidSetting {
+    /// "must be …, got v", with the value written by `number`.
+    pub fn reason(&self, number: impl Fn(f64) -> String) -> String {
+        let what = match self.requirement {
+            Requirement::Positive => "a positive number",
+            Requirement::PositiveOrAuto => "a positive number or \"auto\"",
+            Requirement::PositiveLength => "a positive length",
+            Requirement::AtLeastOne => "at least 1",
+            Requirement::Finite => "finite",
+        };
+        format!("must be {what}, got {}", number(self.value))
+    }
+}
+
+impl std::fmt::Display for InvalidSetting {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "{}: {}", self.key, self.reason(|v| v.to_string()))
+    }
+}
+
+impl From<InvalidSetting> for SetupError {
+    fn from(e: InvalidSetting) -> Self {
+        SetupError::Solver(e.to_string())
+    }
+}
+
 impl Settings {
-    /// Checks the values a caller can get wrong: positive finite tolerances and γ, at least one
-    /// multiplier update. The problem-file reader, the command line and Python all go through
-    /// it (via [`crate::solver::solve`]).
-    pub fn validate(&self) -> Result<(), SetupError> {
-        let settings = self;
-        if !(settings.tol > 0.0 && settings.tol.is_finite()) {
-            return Err(SetupError::Solver(format!(
-                "tolerance must be positive, got {}",
-                settings.tol
-            )));
+    /// Checks every value a caller can set out of range, in the order of the problem file's
+    /// `[solver]` keys; the first one out of range is the error. The problem-file reader, the
+    /// command line, Python and [`crate::solver::solve`] all check settings here.
+    pub fn validate(&self) -> Result<(), InvalidSetting> {
+        fn positive(v: f64) -> bool {
+            v.is_finite() && v > 0.0
         }
-        if settings.equilibrium_tol.is_nan() || settings.equilibrium_tol <= 0.0 {
-            return Err(SetupError::Solver(format!(
-                "equilibrium-tol must be positive, got {}",
-                settings.equilibrium_tol
-            )));
+        fn at_least_one(v: f64) -> bool {
+            v >= 1.0
         }
-        if let Gamma::Constant(g) = settings.gamma {
-            if !(g > 0.0 && g.is_finite()) {
-                return Err(SetupError::Solver(format!(
-                    "gamma must be positive, got {g}"
-                )));
-            }
-        }
-        if settings.max_updates == 0 {
-            return Err(SetupError::Solver("max-updates must be at least 1".into()));
-        }
-        if let Some(g) = settings.gap_tol {
-            if !(g > 0.0 && g.is_finite()) {
-                return Err(SetupError::Solver(format!(
-                    "gap-tol must be a positive length, got {g}"
-                )));
+        let count = |n: usize| n as f64;
+        let checks: [(&'static str, Requirement, Option<f64>, fn(f64) -> bool); 8] = [
+            (
+                "gamma",
+                Requirement::PositiveOrAuto,
+                self.constant_gamma(),
+                positive,
+            ),
+            ("tol", Requirement::Positive, Some(self.tol), positive),
+            (
+                "equilibrium-tol",
+                Requirement::Positive,
+                Some(self.equilibrium_tol),
+                positive,
+            ),
+            (
+                "max-iter",
+                Requirement::AtLeastOne,
+                Some(count(self.max_iter)),
+                at_least_one,
+            ),
+            (
+                "gap-tol",
+                Requirement::PositiveLength,
+                self.gap_tol,
+                positive,
+            ),
+            (
+                "max-updates",
+                Requirement::AtLeastOne,
+                Some(count(self.max_updates)),
+                at_least_one,
+            ),
+            ("u0", Requirement::Finite, Some(self.u0), f64::is_finite),
+            (
+                "u-prev",
+                Requirement::Finite,
+                Some(self.u_prev),
+                f64::is_finite,
+            ),
+        ];
+        for (key, requirement, value, valid) in checks {
+            if let Some(value) = value.filter(|&v| !valid(v)) {
+                return Err(InvalidSetting {
+                    key,
+                    requirement,
+                    value,
+                });
             }
         }
         Ok(())
+    }
+
+    fn constant_gamma(&self) -> Option<f64> {
+        match self.gamma {
+            Gamma::Constant(g) => Some(g),
+            Gamma::Auto => None,
+        }
     }
 }
 

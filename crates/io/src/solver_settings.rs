@@ -18,7 +18,6 @@ pub const MAX_THREADS: usize = 1024;
 /// `base`, absent keys keep it. `threads` is checked (1 to [`MAX_THREADS`]) but is not
 /// part of [`Settings`]; read it from `spec`.
 pub fn settings(spec: &SolverSpec, base: &Settings) -> Result<Settings, SetupError> {
-    check(spec)?;
     let mut s = base.clone();
     if let Some(method) = spec.method {
         s.method = method;
@@ -51,40 +50,15 @@ pub fn settings(spec: &SolverSpec, base: &Settings) -> Result<Settings, SetupErr
     if let Some(u_prev) = spec.u_prev {
         s.u_prev = u_prev;
     }
+    s.validate()
+        .map_err(|e| solver_error(e.key, e.reason(num)))?;
+    check_threads(spec)?;
     Ok(s)
 }
 
-/// Checks every value the `[solver]` table gives (the first invalid one is the error): all the
-/// checks of [`settings`], in one place.
-fn check(spec: &SolverSpec) -> Result<(), SetupError> {
-    if let Some(g) = spec.gamma {
-        gamma(g)?;
-    }
-    for (key, v) in [("tol", spec.tol), ("equilibrium-tol", spec.equilibrium_tol)] {
-        if let Some(v) = v.filter(|v| !(v.is_finite() && *v > 0.0)) {
-            return Err(solver_error(
-                key,
-                format!("must be a positive number, got {}", num(v)),
-            ));
-        }
-    }
-    if spec.max_iter == Some(0) {
-        return Err(solver_error("max-iter", "must be at least 1, got 0"));
-    }
-    if let Some(g) = spec.gap_tol.filter(|g| !(g.is_finite() && *g > 0.0)) {
-        return Err(solver_error(
-            "gap-tol",
-            format!("must be a positive length, got {}", num(g)),
-        ));
-    }
-    if spec.max_updates == Some(0) {
-        return Err(solver_error("max-updates", "must be at least 1, got 0"));
-    }
-    for (key, v) in [("u0", spec.u0), ("u-prev", spec.u_prev)] {
-        if let Some(v) = v.filter(|v| !v.is_finite()) {
-            return Err(solver_error(key, format!("must be finite, got {}", num(v))));
-        }
-    }
+/// `threads`, the one key of the `[solver]` table that is not part of [`Settings`] (whose values
+/// [`Settings::validate`] checks).
+fn check_threads(spec: &SolverSpec) -> Result<(), SetupError> {
     match spec.threads {
         Some(0) => Err(solver_error("threads", "must be at least 1, got 0")),
         Some(n) if n > MAX_THREADS => Err(solver_error(
