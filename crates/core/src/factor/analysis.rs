@@ -19,7 +19,7 @@ pub(super) enum Analysis {
     Faer(SymbolicCholesky<usize>),
     /// This crate's supernodal factorisation and solve (`incremental_cholesky`): without interface
     /// DOFs (the sparse path). On the thin bodies of long contact zones faer picks its simplicial
-    /// factor, whose numeric factorisation and solve took about twice as long.
+    /// factor, whose numeric factorisation and solve take about twice as long.
     Own(SupernodalTree),
 }
 

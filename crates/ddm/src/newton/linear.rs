@@ -21,8 +21,8 @@ pub(super) const MAX_REFINE: usize = 4;
 /// The numeric factorisation is the peak of memory of a Newton step on the sparse path, so the
 /// triplets (consumed) and the last step's pattern are freed before it: only the matrix, the
 /// factor and faer's workspace are then alive. The factor's values are not kept for the next step
-/// either: alive while the next step's triplets and matrix are built, they made that moment the
-/// run's peak, and the pattern changes nothing in them but their buffers' capacity.
+/// either: alive while the next step's triplets and matrix are built, they would make that moment
+/// the run's peak, and the pattern changes nothing in them but their buffers' capacity.
 pub(super) fn sparse_solve(
     trip: Vec<Triplet<usize, usize, f64>>,
     n: usize,
