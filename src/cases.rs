@@ -15,7 +15,7 @@
 use contactdd_core::{
     Component, Constraints, Diagonal, ElasticBody, Load, Material, Mesh, Order, Plane, Rectangle,
 };
-use contactdd_ddm::profile::{Along, GapProfile};
+use contactdd_ddm::contact::gap_profile::{Along, GapProfile};
 use contactdd_ddm::{ContactPair, Enforcement, Model, Penalty};
 
 /// A structured rectangle mesh of `[x0, x1] × [y0, y1]`.

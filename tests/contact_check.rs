@@ -4,8 +4,8 @@
 use std::path::Path;
 
 use contactdd::cases;
+use contactdd::ddm::contact::check::check;
 use contactdd::ddm::contact::Interface;
-use contactdd::ddm::contact_check::check;
 use contactdd::ddm::Model;
 
 fn findings(model: &Model) -> Vec<String> {

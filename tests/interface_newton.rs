@@ -5,7 +5,7 @@
 
 use contactdd::cases;
 use contactdd::ddm::benchmark::Notch;
-use contactdd::ddm::profile::GapProfile;
+use contactdd::ddm::contact::gap_profile::GapProfile;
 use contactdd::ddm::{prepare, solve, solve_monolithic, Hooks, Model, Penalty, Settings, Solution};
 
 fn run(model: &Model, settings: &Settings) -> Solution {

@@ -8,8 +8,8 @@
 use std::path::Path;
 
 use contactdd::ddm::coarse::Coarse;
+use contactdd::ddm::contact::check::check;
 use contactdd::ddm::contact::Interface;
-use contactdd::ddm::contact_check::check;
 use contactdd::ddm::Model;
 use contactdd::io::load_file;
 

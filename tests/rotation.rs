@@ -4,7 +4,7 @@
 //! profiles along an inclined line, against a reference that shares nothing with the rotation.
 
 use contactdd::cases;
-use contactdd::ddm::profile::{Along, GapProfile};
+use contactdd::ddm::contact::gap_profile::{Along, GapProfile};
 use contactdd::ddm::{prepare, solve, Forces, Hooks, Model, Settings};
 use contactdd::fem::{Component, Mesh, Plane};
 

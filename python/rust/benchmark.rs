@@ -8,7 +8,7 @@ use std::collections::BTreeMap;
 
 use contactdd_core::{Component, Diagonal, Load, Order, Plane};
 use contactdd_ddm::benchmark::{Notch, H, L};
-use contactdd_ddm::profile::Along;
+use contactdd_ddm::contact::gap_profile::Along;
 use contactdd_ddm::Method;
 use contactdd_io::problem::{
     BodySpec, ContactSpec, GammaSpec, GapSpec, MaterialSpec, MeshSpec, PenaltySpec, Problem,

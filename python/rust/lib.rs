@@ -18,9 +18,9 @@ use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList};
 
 use contactdd_core::Order;
+use contactdd_ddm::contact::check as contact_check;
 use contactdd_ddm::contact::Interface;
-use contactdd_ddm::contact_check;
-use contactdd_ddm::sweep::{SweepHooks, SweepRun};
+use contactdd_ddm::gamma_study::{SweepHooks, SweepRun};
 use contactdd_ddm::{Gamma, Hooks, Method, Record, SetupError};
 use contactdd_io::setup::MAX_RECTANGLE_CELLS;
 

@@ -5,7 +5,7 @@ use std::path::PathBuf;
 
 use clap::{Args, Parser, Subcommand};
 
-use contactdd_ddm::iteration::ANDERSON_DEPTH;
+use contactdd_ddm::settings::ANDERSON_DEPTH;
 use contactdd_ddm::{Accelerator, CoarseMode, Enforcement, Gamma, Method};
 use contactdd_io::setup::MAX_THREADS;
 

@@ -4,8 +4,8 @@
 use anyhow::Result;
 
 use contactdd_core::{num_dofs, Component, ElasticBody, Load, Order};
+use contactdd_ddm::contact::check as contact_check;
 use contactdd_ddm::contact::{Interface, Role};
-use contactdd_ddm::contact_check;
 use contactdd_ddm::{Gamma, Model, Penalty};
 use contactdd_io::problem::{BodySpec, MeshSpec};
 use contactdd_io::Loaded;

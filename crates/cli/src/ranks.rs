@@ -7,18 +7,18 @@ use std::sync::Arc;
 
 use contactdd_ddm::exchange::{Exchange, Local};
 use contactdd_ddm::{Model, Solution};
-use contactdd_io::reactions::BodyReactions;
-use contactdd_io::setup::Monitor;
-use contactdd_io::shared_results::{
+use contactdd_io::distributed_results::{
     shared_monitor, shared_reactions, write_results_shared, write_step_results_shared, Part,
 };
+use contactdd_io::reactions::BodyReactions;
+use contactdd_io::setup::Monitor;
 use contactdd_io::Loaded;
 
 use crate::rank_use::peak_mib;
-pub use crate::rank_use::RankUse;
+use crate::rank_use::RankUse;
 use crate::Exit;
 #[cfg(feature = "mpi")]
-use contactdd_io::{read_problem, shared_setup::estimated_costs};
+use contactdd_io::{distributed_setup::estimated_costs, read_problem};
 
 /// The processes of a solve and how they share the bodies.
 pub struct Ranks {

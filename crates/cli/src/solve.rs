@@ -8,8 +8,8 @@ use std::time::{Duration, Instant};
 
 use anyhow::{Context, Result};
 
+use contactdd_ddm::contact::check as contact_check;
 use contactdd_ddm::contact::Interface;
-use contactdd_ddm::contact_check;
 use contactdd_ddm::monolithic::{solve_monolithic_with, MonolithicSettings, MonolithicStep};
 use contactdd_ddm::{
     prepare_on, solve as dd_solve, Accelerator, CoarseMode, Condensation, Gamma, Hooks, Model,

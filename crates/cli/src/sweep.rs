@@ -7,7 +7,7 @@ use anyhow::{Context, Result};
 
 use std::sync::atomic::{AtomicUsize, Ordering};
 
-use contactdd_ddm::sweep::{SweepHooks, SweepRun};
+use contactdd_ddm::gamma_study::{SweepHooks, SweepRun};
 use contactdd_ddm::{prepare_with, sweep_with, Gamma, Method, Preparation, Stop};
 use contactdd_io::atomic::check_output_path;
 use contactdd_io::output::{safe_file_name, sweep_csv, write_atomic};

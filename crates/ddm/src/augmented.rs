@@ -19,9 +19,10 @@
 use std::time::Instant;
 
 use crate::anderson::Anderson;
+use crate::contact::formulation::Enforcement;
 use crate::contact::Interface;
 use crate::iteration::Iteration;
-use crate::model::{Enforcement, Model};
+use crate::model::Model;
 use crate::outcome::{Hooks, Outcome, Record, Stop};
 use crate::prepared::Prepared;
 use crate::settings::{Settings, ANDERSON_DEPTH};

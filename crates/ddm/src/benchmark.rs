@@ -34,9 +34,10 @@ use contactdd_core::{
     Plane, Rectangle,
 };
 
+use crate::contact::formulation::{Enforcement, Penalty};
 use crate::contact::gap_profile::{Along, GapProfile};
 use crate::error::SetupError;
-use crate::model::{ContactPair, Enforcement, Model, Penalty};
+use crate::model::{ContactPair, Model};
 
 /// Parameters of the notch benchmark (defaults: the paper's values).
 #[derive(Clone, Debug, PartialEq)]

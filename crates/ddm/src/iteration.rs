@@ -10,9 +10,8 @@
 //! [`crate::solver`] picks the iteration the settings name ([`crate::solver::iteration_for`]).
 
 use crate::contact::Interface;
-pub use crate::outcome::{Breakdown, Hooks, Outcome, Record, Stop};
+use crate::outcome::{Hooks, Outcome};
 use crate::prepared::Prepared;
-pub use crate::settings::{Accelerator, Settings, ANDERSON_DEPTH, EQUILIBRIUM_TOL};
 
 /// An interface iteration on a prepared model.
 pub trait Iteration: Sync {

@@ -42,23 +42,17 @@ pub mod sweeps;
 
 pub use coarse::CoarseMode;
 pub use condensed::Condensation;
+pub use contact::formulation::{Enforcement, Forces, InnerPenalty, Penalty};
 pub use contact::gap_profile::GapProfile;
 pub use contact::Formulation;
 pub use error::SetupError;
 pub use facts::BodyFacts;
-/// The γ study under its former name, for the other crates.
-pub use gamma_study as sweep;
 pub use gamma_study::{sweep, sweep_with, SweepHooks, SweepRun};
 pub use method::Method;
-pub use model::{ContactPair, Enforcement, Forces, InnerPenalty, Model, Penalty, Remote};
+pub use model::{ContactPair, Model, Remote};
 pub use monolithic::{solve_monolithic, MonolithicSolution};
 pub use outcome::{Hooks, Record, Stop};
 pub use relaxation::Gamma;
 pub use settings::{Accelerator, InvalidSetting, Settings};
 pub use solution::Solution;
 pub use solver::{prepare, prepare_on, prepare_with, solve, solve_from, Preparation, Prepared};
-
-// The contact checks and gap profiles at their paths outside `contact` (`contact_check::check`,
-// `profile::Along`), which the other crates use.
-pub use contact::check as contact_check;
-pub use contact::gap_profile as profile;

@@ -5,7 +5,7 @@
 use contactdd_core::{Constraints, ElasticBody, Material, Mesh, Plane, Point, DIM};
 
 use crate::contact::formulation::Formulation;
-pub use crate::contact::formulation::{Enforcement, Forces, InnerPenalty, Penalty};
+use crate::contact::formulation::{Enforcement, Forces, InnerPenalty, Penalty};
 use crate::contact::gap_profile::GapProfile;
 use crate::error::SetupError;
 use crate::facts::BodyFacts;

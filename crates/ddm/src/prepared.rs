@@ -9,10 +9,11 @@ use rayon::prelude::*;
 
 use crate::coarse::Coarse;
 use crate::condensed::{analyse_all, Condensation, CondensedBody, SetupTimes};
+use crate::contact::formulation::InnerPenalty;
 use crate::contact::Interface;
 use crate::error::SetupError;
 use crate::exchange::{share_vectors, Exchange, Local};
-use crate::model::{InnerPenalty, Model};
+use crate::model::Model;
 use crate::settings::{Accelerator, Settings};
 
 /// Everything about a model that does not depend on the method or γ: reuse it across solves

@@ -6,9 +6,10 @@ use contactdd_core::post::stresses;
 use contactdd_core::{ElasticBody, Mesh, Vector, DIM};
 
 use crate::coarse::CoarseMode;
+use crate::contact::formulation::Forces;
 use crate::contact::Interface;
 use crate::method::Method;
-use crate::model::{Forces, Model};
+use crate::model::Model;
 use crate::outcome::{Breakdown, Record, Stop};
 use crate::relaxation::Gamma;
 use crate::settings::{Accelerator, Settings};

@@ -6,8 +6,9 @@
 //! a full load gradually where the contact zone changes much.
 
 use crate::error::SetupError;
-use crate::iteration::{Hooks, Settings};
 use crate::model::Model;
+use crate::outcome::Hooks;
+use crate::settings::Settings;
 use crate::solution::Solution;
 use crate::solver::{solve_from, Prepared};
 

@@ -2,8 +2,8 @@
 //! ([`history_csv`]) and the table of a γ sweep ([`sweep_csv`]). Non-finite values are written as
 //! `inf`, `-inf` or `NaN`, which Python's `float()`, numpy and pandas read back.
 
+use contactdd_ddm::gamma_study::SweepRun;
 use contactdd_ddm::solution::{PairResult, Solution};
-use contactdd_ddm::sweep::SweepRun;
 
 use crate::number::format_f64 as num;
 use crate::summary::point_status;

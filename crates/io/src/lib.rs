@@ -45,9 +45,5 @@ pub mod summary;
 pub mod vtu;
 pub mod write_problem;
 
-/// An alias of [`distributed_results`], the path the command line imports from.
-pub use distributed_results as shared_results;
-/// An alias of [`distributed_setup`], the path the command line imports from.
-pub use distributed_setup as shared_setup;
 pub use error::LoadError;
 pub use setup::{load_file, load_str, read_problem, resolve, Loaded, ProblemFile};

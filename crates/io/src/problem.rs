@@ -44,7 +44,7 @@ use serde::{Deserialize, Serialize, Serializer};
 
 use contactdd_core::{Component, Diagonal, Load, Order, Plane, Vector};
 
-use contactdd_ddm::profile::Along;
+use contactdd_ddm::contact::gap_profile::Along;
 use contactdd_ddm::{Gamma, Method};
 
 /// A whole problem file.

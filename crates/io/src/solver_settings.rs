@@ -2,7 +2,7 @@
 //! Starting values the table leaves out follow the model's size (`starting_values`).
 
 use contactdd_core::DIM;
-use contactdd_ddm::iteration::ANDERSON_DEPTH;
+use contactdd_ddm::settings::ANDERSON_DEPTH;
 use contactdd_ddm::{Accelerator, CoarseMode, Gamma, Model, Settings, SetupError};
 
 use crate::error::solver_error;

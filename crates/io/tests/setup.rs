@@ -6,7 +6,7 @@
 use std::path::{Path, PathBuf};
 
 use contactdd_ddm::benchmark::Notch;
-use contactdd_ddm::profile::Along;
+use contactdd_ddm::contact::gap_profile::Along;
 use contactdd_ddm::*;
 use contactdd_io::problem::{GammaSpec, Problem};
 use contactdd_io::setup::resolve;
@@ -881,7 +881,7 @@ fn solver_keys_select_the_iteration() {
         (s.accelerator, s.coarse)
     };
     let anderson = Accelerator::Anderson {
-        depth: contactdd_ddm::iteration::ANDERSON_DEPTH,
+        depth: contactdd_ddm::settings::ANDERSON_DEPTH,
     };
     assert_eq!(kind(""), (Accelerator::Newton, CoarseMode::Off));
     assert_eq!(
