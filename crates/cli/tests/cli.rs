@@ -8,37 +8,12 @@ use serde_json::Value;
 
 /// A small two-body problem: `lower` is fixed at its bottom, `upper` is pressed onto it and held
 /// vertically only by the contact.
-const PAIR: &str = r#"
-name = "pair"
-plane = "strain"
+#[path = "../../../tests/support/two_blocks.rs"]
+mod two_blocks;
+use two_blocks::{Text, TwoBlocks};
 
-[materials.steel]
-young = 2.1e5
-poisson = 0.3
-
-[[bodies]]
-name = "lower"
-material = "steel"
-mesh = { kind = "rectangle", x = [0.0, 2.0], y = [0.0, 0.5], nx = 8, ny = 2 }
-supports = [{ boundary = "bottom", component = "both" }]
-
-[[bodies]]
-name = "upper"
-material = "steel"
-mesh = { kind = "rectangle", x = [0.0, 2.0], y = [0.5, 1.0], nx = 8, ny = 2, mirror = true }
-supports = [{ boundary = "left", component = "x" }]
-loads = [{ kind = "pressure", boundary = "top", value = 100.0 }]
-
-[[contact]]
-bodies = ["lower", "upper"]
-boundaries = ["top", "bottom"]
-penalty = { c = 0.05, h = 0.5 }
-
-[solver]
-method = "newton-kurchatov"
-gamma = 0.5
-tol = 1e-8
-"#;
+/// The shared two-block problem with the paper's iteration.
+static PAIR: Text = Text::new(|| TwoBlocks::default().toml());
 
 /// A unit square of two triangles in Gmsh 2.2 format, with boundaries `bottom` and `top`.
 const SQUARE_MSH: &str = r#"$MeshFormat
@@ -277,7 +252,7 @@ fn bad_input_exits_1_with_one_readable_error() {
     std::fs::write(dir.join("gmsh.toml"), GMSH_BODY).unwrap();
     let out = contactdd(&dir, &["check", "gmsh.toml"]);
     assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
-    std::fs::write(dir.join("pair.toml"), PAIR).unwrap();
+    std::fs::write(dir.join("pair.toml"), &*PAIR).unwrap();
     let out = contactdd(&dir, &["check", "pair.toml"]);
     assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
 
@@ -375,7 +350,7 @@ fn bad_input_exits_1_with_one_readable_error() {
 #[test]
 fn bad_command_lines_exit_1_and_help_exits_0() {
     let dir = temp_dir("args");
-    std::fs::write(dir.join("pair.toml"), PAIR).unwrap();
+    std::fs::write(dir.join("pair.toml"), &*PAIR).unwrap();
     for args in [
         &["solve", "pair.toml", "--gamma", "0"][..],
         &["solve", "pair.toml", "--gamma", "fast"],
@@ -407,7 +382,7 @@ fn bad_command_lines_exit_1_and_help_exits_0() {
 #[test]
 fn output_paths_that_are_not_regular_files_are_refused() {
     let dir = temp_dir("special-out");
-    std::fs::write(dir.join("pair.toml"), PAIR).unwrap();
+    std::fs::write(dir.join("pair.toml"), &*PAIR).unwrap();
     std::fs::write(dir.join("target.csv"), "keep").unwrap();
     std::os::unix::fs::symlink("target.csv", dir.join("link.csv")).unwrap();
     let mut refused = vec![("link.csv", "symbolic link")];
@@ -451,7 +426,7 @@ fn output_paths_that_are_not_regular_files_are_refused() {
 #[test]
 fn command_line_options_override_the_file() {
     let dir = temp_dir("override");
-    std::fs::write(dir.join("pair.toml"), PAIR).unwrap();
+    std::fs::write(dir.join("pair.toml"), &*PAIR).unwrap();
     let out = contactdd(
         &dir,
         &[
@@ -543,7 +518,7 @@ fn check_describes_the_problem() {
 #[test]
 fn monolithic_reports_its_newton_steps_and_rigid_modes() {
     let dir = temp_dir("monolithic");
-    std::fs::write(dir.join("pair.toml"), PAIR).unwrap();
+    std::fs::write(dir.join("pair.toml"), &*PAIR).unwrap();
     let out = contactdd(&dir, &["monolithic", "pair.toml", "--out", "mono"]);
     assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
     let text = stdout(&out);

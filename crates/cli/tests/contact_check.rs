@@ -5,40 +5,28 @@
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
+#[path = "../../../tests/support/two_blocks.rs"]
+mod two_blocks;
+use two_blocks::TwoBlocks;
+
 /// Two 4 × 1 blocks; the upper one spans `y` and the pair is `lower.<a>` with `upper.<b>`.
-fn pair(y: [f64; 2], a: &str, b: &str) -> String {
+fn pair(y: [f64; 2], a: &'static str, b: &'static str) -> String {
     scaled(1.0, y, a, b)
 }
 
 /// [`pair`] with every length multiplied by `s`.
-fn scaled(s: f64, y: [f64; 2], a: &str, b: &str) -> String {
-    format!(
-        r#"
-name = "pair"
-plane = "strain"
-[materials.steel]
-young = 2.1e5
-poisson = 0.3
-[[bodies]]
-name = "lower"
-material = "steel"
-mesh = {{ kind = "rectangle", x = [0.0, {w}], y = [0.0, {s}], nx = 8, ny = 2 }}
-supports = [{{ boundary = "bottom", component = "both" }}]
-[[bodies]]
-name = "upper"
-material = "steel"
-mesh = {{ kind = "rectangle", x = [0.0, {w}], y = [{}, {}], nx = 8, ny = 2 }}
-supports = [{{ boundary = "left", component = "x" }}]
-loads = [{{ kind = "pressure", boundary = "top", value = 100.0 }}]
-[[contact]]
-bodies = ["lower", "upper"]
-boundaries = ["{a}", "{b}"]
-penalty = {{ c = 0.5, h = {s} }}
-"#,
-        s * y[0],
-        s * y[1],
-        w = 4.0 * s,
-    )
+fn scaled(s: f64, y: [f64; 2], a: &'static str, b: &'static str) -> String {
+    TwoBlocks {
+        width: format!("{}", 4.0 * s),
+        lower: ["0.0".into(), format!("{s}")],
+        upper: [format!("{}", s * y[0]), format!("{}", s * y[1])],
+        mirror: false,
+        boundaries: [a, b],
+        penalty: ["0.5".into(), format!("{s}")],
+        tail: "",
+        ..TwoBlocks::default()
+    }
+    .toml()
 }
 
 /// A fresh folder holding `problem.toml` with `text`.

@@ -60,7 +60,7 @@ pub struct Preparation {
 }
 
 impl Preparation {
-    /// For a γ sweep ([`mod@crate::sweep`]): the paper's iteration, so the pairs' own θ.
+    /// For a γ sweep ([`crate::gamma_study`]): the paper's iteration, so the pairs' own θ.
     pub fn for_sweeps(condensation: Condensation) -> Self {
         Preparation {
             condensation,

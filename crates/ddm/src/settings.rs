@@ -56,7 +56,7 @@ pub struct Settings {
     /// Stopping tolerance on every body's relative change (relaxation) or residual (Anderson).
     pub tol: f64,
     /// Largest equilibrium residual (relative to the total contact force) a converged result may
-    /// have; above it the solve reports [`Stop::Stalled`].
+    /// have; above it the solve reports [`crate::outcome::Stop::Stalled`].
     pub equilibrium_tol: f64,
     /// Iteration cap.
     pub max_iter: usize,

@@ -153,7 +153,7 @@ pub struct Solution {
     /// Coarse mode used.
     pub coarse: CoarseMode,
     /// Per body, the equilibrium residual: the contact forces the fields carry against those of
-    /// the reported pressures, relative to the total contact force ([`crate::solver::equilibrium`]).
+    /// the reported pressures, relative to the total contact force ([`crate::equilibrium::equilibrium`]).
     pub equilibrium: Vec<f64>,
     /// Multiplier updates (inner solves) of the augmented Lagrangian pairs; 0 if every pair
     /// uses the penalty formulation.

@@ -12,6 +12,10 @@ use contactdd_io::problem::{GammaSpec, Problem};
 use contactdd_io::setup::resolve;
 use contactdd_io::*;
 
+#[path = "../../../tests/support/two_blocks.rs"]
+mod two_blocks;
+use two_blocks::{Text, TwoBlocks};
+
 /// Examples whose solve takes too long in an unoptimised build; there they are only resolved.
 /// (`hertz.toml` iterates ~6000 times on a 20 000-node block, `stack.toml` ~1200 times over 8
 /// bodies; both take well under two seconds in release mode.)
@@ -234,31 +238,21 @@ fn every_example_resolves_and_converges_with_balanced_forces() {
 // ---------------------------------------------------------------------------------------------
 // The schema.
 
-const SMALL: &str = r#"
-plane = "strain"
-
-[materials.steel]
-young = 1000.0
-poisson = 0.3
-
-[[bodies]]
-name = "lower"
-material = "steel"
-mesh = { kind = "rectangle", x = [0.0, 2.0], y = [0.0, 1.0], nx = 4, ny = 2 }
-supports = [{ boundary = "bottom", component = "both" }]
-
-[[bodies]]
-name = "upper"
-material = "steel"
-mesh = { kind = "rectangle", x = [0.0, 2.0], y = [1.0, 2.0], nx = 4, ny = 2, mirror = true }
-supports = [{ boundary = "left", component = "x" }]
-loads = [{ kind = "pressure", boundary = "top", value = 10.0 }]
-
-[[contact]]
-bodies = ["lower", "upper"]
-boundaries = ["top", "bottom"]
-penalty = { c = 0.05, h = 1.0 }
-"#;
+/// The shared two-block problem: 2 × 1 blocks of 4 × 2 cells, E = 1000, pressed by 10.
+static SMALL: Text = Text::new(|| {
+    TwoBlocks {
+        name: None,
+        young: "1000.0".into(),
+        lower: ["0.0".into(), "1.0".into()],
+        upper: ["1.0".into(), "2.0".into()],
+        cells: [4, 2],
+        pressure: "10.0".into(),
+        penalty: ["0.05".into(), "1.0".into()],
+        tail: "",
+        ..TwoBlocks::default()
+    }
+    .toml()
+});
 
 fn small_with(find: &str, replace: &str) -> String {
     assert!(SMALL.contains(find), "test setup: {find}");
@@ -267,11 +261,11 @@ fn small_with(find: &str, replace: &str) -> String {
 
 #[test]
 fn defaults_and_names() {
-    let loaded = load_str(SMALL, "dir/small.toml", Path::new(".")).expect("valid");
+    let loaded = load_str(&SMALL, "dir/small.toml", Path::new(".")).expect("valid");
     assert_eq!(loaded.model.name, "small");
     assert_eq!(loaded.model.pairs[0].name, "lower-upper");
     assert_eq!(loaded.settings, Settings::default());
-    let problem: Problem = toml::from_str(SMALL).expect("valid");
+    let problem: Problem = toml::from_str(&SMALL).expect("valid");
     let resolved = resolve(problem, Path::new(".")).expect("valid");
     assert_eq!(resolved.model.name, "problem");
 }

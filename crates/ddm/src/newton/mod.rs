@@ -2,7 +2,7 @@
 //! contact points at once by a semismooth Newton (primal–dual active set) method. The algorithm
 //! and its sources are in `docs/interface-newton.md`.
 //!
-//! Every body is condensed onto its contact points ([`CondensedBody`]): with τ = D₀⁻¹T the
+//! Every body is condensed onto its contact points ([`crate::condensed::CondensedBody`]): with τ = D₀⁻¹T the
 //! interface load in displacement units, its normal displacements are U_b = f₀ + B_b τ_b with
 //! B_b = C₀D₀. Point j carries the penetration-like q_j = U_j − τ_j = θ_j p_j (p the contact
 //! pressure), and the penalty law q = max(0, s − d) is the complementarity problem
@@ -34,7 +34,7 @@
 //!
 //! The bodies' responses B_b τ_b are evaluated in parallel; the factorisation is sequential, so
 //! the result does not depend on the number of threads. A process evaluates only the bodies it
-//! owns; the [`Exchange`] shares their blocks B_b and responses, and every process then solves
+//! owns; the [`crate::exchange::Exchange`] shares their blocks B_b and responses, and every process then solves
 //! the same Newton system (`crate::exchange`).
 
 mod algebra;
