@@ -87,11 +87,13 @@ const CONTACT_STATE: [&str; 16] = [
 ];
 
 /// The attributes of a [`SolveResult`] in its state dict (with `summary`).
-const RESULT_STATE: [&str; 14] = [
+const RESULT_STATE: [&str; 16] = [
     "converged",
     "stop",
     "iterations",
     "message",
+    "iteration",
+    "solver",
     "method",
     "gamma",
     "theta",
@@ -384,7 +386,13 @@ pub struct SolveResult {
     /// Why the solve did not converge (``None`` when it did).
     #[pyo3(get)]
     message: Option<String>,
-    /// The method used.
+    /// The iteration that ran: ``"interface-newton"`` or ``"robin-sweeps"``.
+    #[pyo3(get)]
+    iteration: String,
+    /// The solver settings in words, as ``contactdd solve`` and ``contactdd check`` print them.
+    #[pyo3(get)]
+    solver: String,
+    /// The Robin sweeps' method (unused by the interface Newton method).
     #[pyo3(get)]
     method: String,
     /// The γ used: a float, or ``"auto"``.
@@ -393,7 +401,9 @@ pub struct SolveResult {
     /// Penalty θ of each contact pair.
     #[pyo3(get)]
     theta: Vec<f64>,
-    /// Per-iteration history: ``k`` (m,), ``gamma`` (m,), and per body ``rel_change``,
+    /// Per-iteration history: ``k`` (m,), ``gamma`` (m,: the sweeps' γ, the Newton method's step
+    /// length), ``measure`` (m,: what the stopping test compares with the tolerance), and per
+    /// body ``rel_change``,
     /// ``active`` (closed points) and ``normal_force`` (Σ w |σ_n|), each (m, number of bodies).
     #[pyo3(get)]
     history: Py<PyDict>,
@@ -427,6 +437,7 @@ impl SolveResult {
         let history = PyDict::new(py);
         history.set_item("k", array1(py, h.iter().map(|r| r.k as i64).collect()))?;
         history.set_item("gamma", array1(py, h.iter().map(|r| r.gamma).collect()))?;
+        history.set_item("measure", array1(py, h.iter().map(|r| r.measure).collect()))?;
         let per_body = |f: &dyn Fn(&contactdd_ddm::Record) -> Vec<f64>| -> Vec<f64> {
             h.iter().flat_map(f).collect()
         };
@@ -452,6 +463,8 @@ impl SolveResult {
             stop: stop_name(&sol.stop).to_string(),
             iterations: sol.iterations,
             message: sol.message.clone(),
+            iteration: sol.settings.iteration().to_string(),
+            solver: sol.settings.to_string(),
             method: sol.method.name().to_string(),
             gamma: gamma_to_py(py, sol.gamma)?,
             theta: sol.theta.clone(),
@@ -532,6 +545,8 @@ impl SolveResult {
             stop: get(state, "stop")?.extract()?,
             iterations: get(state, "iterations")?.extract()?,
             message: get(state, "message")?.extract()?,
+            iteration: get(state, "iteration")?.extract()?,
+            solver: get(state, "solver")?.extract()?,
             method: get(state, "method")?.extract()?,
             gamma: get(state, "gamma")?.unbind(),
             theta: get(state, "theta")?.extract()?,
@@ -548,14 +563,11 @@ impl SolveResult {
         })
     }
 
-    fn __repr__(&self, py: Python<'_>) -> PyResult<String> {
-        Ok(format!(
-            "<contactdd.Result: {} after {} iterations ({}, gamma {})>",
-            self.stop,
-            self.iterations,
-            self.method,
-            self.gamma.bind(py).str()?
-        ))
+    fn __repr__(&self) -> String {
+        format!(
+            "<contactdd.Result: {} after {} iterations ({})>",
+            self.stop, self.iterations, self.solver
+        )
     }
 }
 

@@ -6,7 +6,7 @@ use anyhow::Result;
 use contactdd_core::{num_dofs, Component, ElasticBody, Load, Order};
 use contactdd_ddm::contact::check as contact_check;
 use contactdd_ddm::contact::{Interface, Role};
-use contactdd_ddm::{Gamma, Model, Penalty};
+use contactdd_ddm::{Enforcement, Model, Penalty};
 use contactdd_io::problem::{BodySpec, MeshSpec};
 use contactdd_io::Loaded;
 
@@ -176,24 +176,42 @@ fn side_role(interface: &Interface, p: usize, body: usize) -> String {
     }
 }
 
-/// The solver settings line.
+/// The solver lines: the settings as `solve` prints them, the starting values and threads, the
+/// load steps with the monitored boundary, and the pairs with exact contact.
 fn solver_text(loaded: &Loaded) -> String {
     let settings = &loaded.settings;
     let threads = loaded
         .threads
         .map_or("all cores".to_string(), |n| n.to_string());
-    format!(
-        "solver: method {}, gamma {}, tol {:e}, max-iter {}, u0 {:e}, u-prev {:e}, threads {threads}\n",
-        settings.method,
-        match settings.gamma {
-            Gamma::Auto => "auto".to_string(),
-            Gamma::Constant(g) => g.to_string(),
-        },
-        settings.tol,
-        settings.max_iter,
-        settings.u0,
-        settings.u_prev
-    )
+    let mut text = format!(
+        "solver: {settings}, u0 {:e}, u-prev {:e}, threads {threads}\n",
+        settings.u0, settings.u_prev
+    );
+    if let Some(steps) = &loaded.steps {
+        let factors: Vec<String> = steps.iter().map(f64::to_string).collect();
+        text += &format!("  load steps: {}", factors.join(", "));
+        if let Some(m) = &loaded.monitor {
+            text += &format!(
+                " (monitor {}.{})",
+                loaded.model.bodies[m.body].name, m.boundary
+            );
+        }
+        text += "\n";
+    }
+    let augmented: Vec<&str> = loaded
+        .model
+        .pairs
+        .iter()
+        .filter(|p| p.enforcement == Enforcement::Augmented)
+        .map(|p| p.name.as_str())
+        .collect();
+    if !augmented.is_empty() {
+        text += &format!(
+            "  exact contact (augmented Lagrangian) on {}\n",
+            augmented.join(", ")
+        );
+    }
+    text
 }
 
 fn mesh_text(mesh: &MeshSpec) -> String {

@@ -5,7 +5,7 @@ use std::io::IsTerminal;
 
 use contactdd_core::Vector;
 use contactdd_ddm::solution::PairResult;
-use contactdd_ddm::{Model, Record};
+use contactdd_ddm::{Accelerator, Model, Record, Settings};
 use contactdd_io::reactions::BodyReactions;
 
 /// A number with 4 significant digits: fixed notation for moderate magnitudes, else exponent.
@@ -47,29 +47,47 @@ pub fn status_text(r: &Record) -> String {
 /// points and the normal force Σ w |σ_n| (the sum of magnitudes, not the resultant).
 pub struct IterationTable {
     bodies: Vec<String>,
+    /// The second column: γ for the sweeps, the step length for the Newton method.
+    step: &'static str,
+    /// The stopping test's measure, and the tolerance it is compared with.
+    measure: &'static str,
+    tol: f64,
 }
 
 const CHANGE_WIDTH: usize = 9;
 const ACTIVE_WIDTH: usize = 6;
 const FORCE_WIDTH: usize = 10;
+const MEASURE_WIDTH: usize = 10;
 
 impl IterationTable {
-    /// A table for the bodies of `model`.
-    pub fn new(model: &Model) -> IterationTable {
+    /// A table for the bodies of `model` solved with `settings`.
+    pub fn new(model: &Model, settings: &Settings) -> IterationTable {
+        let newton = settings.accelerator == Accelerator::Newton;
         IterationTable {
             bodies: model.bodies.iter().map(|b| b.name.clone()).collect(),
+            step: if newton { "step" } else { "gamma" },
+            measure: if newton { "residual" } else { "change" },
+            tol: settings.tol,
         }
     }
 
-    /// Two header lines: the column groups, then the body names.
+    /// The header: what the stopping test measures over its tolerance, the column groups, then
+    /// the body names.
     pub fn header(&self) -> String {
         let n = self.bodies.len();
         let group = |title: &str, width: usize| format!("  {title:<w$}", w = n * width);
-        let mut top = format!("{:>5}  {:>6}", "", "");
+        let mut top = format!(
+            "{:>5}  {:>6}  {:>w$}",
+            "",
+            "",
+            self.measure,
+            w = MEASURE_WIDTH
+        );
         top += &group("relative change", CHANGE_WIDTH);
         top += &group("closed points", ACTIVE_WIDTH);
         top += &group("normal force Σw|σn|", FORCE_WIDTH);
-        let mut names = format!("{:>5}  {:>6}", "k", "gamma");
+        let tol = format!("≤ {:e}", self.tol);
+        let mut names = format!("{:>5}  {:>6}  {tol:>w$}", "k", self.step, w = MEASURE_WIDTH);
         for (width, gap) in [(CHANGE_WIDTH, 2), (ACTIVE_WIDTH, 2), (FORCE_WIDTH, 2)] {
             names += &" ".repeat(gap);
             for b in &self.bodies {
@@ -82,7 +100,13 @@ impl IterationTable {
 
     /// One iteration's line.
     pub fn line(&self, r: &Record) -> String {
-        let mut s = format!("{:>5}  {:>6.4}  ", r.k, r.gamma);
+        let measure = format!("{:.2e}", r.measure);
+        let mut s = format!(
+            "{:>5}  {:>6.4}  {measure:>w$}  ",
+            r.k,
+            r.gamma,
+            w = MEASURE_WIDTH
+        );
         for x in &r.rel_change {
             let _ = write!(s, "{:>w$}", format!("{x:.2e}"), w = CHANGE_WIDTH);
         }

@@ -134,16 +134,13 @@ fn iterate_shown(
     settings: &contactdd_ddm::Settings,
     quiet: bool,
 ) -> Result<contactdd_ddm::Solution> {
-    let table = IterationTable::new(model);
+    let table = IterationTable::new(model, settings);
     if !quiet {
         say!(
-            "solving {}: {}, {}, {}, tol {:e}, max-iter {}",
+            "solving {}: {}, {}, {settings}",
             model.name,
             count(model.bodies.len(), "body", "bodies"),
             count(model.pairs.len(), "contact pair", "contact pairs"),
-            settings.scheme(),
-            settings.tol,
-            settings.max_iter
         );
         say!("{}", table.header());
     }
@@ -283,8 +280,16 @@ fn solve_outcome(sol: &contactdd_ddm::Solution, settings: &contactdd_ddm::Settin
         ),
         None => String::new(),
     };
+    let last = sol.history.last().map_or(String::new(), |r| {
+        format!(
+            ": {} {:.1e} ≤ tol {:e}",
+            settings.measure_name(),
+            r.measure,
+            settings.tol
+        )
+    });
     let done = format!(
-        "converged in {} iterations ({}{updates})",
+        "converged in {} iterations ({}{updates}){last}",
         sol.iterations,
         settings.scheme()
     );

@@ -48,10 +48,9 @@ pub fn run_steps(run: StepRun<'_>, prepared: &mut Prepared) -> Result<Exit> {
     } = run;
     if !quiet {
         say!(
-            "solving {} in {} load steps: {}",
+            "solving {} in {} load steps: {settings}",
             model.name,
             factors.len(),
-            settings.scheme()
         );
     }
     let count = factors.len();
@@ -108,8 +107,8 @@ pub fn run_steps(run: StepRun<'_>, prepared: &mut Prepared) -> Result<Exit> {
     }
 }
 
-/// `step 2/4, factor 0.5: converged in 3 iterations; pair: force (0, 4200), max |σn| 2647[;
-/// monitor (ux, uy)]` with the monitored displacement.
+/// `step 2/4, factor 0.5: converged in 3 iterations (relative residual 2.1e-12); pair: force
+/// (0, 4200), max |σn| 2647[; monitor (ux, uy)]` with the monitored displacement.
 fn step_line(
     k: usize,
     count: usize,
@@ -118,7 +117,12 @@ fn step_line(
     monitored: Option<[f64; 2]>,
 ) -> String {
     let state = if sol.converged {
-        format!("converged in {} iterations", sol.iterations)
+        let last = sol.history.last().map_or(f64::NAN, |r| r.measure);
+        format!(
+            "converged in {} iterations ({} {last:.1e})",
+            sol.iterations,
+            sol.settings.measure_name()
+        )
     } else {
         "NOT converged".into()
     };

@@ -142,10 +142,17 @@ fn solving_the_notch_example_succeeds_and_writes_every_result_file() {
     assert_eq!(csv.lines().count(), points + 1);
     let history = std::fs::read_to_string(res.join("history.csv")).unwrap();
     assert!(history.starts_with(
-        "k,gamma,rel_change_lower,rel_change_upper,active_lower,active_upper,\
+        "k,gamma,measure,rel_change_lower,rel_change_upper,active_lower,active_upper,\
          normal_force_lower,normal_force_upper\n"
     ));
     assert_eq!(history.lines().count(), iterations + 1);
+    // The notch names its method and γ: the paper's sweeps ran, and their stopping test held.
+    assert_eq!(summary["iteration"], "robin-sweeps");
+    assert_eq!(summary["stop_measure"], "relative change");
+    let last = summary["history"][iterations - 1]["measure"]
+        .as_f64()
+        .unwrap();
+    assert!(last <= summary["tol"].as_f64().unwrap(), "{last}");
 
     let nodes = summary["bodies"][0]["nodes"].as_u64().unwrap() as usize;
     check_vtu(&res.join("lower.vtu"), nodes);

@@ -24,6 +24,17 @@ pub(crate) fn relative_change(interface: &Interface, a: &[f64], b: &[f64]) -> Ve
         .collect()
 }
 
+/// The largest of `values`; NaN if any is NaN (a non-finite state never passes a test).
+pub(crate) fn largest(values: impl IntoIterator<Item = f64>) -> f64 {
+    values.into_iter().fold(0.0f64, |m, v| {
+        if v.is_nan() || m.is_nan() {
+            f64::NAN
+        } else {
+            m.max(v)
+        }
+    })
+}
+
 /// ‖a − b‖/‖a‖ over the points `range` (‖a − b‖ if a = 0).
 pub(crate) fn body_change(range: Range<usize>, a: &[f64], b: &[f64]) -> f64 {
     let (mut diff, mut norm) = (0.0, 0.0);

@@ -23,8 +23,12 @@ pub enum Breakdown {
 pub struct Record {
     /// Iteration number k (1-based: the record of the k-th solve).
     pub k: usize,
-    /// γ^k used.
+    /// The Robin sweeps: γ^k used. The interface Newton method: the step length α.
     pub gamma: f64,
+    /// What the iteration's stopping test compares with the tolerance after this iteration
+    /// ([`crate::settings::Settings::measure_name`]): the largest relative change of a body for
+    /// the sweeps (scaled as the test scales it), the relative residual of the Newton method.
+    pub measure: f64,
     /// ‖u^{k}_n − u^{k−1}_n‖ / ‖u^{k}_n‖ per body.
     pub rel_change: Vec<f64>,
     /// Number of penetrating (closed) contact points per body after the update.

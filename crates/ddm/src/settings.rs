@@ -128,6 +128,24 @@ impl Settings {
         }
     }
 
+    /// The iteration that runs, as one word: `interface-newton` or `robin-sweeps`.
+    pub fn iteration(&self) -> &'static str {
+        match self.accelerator {
+            Accelerator::Newton => "interface-newton",
+            Accelerator::None | Accelerator::Anderson { .. } => "robin-sweeps",
+        }
+    }
+
+    /// What the iteration's stopping test compares with `tol` (a record's
+    /// [`crate::outcome::Record::measure`]).
+    pub fn measure_name(&self) -> &'static str {
+        match self.accelerator {
+            Accelerator::Newton => "relative residual",
+            Accelerator::None => "relative change",
+            Accelerator::Anderson { .. } => "relative residual of the sweep",
+        }
+    }
+
     /// The iteration in words: `interface newton`, or the method and γ rule, with the accelerator
     /// and coarse mode when used.
     pub fn scheme(&self) -> String {
@@ -266,6 +284,20 @@ impl Settings {
             Gamma::Constant(g) => Some(g),
             Gamma::Auto => None,
         }
+    }
+}
+
+/// The one description of the settings that every interface prints: the iteration (with the
+/// method, γ, accelerator and coarse mode of the sweeps), the tolerance and the iteration cap.
+impl std::fmt::Display for Settings {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(
+            f,
+            "{}, tol {:e}, max-iter {}",
+            self.scheme(),
+            self.tol,
+            self.max_iter
+        )
     }
 }
 

@@ -162,6 +162,9 @@ pub struct Solution {
     pub gap_tol: Option<f64>,
     /// The stopping tolerance the solve used (`Settings::tol`).
     pub tol: f64,
+    /// The settings of the solve; their `Display` is the description of the solver that the
+    /// console, `check`, `summary.json` and Python print.
+    pub settings: Settings,
     /// The final interface loads T of the contact points (a warm start for another solve of the
     /// same prepared model: [`crate::solver::solve_from`]).
     pub interface_loads: Vec<f64>,

@@ -113,6 +113,7 @@ pub fn solve_from(
         updates,
         gap_tol,
         tol: settings.tol,
+        settings: settings.clone(),
         interface_loads: outcome.t_load,
         condensation: prepared.paths.clone(),
         timing,

@@ -33,15 +33,16 @@ pub fn pairs_csv(pairs: &[PairResult]) -> String {
 }
 
 /// `history.csv`: one row per iteration, header
-/// `k,gamma,rel_change_<body>…,active_<body>…,normal_force_<body>…` (`normal_force` is
+/// `k,gamma,measure,rel_change_<body>…,active_<body>…,normal_force_<body>…` (`measure`: what the
+/// stopping test compares with the tolerance; `normal_force` is
 /// Σ w |σ_n| over the body's contact points, see docs/outputs.md).
 pub fn history_csv(sol: &Solution) -> String {
-    let mut header = vec!["k".to_string(), "gamma".into()];
+    let mut header = vec!["k".to_string(), "gamma".into(), "measure".into()];
     for prefix in ["rel_change", "active", "normal_force"] {
         header.extend(sol.bodies.iter().map(|b| format!("{prefix}_{}", b.name)));
     }
     let rows = sol.history.iter().map(|r| {
-        let mut row = vec![r.k.to_string(), num(r.gamma)];
+        let mut row = vec![r.k.to_string(), num(r.gamma), num(r.measure)];
         row.extend(r.rel_change.iter().map(|&x| num(x)));
         row.extend(r.active.iter().map(|a| a.to_string()));
         row.extend(r.contact_force.iter().map(|&f| num(f)));

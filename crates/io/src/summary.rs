@@ -13,13 +13,16 @@
 //! | `converged` | true if every body met the tolerance and the result is in equilibrium      |
 //! | `stop`      | how the iteration ended ([`stop_name`]: `converged`, `max-iterations`, …)  |
 //! | `iterations`| iterations taken (m)                                                       |
-//! | `method`    | method name (`newton-kurchatov`, …)                                         |
+//! | `iteration` | the iteration that ran: `interface-newton` or `robin-sweeps`               |
+//! | `solver`    | the settings in words, as the console, `contactdd check` and Python say them |
+//! | `stop_measure` | what the stopping test compares with `tol` (history's `measure`)        |
+//! | `method`    | the sweeps' method name (`newton-kurchatov`, …; unused by the Newton method) |
 //! | `gamma`     | the constant γ, or `"auto"`                                                |
 //! | `theta`     | penalty θ per contact pair                                                 |
 //! | `message`   | `null` when converged, else why not                                        |
 //! | `equilibrium` | per body, the equilibrium residual (contact forces of the fields against those of the pressures, relative to the total contact force) |
 //! | `accelerator`, `coarse` | the accelerator and coarse mode used                           |
-//! | `history`   | per iteration `{k, gamma, rel_change, active, normal_force}` (per body)    |
+//! | `history`   | per iteration `{k, gamma, measure, rel_change, active, normal_force}`; `gamma` is the Newton method's step length |
 //! | `bodies`    | per body `{name, nodes, elements, dofs, order, applied_load, condensation}` |
 //! | `contact`   | per pair `{name, bodies, body, node, x, y, gap, pressure, status, weight, normal, force}` |
 //! | `reactions` | per body `{body, supports: [{boundary, force}], total}` ([`reactions_json`]) |
@@ -85,6 +88,7 @@ pub fn summary_json_with(model: &Model, sol: &Solution, reactions: &[BodyReactio
             json!({
                 "k": r.k,
                 "gamma": json_number(r.gamma),
+                "measure": json_number(r.measure),
                 "rel_change": json_numbers(&r.rel_change),
                 "active": r.active,
                 "normal_force": json_numbers(&r.contact_force),
@@ -100,6 +104,9 @@ pub fn summary_json_with(model: &Model, sol: &Solution, reactions: &[BodyReactio
         "converged": sol.converged,
         "stop": stop_name(&sol.stop),
         "iterations": sol.iterations,
+        "iteration": sol.settings.iteration(),
+        "solver": sol.settings.to_string(),
+        "stop_measure": sol.settings.measure_name(),
         "tol": json_number(sol.tol),
         "method": sol.method.name(),
         "gamma": gamma_json(sol.gamma),

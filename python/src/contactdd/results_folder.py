@@ -207,18 +207,24 @@ def _contact(pair: dict[str, Any], folder: Path) -> Contact:
 
 
 def _history(path: Path, names: list[str]) -> dict[str, np.ndarray]:
-    """``history.csv``: k, gamma, then rel_change, active and normal_force per body."""
-    rows = list(csv.reader(_read_text(path).splitlines()))[1:]
+    """``history.csv``: k, gamma, measure, then rel_change, active and normal_force per body."""
+    lines = list(csv.reader(_read_text(path).splitlines()))
+    columns = ["k", "gamma", "measure"] + [f"{prefix}_{n}" for prefix in
+                                           ("rel_change", "active", "normal_force") for n in names]
+    if not lines or lines[0] != columns:
+        raise ContactddError(f"{path}: expected the header {','.join(columns)}")
+    rows = lines[1:]
     nb = len(names)
-    if any(len(r) != 2 + 3 * nb for r in rows):
-        raise ContactddError(f"{path}: expected {2 + 3 * nb} columns for {nb} bodies")
-    table = np.array([[float(v) for v in r] for r in rows], dtype=np.float64).reshape(-1, 2 + 3 * nb)
+    if any(len(r) != len(columns) for r in rows):
+        raise ContactddError(f"{path}: expected {len(columns)} columns for {nb} bodies")
+    table = np.array([[float(v) for v in r] for r in rows], dtype=np.float64).reshape(-1, len(columns))
     return {
         "k": table[:, 0].astype(np.int64),
         "gamma": np.ascontiguousarray(table[:, 1]),
-        "rel_change": np.ascontiguousarray(table[:, 2:2 + nb]),
-        "active": table[:, 2 + nb:2 + 2 * nb].astype(np.int64),
-        "normal_force": np.ascontiguousarray(table[:, 2 + 2 * nb:]),
+        "measure": np.ascontiguousarray(table[:, 2]),
+        "rel_change": np.ascontiguousarray(table[:, 3:3 + nb]),
+        "active": table[:, 3 + nb:3 + 2 * nb].astype(np.int64),
+        "normal_force": np.ascontiguousarray(table[:, 3 + 2 * nb:]),
     }
 
 
@@ -232,6 +238,10 @@ def _result(summary: dict[str, Any], files: list[str], bodies: list[Body],
         for key in ["converged", "stop", "iterations", "message", "method", "updates"]
     }
     gamma = _key(summary, "gamma", folder)
+    state.update({
+        "iteration": _key(summary, "iteration", folder),
+        "solver": _key(summary, "solver", folder),
+    })
     state.update({
         "gamma": gamma if gamma == "auto" else _number(gamma),
         "theta": [_number(t) for t in _key(summary, "theta", folder)],

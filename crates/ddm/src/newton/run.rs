@@ -7,7 +7,7 @@ use super::algebra::norm;
 use super::step::Caches;
 use super::system::{Evaluation, System};
 use crate::exchange::share_slices;
-use crate::measures::{contact_summary, relative_change, starting_values};
+use crate::measures::{contact_summary, largest, relative_change, starting_values};
 use crate::outcome::{Breakdown, Hooks, Record, Stop};
 use crate::prepared::Prepared;
 use crate::settings::Settings;
@@ -148,7 +148,7 @@ impl<'s, 'a> Run<'s, 'a> {
                 }
                 Err(stop) => return (stop, k),
             };
-            let record = self.record(k, step.alpha, &step.next);
+            let record = self.record(k, &step);
             if let Some(f) = hooks.on_iteration {
                 f(&record);
             }
@@ -299,16 +299,34 @@ impl<'s, 'a> Run<'s, 'a> {
         }
     }
 
-    fn record(&self, k: usize, alpha: f64, next: &Evaluation) -> Record {
-        let interface = self.system.interface;
+    fn record(&self, k: usize, step: &Step) -> Record {
+        let (interface, next) = (self.system.interface, &step.next);
         let (active, contact_force) = contact_summary(interface, &next.s, self.system.bodies.len());
+        let rel_change = relative_change(interface, &next.u, &self.state.u);
         Record {
             k,
-            gamma: alpha,
-            rel_change: relative_change(interface, &next.u, &self.state.u),
+            gamma: step.alpha,
+            measure: self.measure(step, &rel_change),
+            rel_change,
             active,
             contact_force,
         }
+    }
+
+    /// What [`Run::converged`] compares with the tolerance: the relative residual ‖R̂‖/‖U‖ where
+    /// the step left the closed set as it was, or the largest relative change if that is smaller.
+    fn measure(&self, step: &Step, rel_change: &[f64]) -> f64 {
+        let (next, change) = (&step.next, largest(rel_change.iter().copied()));
+        if step.chi != self.state.closed || next.closed != step.chi {
+            return change;
+        }
+        let residual = norm(&next.scaled_residual(&self.system.rho));
+        let relative = if residual == 0.0 {
+            0.0
+        } else {
+            residual / norm(&next.u)
+        };
+        relative.min(change)
     }
 }
 

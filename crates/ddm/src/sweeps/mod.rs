@@ -189,6 +189,7 @@ impl<'a> Run<'a> {
         let record = Record {
             k,
             gamma,
+            measure: self.update.measure(&checks.rel_change),
             rel_change: checks.rel_change,
             active: checks.active,
             contact_force: checks.contact_force,

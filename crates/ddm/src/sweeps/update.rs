@@ -3,6 +3,7 @@
 
 use super::ranks::BodySums;
 use crate::anderson::Anderson;
+use crate::measures::largest;
 use crate::outcome::Record;
 use crate::relaxation::{Gamma, Relaxation};
 use crate::settings::{Accelerator, Settings};
@@ -80,13 +81,23 @@ impl Update {
 
     /// The stopping test on the record's relative changes.
     pub(super) fn converged(&self, record: &Record, tol: f64) -> bool {
-        // With an adaptive γ a tiny step must not pass for convergence: the change is judged as
-        // if γ were at least the starting value (for a constant γ this is the paper's criterion).
-        let scale = match self {
+        let scale = self.change_scale();
+        record.rel_change.iter().all(|&r| r * scale <= tol)
+    }
+
+    /// What [`Update::converged`] compares with the tolerance: the largest scaled change.
+    pub(super) fn measure(&self, rel_change: &[f64]) -> f64 {
+        let scale = self.change_scale();
+        largest(rel_change.iter().map(|&r| r * scale))
+    }
+
+    /// With an adaptive γ a tiny step must not pass for convergence: the change is judged as if
+    /// γ were at least the starting value (for a constant γ this is the paper's criterion).
+    fn change_scale(&self) -> f64 {
+        match self {
             Update::Relax(relax) => relax.convergence_scale(),
             Update::Anderson { .. } => 1.0,
-        };
-        record.rel_change.iter().all(|&r| r * scale <= tol)
+        }
     }
 
     /// Makes `buf.next` and `t` the next state (Anderson: from the accelerated combination unless
