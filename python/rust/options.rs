@@ -1,9 +1,10 @@
 //! The solver options of the Python API (the keyword arguments of `solve`, `solve_steps`,
-//! `sweep` and `Problem.solver`), checked as a `[solver]` table is, and γ between Python and Rust.
+//! `sweep` and `Problem.solver`: the keys of a `[solver]` table in snake_case), checked as a
+//! `[solver]` table is, and γ between Python and Rust.
 
 use pyo3::prelude::*;
 
-use contactdd_ddm::{Enforcement, Gamma, Method, Model, Settings, SetupError};
+use contactdd_ddm::{Condensation, Enforcement, Gamma, Method, Model, Settings, SetupError};
 use contactdd_io::problem::{AcceleratorSpec, CoarseSpec, EnforcementSpec, GammaSpec, SolverSpec};
 use contactdd_io::setup;
 
@@ -44,6 +45,12 @@ pub struct SolverOptions {
     pub threads: Option<usize>,
     /// `gap_tol`: the augmented pairs' Signorini tolerance.
     pub gap_tol: Option<f64>,
+    /// `equilibrium_tol`: the largest equilibrium residual of a converged result.
+    pub equilibrium_tol: Option<f64>,
+    /// `max_updates`: the augmented pairs' cap on multiplier updates.
+    pub max_updates: Option<usize>,
+    /// `condensation`: `"auto"`, `"dense"` or `"sparse"`.
+    pub condensation: Option<String>,
     /// `enforcement`: `"penalty"` or `"augmented"` for every pair (a model option, not a
     /// setting).
     pub enforcement: Option<String>,
@@ -73,6 +80,12 @@ impl SolverOptions {
             .map(from_name)
             .transpose()
             .map_err(|e| solver_error("coarse", e))?;
+        let condensation: Option<Condensation> = self
+            .condensation
+            .as_deref()
+            .map(from_name)
+            .transpose()
+            .map_err(|e| solver_error("condensation", e))?;
         let spec = SolverSpec {
             method,
             gamma: self.gamma.as_ref().map(gamma_spec).transpose()?,
@@ -84,6 +97,9 @@ impl SolverOptions {
             u_prev: self.u_prev,
             threads: self.threads,
             gap_tol: self.gap_tol,
+            equilibrium_tol: self.equilibrium_tol,
+            max_updates: self.max_updates,
+            condensation,
             ..SolverSpec::default()
         };
         setup::settings(&spec, base).map_err(setup_error)

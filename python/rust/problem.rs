@@ -18,7 +18,8 @@ use contactdd_core::gmsh::parse_msh_surface;
 use contactdd_core::{Material, Order, Plane, Vector, DIM};
 use contactdd_ddm::{Model, Settings, SetupError};
 use contactdd_io::problem::{
-    BodySpec, ContactSpec, MaterialSpec, MeshSpec, PenaltySpec, Problem as ProblemSpec, SolverSpec,
+    BodySpec, ContactSpec, LoadStepsSpec, MaterialSpec, MeshSpec, MonitorSpec, PenaltySpec,
+    Problem as ProblemSpec, SolverSpec,
 };
 use contactdd_io::setup::{self, ModelBuilder};
 use contactdd_io::write_problem;
@@ -31,6 +32,7 @@ use crate::schema::{
     absolute_mesh_paths, body_error, boundary_edges, indices, inline_spec, node_set_indices,
     pair_option, specs,
 };
+use crate::steps::{self, load_steps_spec, load_steps_to_py, monitor_spec, monitor_to_py};
 
 /// A contact problem: materials, bodies, contact pairs and default solver settings.
 ///
@@ -127,6 +129,21 @@ impl Problem {
         let model = options.enforce(self.model()?)?;
         let settings = options.apply(&self.settings)?;
         Ok((model, settings, options.threads_or(self.threads)))
+    }
+
+    /// The problem's load steps (the `load-steps` key of its `[solver]` table), if any.
+    pub fn load_steps(&self) -> Option<&LoadStepsSpec> {
+        self.spec.solver.load_steps.as_ref()
+    }
+
+    /// The problem's monitored boundary (the `monitor` key of its `[solver]` table), if any.
+    pub fn monitor(&self) -> Option<&MonitorSpec> {
+        self.spec.solver.monitor.as_ref()
+    }
+
+    /// The problem's units note (`units` of a problem file), for the result files.
+    pub fn units(&self) -> Option<&str> {
+        self.spec.units.as_deref()
     }
 }
 
@@ -464,9 +481,10 @@ impl Problem {
         Ok(())
     }
 
-    /// Sets the default solver settings of the problem (the ``[solver]`` table of a problem
-    /// file); arguments left at ``None`` keep their value. :func:`solve` and :func:`sweep` can
-    /// still override each of them.
+    /// Sets the default solver settings of the problem: the ``[solver]`` table of a problem
+    /// file, one keyword per key (``max-iter`` is ``max_iter``, ...). Arguments left at ``None``
+    /// keep their value. :func:`solve`, :func:`solve_steps` and :func:`sweep` can still override
+    /// each of them.
     ///
     /// Args:
     ///     method: ``"neumann"``, ``"robin"``, ``"active-set"``, ``"newton-chord"`` or
@@ -483,7 +501,21 @@ impl Problem {
     ///     coarse: the rigid-body coarse correction: ``"chains"`` (floating bodies that touch
     ///         each other), ``"all"`` or ``"off"``. A constant ``gamma`` alone selects the
     ///         paper's one-level iteration (no accelerator, coarse ``"off"``).
-    #[pyo3(signature = (method = None, gamma = None, tol = None, max_iter = None, u0 = None, u_prev = None, threads = None, accelerator = None, coarse = None))]
+    ///     equilibrium_tol: a result counts as converged only if every body's contact forces
+    ///         match its contact pressures to this fraction of the total contact force
+    ///         (default 1e-2).
+    ///     gap_tol: augmented pairs: the largest violation of the Signorini conditions of a
+    ///         converged result, a length.
+    ///     max_updates: augmented pairs: the cap on multiplier updates (default 100).
+    ///     load_steps: a number N of equal steps (load factors 1/N, …, 1) or the list of load
+    ///         factors, run by :func:`solve_steps`; :func:`solve` refuses a problem with load
+    ///         steps (other than the single factor 1).
+    ///     monitor: the boundary whose mean displacement each result reports
+    ///         (``Result.monitor``): ``{"body": name, "boundary": name}`` or
+    ///         ``(body, boundary)``.
+    ///     condensation: ``"auto"`` (the default), ``"dense"`` or ``"sparse"``: how each body
+    ///         answers for its contact points (the results agree, the costs differ).
+    #[pyo3(signature = (method = None, gamma = None, tol = None, max_iter = None, u0 = None, u_prev = None, threads = None, accelerator = None, coarse = None, equilibrium_tol = None, gap_tol = None, max_updates = None, load_steps = None, monitor = None, condensation = None))]
     #[allow(clippy::too_many_arguments)]
     fn solver(
         &mut self,
@@ -496,6 +528,12 @@ impl Problem {
         threads: Option<usize>,
         accelerator: Option<String>,
         coarse: Option<String>,
+        equilibrium_tol: Option<f64>,
+        gap_tol: Option<f64>,
+        max_updates: Option<usize>,
+        load_steps: Option<&Bound<'_, PyAny>>,
+        monitor: Option<&Bound<'_, PyAny>>,
+        condensation: Option<String>,
     ) -> PyResult<()> {
         let options = SolverOptions {
             method,
@@ -507,11 +545,28 @@ impl Problem {
             u0,
             u_prev,
             threads,
-            ..SolverOptions::default()
+            gap_tol,
+            equilibrium_tol,
+            max_updates,
+            condensation,
+            enforcement: None,
         };
-        self.settings = options.apply(&self.settings)?;
+        let settings = options.apply(&self.settings)?;
+        // Every value is checked before any is kept.
+        let load_steps = load_steps.map(load_steps_spec).transpose()?;
+        let monitor = monitor.map(monitor_spec).transpose()?;
+        if let Some(m) = &monitor {
+            steps::monitor(self.model.bodies(), m)?;
+        }
+        self.settings = settings;
         if threads.is_some() {
             self.threads = threads;
+        }
+        if load_steps.is_some() {
+            self.spec.solver.load_steps = load_steps;
+        }
+        if monitor.is_some() {
+            self.spec.solver.monitor = monitor;
         }
         Ok(())
     }
@@ -569,8 +624,11 @@ impl Problem {
         self.model.pairs().iter().map(|p| p.name.clone()).collect()
     }
 
-    /// Default solver settings: ``method``, ``gamma``, ``tol``, ``max_iter``, ``u0``,
-    /// ``u_prev``, ``threads``.
+    /// Default solver settings, the keys of :meth:`solver`: ``method``, ``gamma``, ``tol``,
+    /// ``max_iter``, ``u0``, ``u_prev``, ``threads``, ``accelerator``, ``coarse``,
+    /// ``equilibrium_tol``, ``gap_tol``, ``max_updates``, ``load_steps``, ``monitor`` and
+    /// ``condensation`` (``None`` where unset: ``threads``, ``gap_tol``, ``load_steps``,
+    /// ``monitor``).
     #[getter]
     fn settings<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
         let s = &self.settings;
@@ -582,6 +640,24 @@ impl Problem {
         d.set_item("u0", s.u0)?;
         d.set_item("u_prev", s.u_prev)?;
         d.set_item("threads", self.threads)?;
+        // The remaining keys as a problem file writes them.
+        let written = write_problem::solver_spec(s, self.threads, &self.spec.solver);
+        d.set_item("accelerator", written.accelerator.as_ref().map(name_of))?;
+        d.set_item("coarse", written.coarse.as_ref().map(name_of))?;
+        d.set_item("equilibrium_tol", s.equilibrium_tol)?;
+        d.set_item("gap_tol", s.gap_tol)?;
+        d.set_item("max_updates", s.max_updates)?;
+        let steps = written.load_steps.as_ref();
+        d.set_item(
+            "load_steps",
+            steps.map(|l| load_steps_to_py(py, l)).transpose()?,
+        )?;
+        let monitor = written.monitor.as_ref();
+        d.set_item(
+            "monitor",
+            monitor.map(|m| monitor_to_py(py, m)).transpose()?,
+        )?;
+        d.set_item("condensation", s.condensation.to_string())?;
         Ok(d)
     }
 

@@ -87,7 +87,7 @@ const CONTACT_STATE: [&str; 16] = [
 ];
 
 /// The attributes of a [`SolveResult`] in its state dict (with `summary`).
-const RESULT_STATE: [&str; 16] = [
+const RESULT_STATE: [&str; 17] = [
     "converged",
     "stop",
     "iterations",
@@ -104,6 +104,7 @@ const RESULT_STATE: [&str; 16] = [
     "updates",
     "gap_tol",
     "load_factor",
+    "monitor",
 ];
 
 /// The attributes of a [`MonolithicResult`] in its state dict (with `summary`).
@@ -426,6 +427,10 @@ pub struct SolveResult {
     /// The load factor of this solve (1.0 unless it is a step of :func:`solve_steps`).
     #[pyo3(get)]
     load_factor: f64,
+    /// The mean displacement ``(ux, uy)`` of the monitored boundary (the ``monitor`` setting),
+    /// or ``None`` without one.
+    #[pyo3(get)]
+    monitor: Option<(f64, f64)>,
     origin: Origin<Solution>,
 }
 
@@ -475,6 +480,7 @@ impl SolveResult {
             updates: sol.updates,
             gap_tol: sol.gap_tol,
             load_factor: 1.0,
+            monitor: None,
             origin: Origin::Solved {
                 model,
                 solution: Arc::new(sol),
@@ -486,6 +492,14 @@ impl SolveResult {
     pub fn at_load_factor(self, factor: f64) -> SolveResult {
         SolveResult {
             load_factor: factor,
+            ..self
+        }
+    }
+
+    /// The result with the mean displacement of the monitored boundary.
+    pub fn with_monitor(self, monitor: Option<[f64; 2]>) -> SolveResult {
+        SolveResult {
+            monitor: monitor.map(|[ux, uy]| (ux, uy)),
             ..self
         }
     }
@@ -557,6 +571,11 @@ impl SolveResult {
             updates: get(state, "updates")?.extract()?,
             gap_tol: get(state, "gap_tol")?.extract()?,
             load_factor: get(state, "load_factor")?.extract()?,
+            // A result folder read back names no monitored value.
+            monitor: match state.get_item("monitor")? {
+                Some(m) => m.extract()?,
+                None => None,
+            },
             origin: Origin::Saved {
                 summary: get(state, "summary")?.unbind(),
             },

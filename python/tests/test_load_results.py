@@ -39,7 +39,9 @@ def test_notch(notch, tmp_path):
 
 def test_p2_three_bodies_without_partners(tmp_path):
     """cylinder_plates: P2, three bodies, points without a partner (infinite gap)."""
-    result = contactdd.solve(contactdd.Problem.from_toml(REPO / "examples" / "cylinder_plates.toml"))
+    problem = contactdd.Problem.from_toml(REPO / "examples" / "cylinder_plates.toml")
+    problem.solver(load_steps=1)  # one solve at the full load instead of the file's 5 steps
+    result = contactdd.solve(problem)
     assert any("no-partner" in c.status for c in result.contact)
     assert_same_result(result, written_and_loaded(result, tmp_path))
 

@@ -36,7 +36,8 @@ def cylinder_plates(add_body, reference):
                   name="lower-cylinder")
     p.add_contact(("cylinder", "upper"), ("cyl-top", "upper-bottom"), theta=8e-9,
                   name="cylinder-upper")
-    p.solver(u0=reference.settings["u0"], u_prev=reference.settings["u_prev"])
+    p.solver(u0=reference.settings["u0"], u_prev=reference.settings["u_prev"],
+             monitor=reference.settings["monitor"])
     return p
 
 
@@ -45,6 +46,7 @@ def from_file():
     if not EXAMPLE.is_file():
         pytest.skip(f"{EXAMPLE} does not exist")
     problem = contactdd.Problem.from_toml(EXAMPLE)
+    problem.solver(load_steps=1)  # one solve at the full load instead of the file's 5 steps
     return problem, contactdd.solve(problem)
 
 

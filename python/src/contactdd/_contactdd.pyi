@@ -30,8 +30,11 @@ METHODS: list[str]
 # One of METHODS: "neumann", "robin", "active-set", "newton-chord", "newton-kurchatov".
 _MethodName = str
 _GammaValue = Union[float, Literal["auto"]]
-_AcceleratorName = Literal["none", "anderson"]
+_AcceleratorName = Literal["newton", "none", "anderson"]
 _CoarseName = Literal["off", "chains", "all"]
+_CondensationName = Literal["auto", "dense", "sparse"]
+_EnforcementName = Literal["penalty", "augmented"]
+_LoadSteps = Union[int, Sequence[float]]
 _StrPath = Union[str, "PathLike[str]"]
 _ArrayLikeFloat = npt.ArrayLike
 _ArrayLikeInt = npt.ArrayLike
@@ -66,6 +69,13 @@ class _GapDict(TypedDict, total=False):
     along: Literal["x", "y"]
     value: float
 
+class _MonitorDict(TypedDict):
+    body: str
+    boundary: str
+
+# A monitored boundary: {"body": ..., "boundary": ...} (the problem file's table) or (body, boundary).
+_Monitor = Union[_MonitorDict, Tuple[str, str]]
+
 class _SettingsDict(TypedDict):
     method: str
     gamma: _GammaValue
@@ -74,6 +84,14 @@ class _SettingsDict(TypedDict):
     u0: float
     u_prev: float
     threads: Optional[int]
+    accelerator: str
+    coarse: str
+    equilibrium_tol: float
+    gap_tol: Optional[float]
+    max_updates: int
+    load_steps: Optional[Union[int, list[float]]]
+    monitor: Optional[_MonitorDict]
+    condensation: str
 
 class _SweepRecord(TypedDict):
     method: str
@@ -176,8 +194,15 @@ class Problem:
         threads: Optional[int] = None,
         accelerator: Optional[_AcceleratorName] = None,
         coarse: Optional[_CoarseName] = None,
+        equilibrium_tol: Optional[float] = None,
+        gap_tol: Optional[float] = None,
+        max_updates: Optional[int] = None,
+        load_steps: Optional[_LoadSteps] = None,
+        monitor: Optional[_Monitor] = None,
+        condensation: Optional[_CondensationName] = None,
     ) -> None:
-        """Sets the default solver settings (None keeps a value)."""
+        """Sets the default solver settings, one keyword per key of a [solver] table (None
+        keeps a value)."""
     def boundaries(self, body: str) -> list[str]:
         """The names of the boundaries (and node sets) of a body."""
     @property
@@ -303,6 +328,9 @@ class Result:
     @property
     def load_factor(self) -> float:
         """The load factor (1.0 unless a step of solve_steps)."""
+    @property
+    def monitor(self) -> Optional[Tuple[float, float]]:
+        """The mean displacement (ux, uy) of the monitored boundary, or None without one."""
     def write_vtu(self, directory: _StrPath) -> list[str]:
         """Writes summary.json, contact.csv, history.csv and one VTU file per body (not for a
         result unpickled or read by load_results: ContactddError)."""
@@ -340,25 +368,43 @@ def solve(
     check: bool = True,
     accelerator: Optional[_AcceleratorName] = None,
     coarse: Optional[_CoarseName] = None,
-    enforcement: Optional[Literal["penalty", "augmented"]] = None,
+    enforcement: Optional[_EnforcementName] = None,
     gap_tol: Optional[float] = None,
     progress: Optional[Callable[[dict[str, Any]], object]] = None,
+    equilibrium_tol: Optional[float] = None,
+    max_updates: Optional[int] = None,
+    condensation: Optional[_CondensationName] = None,
+    monitor: Optional[_Monitor] = None,
+    out: Optional[_StrPath] = None,
 ) -> Result:
-    """Solves a contact problem by the penalty Robin domain decomposition (GIL released);
-    progress(record) is called after every iteration."""
+    """Solves a contact problem by the penalty Robin domain decomposition, once at the full load
+    (GIL released); progress(record) is called after every iteration. A problem with load steps
+    raises ContactddError: run them with solve_steps."""
 
 def solve_steps(
     problem: Problem,
-    load_steps: Union[int, Sequence[float]],
+    load_steps: Optional[_LoadSteps] = None,
     tol: Optional[float] = None,
     max_iter: Optional[int] = None,
     threads: Optional[int] = None,
     check: bool = True,
     accelerator: Optional[_AcceleratorName] = None,
-    enforcement: Optional[Literal["penalty", "augmented"]] = None,
+    enforcement: Optional[_EnforcementName] = None,
     gap_tol: Optional[float] = None,
+    method: Optional[_MethodName] = None,
+    gamma: Optional[_GammaValue] = None,
+    coarse: Optional[_CoarseName] = None,
+    u0: Optional[float] = None,
+    u_prev: Optional[float] = None,
+    equilibrium_tol: Optional[float] = None,
+    max_updates: Optional[int] = None,
+    condensation: Optional[_CondensationName] = None,
+    monitor: Optional[_Monitor] = None,
+    out: Optional[_StrPath] = None,
+    progress: Optional[Callable[[dict[str, Any]], object]] = None,
 ) -> list[Result]:
-    """Solves at increasing load factors, each step from the last; one Result per step."""
+    """Solves at increasing load factors (default: the problem's load steps), each step from the
+    last; one Result per step."""
 
 def sweep(
     problem: Problem,
@@ -374,8 +420,16 @@ def sweep(
     """Runs every method with every γ on one preparation of the problem, in parallel (GIL
     released; Ctrl-C raises KeyboardInterrupt); progress(record) is called as each run ends."""
 
-def monolithic(problem: Problem) -> MonolithicResult:
-    """Solves the same penalty problem monolithically (semismooth Newton)."""
+def monolithic(
+    problem: Problem,
+    threads: Optional[int] = None,
+    max_steps: Optional[int] = None,
+    enforcement: Optional[_EnforcementName] = None,
+    gap_tol: Optional[float] = None,
+    out: Optional[_StrPath] = None,
+) -> MonolithicResult:
+    """Solves the same problem monolithically (semismooth Newton), with the options of
+    contactdd monolithic."""
 
 def notch_benchmark(nx: int = 32, ny: int = 16, order: Literal["p1", "p2"] = "p1") -> Problem:
     """The paper's two-body notch benchmark as a Problem (at most 4 000 000 cells per block)."""
