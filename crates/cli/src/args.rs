@@ -163,11 +163,11 @@ pub struct MonolithicArgs {
 /// `contactdd plot`.
 #[derive(Debug, Args)]
 pub struct PlotArgs {
-    /// A result folder (of `solve` or `monolithic`: summary.json, contact.csv, …) or the CSV of a
-    /// sweep.
+    /// A result folder (of `solve` or `monolithic`: summary.json, contact.csv, …), its
+    /// summary.json, or the CSV of a sweep.
     pub results: PathBuf,
     /// Output folder [default: RESULTS/plots for a folder, the CSV's own folder for a sweep].
-    #[arg(long, value_name = "DIR")]
+    #[arg(long, short, value_name = "DIR")]
     pub out: Option<PathBuf>,
     /// Image formats, comma-separated.
     #[arg(
@@ -189,6 +189,9 @@ pub struct PlotArgs {
     /// `units`].
     #[arg(long, value_name = "U")]
     pub units: Option<String>,
+    /// Print only one final line (not one line per file written).
+    #[arg(long, short)]
+    pub quiet: bool,
 }
 
 /// An image format of `contactdd plot`.

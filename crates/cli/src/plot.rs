@@ -1,66 +1,108 @@
 //! `contactdd plot`: figures from a result folder (contact pressure, gap and status, convergence
-//! history, load steps, the deformed bodies coloured by von Mises stress) or from the CSV of a sweep (iterations against γ), as SVG and PNG.
+//! history, load steps, the deformed bodies coloured by von Mises stress) or from the CSV of a
+//! sweep (iterations against γ), as SVG and PNG. Only the files that `summary.json` lists are
+//! read, each a plain name in the folder and a regular file; figures are written only into the
+//! output folder, each atomically, never over anything but a regular file.
 
 use std::path::{Path, PathBuf};
 
 use anyhow::{Context, Result};
 
 use crate::args::PlotArgs;
-use crate::plot_data::{Summary, Table, Units};
+use crate::plot_data::{listed_file, monitor_name, Summary, Table, Units};
+use crate::plot_history::History;
 use crate::{load, plot_contact, plot_history, plot_mesh, plot_steps, plot_sweep, Exit};
 
 /// `contactdd plot`.
 pub fn plot(args: PlotArgs) -> Result<Exit> {
-    let written = if args.results.is_file() {
-        sweep(&args)?
-    } else {
-        folder(&args)?
+    let (written, out) = match folder_of(&args.results) {
+        Some(dir) => folder(&args, &dir)?,
+        None => sweep(&args)?,
     };
-    for path in &written {
-        say!("wrote {}", path.display());
+    if args.quiet {
+        say!("wrote {} figure files to {}", written.len(), shown(&out));
+    } else {
+        for path in &written {
+            say!("wrote {}", path.display());
+        }
     }
     Ok(Exit::Success)
 }
 
-/// The figures of a result folder, into `--out` (default `RESULTS/plots`).
-fn folder(args: &PlotArgs) -> Result<Vec<PathBuf>> {
-    let dir = &args.results;
+/// The result folder that `results` names: a folder, or the folder of a `summary.json` given
+/// as a file; `None` for any other file (the CSV of a sweep).
+fn folder_of(results: &Path) -> Option<PathBuf> {
+    if !results.is_file() {
+        return Some(results.to_path_buf());
+    }
+    if results.file_name()? != "summary.json" {
+        return None;
+    }
+    Some(
+        results
+            .parent()
+            .map_or_else(PathBuf::new, Path::to_path_buf),
+    )
+}
+
+/// A folder for a message: `.` for the current one.
+fn shown(dir: &Path) -> String {
+    if dir.as_os_str().is_empty() {
+        ".".into()
+    } else {
+        dir.display().to_string()
+    }
+}
+
+/// The figures of the result folder `dir`, into `--out` (default `dir/plots`); returns the
+/// files written and the folder.
+fn folder(args: &PlotArgs, dir: &Path) -> Result<(Vec<PathBuf>, PathBuf)> {
+    let dir = if dir.as_os_str().is_empty() {
+        Path::new(".")
+    } else {
+        dir
+    };
     let mut summary = Summary::read(dir)?;
     if let Some(file) = &args.problem {
         let loaded = load(file)?;
         // What the result records wins: a solve may have overridden the file's tol.
         summary.tol = summary.tol.or(Some(loaded.settings.tol));
         summary.units = summary.units.or(loaded.problem.units);
+        let monitor = loaded.problem.solver.monitor;
+        let named = monitor.map(|m| monitor_name(&m.body, &m.boundary));
+        summary.monitor = summary.monitor.or(named);
     }
     let units = Units::parse(args.units.as_deref().or(summary.units.as_deref()));
     let out = args.out.clone().unwrap_or_else(|| dir.join("plots"));
     create(&out)?;
     let mut written = Vec::new();
+    let table = |name: &str| Table::read(&listed_file(dir, name)?);
     if summary.has("contact.csv") {
-        let table = Table::read(&dir.join("contact.csv"))?;
+        let table = table("contact.csv")?;
         written.extend(plot_contact::figures(&table, &units, &out, &args.format)?);
     }
     if summary.has("history.csv") {
-        let table = Table::read(&dir.join("history.csv"))?;
-        let tol = args.tol.or(summary.tol);
-        written.extend(plot_history::figures(&table, tol, &out, &args.format)?);
+        let history = History {
+            table: table("history.csv")?,
+            bodies: &summary.bodies,
+            tol: args.tol.or(summary.tol),
+            steps: summary.steps,
+        };
+        written.extend(plot_history::figures(&history, &out, &args.format)?);
     }
     if summary.has("steps.csv") {
-        let table = Table::read(&dir.join("steps.csv"))?;
-        written.extend(plot_steps::figures(&table, &units, &out, &args.format)?);
+        let table = table("steps.csv")?;
+        let monitor = summary.monitor.as_deref();
+        let fig = plot_steps::figures(&table, &units, monitor, &out, &args.format)?;
+        written.extend(fig);
     }
-    written.extend(plot_mesh::figures(
-        dir,
-        &summary.files,
-        &units,
-        &out,
-        &args.format,
-    )?);
-    Ok(written)
+    let vtu = summary.listed(".vtu");
+    written.extend(plot_mesh::figures(dir, &vtu, &units, &out, &args.format)?);
+    Ok((written, out))
 }
 
 /// The figure of a sweep CSV, into `--out` (default: the CSV's folder), named after the CSV.
-fn sweep(args: &PlotArgs) -> Result<Vec<PathBuf>> {
+fn sweep(args: &PlotArgs) -> Result<(Vec<PathBuf>, PathBuf)> {
     let path = &args.results;
     let table = Table::read(path)?;
     let out = match &args.out {
@@ -71,7 +113,8 @@ fn sweep(args: &PlotArgs) -> Result<Vec<PathBuf>> {
     let stem = path
         .file_stem()
         .map_or_else(|| "sweep".into(), |s| s.to_string_lossy().into_owned());
-    plot_sweep::figures(&table, &out, &stem, &args.format)
+    let written = plot_sweep::figures(&table, &out, &stem, &args.format)?;
+    Ok((written, out))
 }
 
 fn create(dir: &Path) -> Result<()> {

@@ -92,6 +92,12 @@ pub struct Summary {
     pub units: Option<String>,
     /// The files of the result set (the reader's rule of docs/outputs.md).
     pub files: Vec<String>,
+    /// The bodies' names, in the order of the problem.
+    pub bodies: Vec<String>,
+    /// The number of load steps solved (0 without load steps).
+    pub steps: usize,
+    /// The monitored boundary as "top of upper", when the summary records it.
+    pub monitor: Option<String>,
 }
 
 impl Summary {
@@ -108,20 +114,73 @@ impl Summary {
             .with_context(|| format!("cannot read '{}'", path.display()))?;
         let json: Value = serde_json::from_str(&text)
             .with_context(|| format!("'{}' is not valid JSON", path.display()))?;
-        let files = json["files"]
-            .as_array()
-            .map(|a| a.iter().filter_map(|f| f.as_str().map(String::from)));
+        let strings = |v: &Value| -> Vec<String> {
+            v.as_array()
+                .map(|a| a.iter().filter_map(|f| f.as_str().map(String::from)))
+                .map(Iterator::collect)
+                .unwrap_or_default()
+        };
+        let bodies = json["bodies"].as_array().map(|a| {
+            a.iter()
+                .filter_map(|b| b["name"].as_str().map(String::from))
+                .collect()
+        });
+        let monitor = &json["monitor"];
+        let monitor = match (monitor["body"].as_str(), monitor["boundary"].as_str()) {
+            (Some(body), Some(boundary)) => Some(monitor_name(body, boundary)),
+            _ => None,
+        };
         Ok(Summary {
             tol: json["tol"].as_f64(),
             units: json["units"].as_str().map(String::from),
-            files: files.map(Iterator::collect).unwrap_or_default(),
+            files: strings(&json["files"]),
+            bodies: bodies.unwrap_or_default(),
+            steps: json["steps"].as_array().map_or(0, Vec::len),
+            monitor,
         })
     }
 
-    /// True if the result set lists `name`.
+    /// True if the result set lists `name` (a plain file name: the reader's rule ignores any
+    /// other, such as `../x` or `/etc/x`).
     pub fn has(&self, name: &str) -> bool {
-        self.files.iter().any(|f| f == name)
+        plain(name) && self.files.iter().any(|f| f == name)
     }
+
+    /// The listed files whose names end in `suffix`, plain file names only.
+    pub fn listed(&self, suffix: &str) -> Vec<String> {
+        let keep = |f: &&String| plain(f) && f.ends_with(suffix);
+        self.files.iter().filter(keep).cloned().collect()
+    }
+}
+
+/// How a monitored boundary is named on a figure: "top of upper".
+pub fn monitor_name(body: &str, boundary: &str) -> String {
+    format!("{boundary} of {body}")
+}
+
+/// True if `name` is a plain file name: one component, no folder, not `.` or `..`.
+fn plain(name: &str) -> bool {
+    let mut parts = Path::new(name).components();
+    matches!(
+        (parts.next(), parts.next()),
+        (Some(std::path::Component::Normal(_)), None)
+    ) && !name.contains(['/', '\\'])
+}
+
+/// `dir/name` for a file of the result set, checked to be a regular file (after links): a
+/// device, FIFO or folder under a listed name is refused rather than read (reading `/dev/zero`
+/// never ends, a FIFO may block).
+pub fn listed_file(dir: &Path, name: &str) -> Result<PathBuf> {
+    let path = dir.join(name);
+    let meta =
+        std::fs::metadata(&path).with_context(|| format!("cannot read '{}'", path.display()))?;
+    if !meta.is_file() {
+        bail!(
+            "'{}' is not a regular file; refusing to read it",
+            path.display()
+        );
+    }
+    Ok(path)
 }
 
 /// The axis units taken from a units note such as `"cm, N/cm^2"`.
@@ -153,14 +212,48 @@ impl Units {
         unit.map_or_else(|| name.to_string(), |u| format!("{name} ({u})"))
     }
 
-    /// The unit of a force in 2D (per unit thickness): stress × length.
+    /// The unit of a force in 2D (per unit thickness): stress × length, simplified where the
+    /// stress is a force per area of that length (`N/mm^2`·`mm` = `N/mm`) or a named unit
+    /// (`MPa`·`mm` = `N/mm`, `Pa`·`m` = `N/m`), else written as the product `stress·length`.
     pub fn force(&self) -> Option<String> {
-        Some(format!(
-            "{}·{}",
-            self.stress.as_deref()?,
-            self.length.as_deref()?
-        ))
+        let (stress, length) = (self.stress.as_deref()?, self.length.as_deref()?);
+        Some(force_unit(stress, length))
     }
+}
+
+/// Named stress units times a length: the force per length they make.
+const NAMED: [(&str, &str, &str); 9] = [
+    ("Pa", "m", "N/m"),
+    ("kPa", "m", "kN/m"),
+    ("MPa", "m", "MN/m"),
+    ("GPa", "m", "GN/m"),
+    ("MPa", "mm", "N/mm"),
+    ("GPa", "mm", "kN/mm"),
+    ("kPa", "mm", "N/m"),
+    ("psi", "in", "lbf/in"),
+    ("ksi", "in", "kip/in"),
+];
+
+/// The unit of stress × length (see [`Units::force`]).
+fn force_unit(stress: &str, length: &str) -> String {
+    if let Some((_, _, force)) = NAMED.iter().find(|(s, l, _)| *s == stress && *l == length) {
+        return (*force).to_string();
+    }
+    // "F/L^2" (or F/L², F/L2, F/(L^2)) times L is F/L.
+    if let Some((force, area)) = stress.rsplit_once('/') {
+        let area = area.trim();
+        let area = area
+            .strip_prefix('(')
+            .and_then(|a| a.strip_suffix(')'))
+            .unwrap_or(area);
+        let squared = ["^2", "²", "2"]
+            .iter()
+            .any(|two| area.strip_suffix(two).map(str::trim) == Some(length));
+        if squared && !force.trim().is_empty() {
+            return format!("{}/{length}", force.trim());
+        }
+    }
+    format!("{stress}·{length}")
 }
 
 #[cfg(test)]
@@ -193,8 +286,34 @@ mod tests {
     fn units_notes() {
         let u = Units::parse(Some("cm, N/cm^2"));
         assert_eq!(u.length.as_deref(), Some("cm"));
-        assert_eq!(u.force().as_deref(), Some("N/cm^2·cm"));
+        assert_eq!(u.force().as_deref(), Some("N/cm"));
         assert!(Units::parse(Some("SI")).length.is_none());
         assert!(Units::parse(None).stress.is_none());
+    }
+
+    #[test]
+    fn force_units_simplify_where_they_can() {
+        for (stress, length, force) in [
+            ("N/mm^2", "mm", "N/mm"),
+            ("N/mm²", "mm", "N/mm"),
+            ("kN/(m^2)", "m", "kN/m"),
+            ("MPa", "mm", "N/mm"),
+            ("Pa", "m", "N/m"),
+            ("MPa", "m", "MN/m"),
+            // No simplification known: the product, as it is.
+            ("N/cm^2", "mm", "N/cm^2·mm"),
+            ("MPa", "cm", "MPa·cm"),
+            ("/m^2", "m", "/m^2·m"),
+        ] {
+            assert_eq!(force_unit(stress, length), force, "{stress} × {length}");
+        }
+    }
+
+    #[test]
+    fn only_plain_names_are_listed() {
+        assert!(plain("contact.csv") && plain("a-step1.vtu"));
+        for name in ["../x.vtu", "/etc/x.vtu", "sub/x.vtu", ".", "..", ""] {
+            assert!(!plain(name), "{name}");
+        }
     }
 }

@@ -1,5 +1,6 @@
 //! The convergence figure of `contactdd plot`: each body's relative change per iteration from
-//! `history.csv`, on a log scale, with the stopping tolerance as a line.
+//! `history.csv`, on a log scale, with the stopping tolerance as a line. With load steps,
+//! `history.csv` holds the last step's iterations, and the caption says so.
 
 use std::path::{Path, PathBuf};
 
@@ -11,41 +12,81 @@ use crate::args::Format;
 use crate::plot_data::Table;
 use crate::plot_draw::{ok, render, series, Figure, Legend, Line, Look, Marker, COLORS};
 
-/// The `history` figure.
-pub fn figures(
-    table: &Table,
-    tol: Option<f64>,
-    out: &Path,
-    formats: &[Format],
-) -> Result<Vec<PathBuf>> {
+/// What the history figure is drawn from.
+pub struct History<'a> {
+    /// `history.csv`.
+    pub table: Table,
+    /// The bodies' names from summary.json: their `rel_change_<body>` columns are drawn (every
+    /// `rel_change_*` column when the summary names no body).
+    pub bodies: &'a [String],
+    /// The stopping tolerance, if known.
+    pub tol: Option<f64>,
+    /// The number of load steps (0 without): history.csv is the last step's.
+    pub steps: usize,
+}
+
+/// The `history` figure. Columns are found by name, so columns other than `k` and
+/// `rel_change_<body>` (whatever they are) are ignored.
+pub fn figures(history: &History, out: &Path, formats: &[Format]) -> Result<Vec<PathBuf>> {
+    let table = &history.table;
     let k = table.numbers("k")?;
+    let names: Vec<String> = if history.bodies.is_empty() {
+        let prefixed = table.header.iter();
+        let bodies = prefixed.filter_map(|h| h.strip_prefix("rel_change_"));
+        bodies.map(String::from).collect()
+    } else {
+        history.bodies.to_vec()
+    };
     let mut bodies = Vec::new();
-    for name in &table.header {
-        if let Some(body) = name.strip_prefix("rel_change_") {
-            let change = table.numbers(name)?;
-            // A log scale has no place for 0, NaN or infinity: those iterations are left out.
-            let pts: Vec<(f64, f64)> = k
-                .iter()
-                .zip(change)
-                .filter(|(_, c)| c.is_finite() && *c > 0.0)
-                .map(|(&k, c)| (k, c))
-                .collect();
-            bodies.push((body.to_string(), pts));
+    for body in names {
+        let column = format!("rel_change_{body}");
+        if table.column(&column).is_err() {
+            continue;
         }
+        let change = table.numbers(&column)?;
+        // A log scale has no place for 0, NaN or infinity: those iterations are left out.
+        let pts: Vec<(f64, f64)> = k
+            .iter()
+            .zip(change)
+            .filter(|(_, c)| c.is_finite() && *c > 0.0)
+            .map(|(&k, c)| (k, c))
+            .collect();
+        bodies.push((body, pts));
     }
     if bodies.is_empty() {
         bail!("'{}' has no rel_change_<body> column", table.path.display());
     }
-    render(&History { bodies, tol }, out, "history", formats)
+    let fig = Curves {
+        bodies,
+        tol: history.tol,
+        steps: history.steps,
+    };
+    render(&fig, out, "history", formats)
 }
 
 /// Relative change per body against the iteration.
-struct History {
+struct Curves {
     bodies: Vec<(String, Vec<(f64, f64)>)>,
     tol: Option<f64>,
+    steps: usize,
 }
 
-impl Figure for History {
+impl Curves {
+    /// The caption: which solve the curves are (the last of several load steps) and whether the
+    /// tolerance is known.
+    fn caption(&self) -> String {
+        let mut caption = "convergence history".to_string();
+        if self.steps > 1 {
+            caption += &format!(", load step {} (the last)", self.steps);
+        }
+        if self.tol.is_none() {
+            caption += " (tolerance unknown: --tol T draws it)";
+        }
+        caption
+    }
+}
+
+impl Figure for Curves {
     fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Result<()> {
         let pts = || self.bodies.iter().flat_map(|(_, p)| p.iter());
         let k_max = pts().map(|p| p.0).fold(1.0, f64::max);
@@ -58,10 +99,7 @@ impl Figure for History {
         } else {
             (1e-6, 1.0)
         };
-        let caption = match self.tol {
-            Some(_) => "convergence history".to_string(),
-            None => "convergence history (tolerance unknown: --tol T draws it)".to_string(),
-        };
+        let caption = self.caption();
         let mut legend = Legend::default();
         for (b, (name, _)) in self.bodies.iter().enumerate() {
             legend.add(name.clone(), body_look(b));

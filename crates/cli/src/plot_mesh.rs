@@ -1,7 +1,7 @@
-//! The deformed bodies of `contactdd plot`, each element coloured by its von Mises stress, read
-//! back from the bodies' `.vtu` files (the last load step's with load steps). The reader knows
-//! only what `crates/io/src/vtu.rs` writes: ASCII arrays, triangles (the corners of a quadratic
-//! triangle).
+//! The deformed bodies of `contactdd plot`, each element coloured by its von Mises stress, over
+//! the undeformed outlines, read back from the bodies' `.vtu` files (the last load step's with
+//! load steps). The reader knows only what `crates/io/src/vtu.rs` writes: ASCII arrays,
+//! triangles (the corners of a quadratic triangle).
 
 use std::ops::Range;
 use std::path::{Path, PathBuf};
@@ -11,7 +11,7 @@ use plotters::coord::Shift;
 use plotters::prelude::*;
 
 use crate::args::Format;
-use crate::plot_data::Units;
+use crate::plot_data::{listed_file, Units};
 use crate::plot_draw::{linear, ok, render, span, tick, Figure, Frame};
 
 /// Pixels right of the chart for the colour bar.
@@ -27,7 +27,7 @@ struct Body {
     cells: Vec<[usize; 3]>,
 }
 
-/// The `bodies` figure from the `.vtu` files among `files` (names in `dir`).
+/// The `bodies` figure from the `.vtu` files `files` (plain names in `dir`).
 pub fn figures(
     dir: &Path,
     files: &[String],
@@ -41,7 +41,7 @@ pub fn figures(
     }
     let mut bodies = Vec::new();
     for name in &names {
-        match read_body(&dir.join(name))? {
+        match read_body(&listed_file(dir, name)?)? {
             Some(body) => bodies.push(body),
             None => {
                 // Not an error of the folder: a field holding NaN (the iterate of a failed solve)
@@ -237,15 +237,18 @@ impl Figure for Bodies<'_> {
         let (w, h) = root.dim_in_pixel();
         let (left, right) = root.split_horizontally(w.saturating_sub(BAR_WIDTH));
         let corners = || {
-            self.bodies
+            let deformed = self
+                .bodies
                 .iter()
-                .flat_map(|b| b.triangles.iter().flatten())
+                .flat_map(|b| b.triangles.iter().flatten());
+            deformed.chain(self.bodies.iter().flat_map(|b| b.points.iter()))
         };
-        let stress = span(
+        let data = span(
             self.bodies.iter().flat_map(|b| b.stress.iter().copied()),
             0.0,
-            0.0..1.0,
+            0.0..0.0,
         );
+        let stress = colour_range(&data);
         let (x, y) = equal_aspect(
             span(corners().map(|p| p.0), 0.03, 0.0..1.0),
             span(corners().map(|p| p.1), 0.03, 0.0..1.0),
@@ -254,7 +257,7 @@ impl Figure for Bodies<'_> {
         let length = self.units.length.as_deref();
         let frame = Frame {
             caption: format!(
-                "von Mises stress, displacements × {}",
+                "von Mises stress, displacements × {} (red: undeformed)",
                 tick(self.scale, &(0.0..self.scale))
             ),
             x_label: Units::label("x", length),
@@ -269,8 +272,81 @@ impl Figure for Bodies<'_> {
             });
             ok(chart.draw_series(polys))?;
         }
-        colour_bar(&right, &stress, self.units)
+        let red = ShapeStyle::from(&RGBColor(200, 0, 0)).stroke_width(1);
+        for b in &self.bodies {
+            let lines = outline(&b.cells).into_iter().map(|path| {
+                let pts = path.into_iter().map(|i| b.points[i]).collect::<Vec<_>>();
+                PathElement::new(pts, red)
+            });
+            ok(chart.draw_series(lines))?;
+        }
+        colour_bar(&right, &stress, &data, self.units)
     }
+}
+
+/// The colour scale of stresses spanning `data`: the data's own range, unless it is narrow next
+/// to the values (a nearly uniform stress, 88.3 to 88.9), whose rounding noise would then paint
+/// stark bands; such a range is widened to start at 0. An empty or all-zero range is 0..1.
+fn colour_range(data: &Range<f64>) -> Range<f64> {
+    let (lo, hi) = (data.start, data.end);
+    if hi.is_nan() || hi <= 0.0 {
+        return 0.0..1.0;
+    }
+    if hi - lo < 0.25 * hi.abs().max(lo.abs()) {
+        0.0..hi
+    } else {
+        lo..hi
+    }
+}
+
+/// The boundary of a triangle mesh as paths of node indices: the edges that only one triangle
+/// has, chained end to end (a closed outline ends at its first node).
+fn outline(cells: &[[usize; 3]]) -> Vec<Vec<usize>> {
+    use std::collections::HashMap;
+    let mut count: HashMap<(usize, usize), usize> = HashMap::new();
+    for c in cells {
+        for (a, b) in [(c[0], c[1]), (c[1], c[2]), (c[2], c[0])] {
+            *count.entry((a.min(b), a.max(b))).or_default() += 1;
+        }
+    }
+    let mut next: HashMap<usize, Vec<usize>> = HashMap::new();
+    let mut edges: Vec<(usize, usize)> = count
+        .into_iter()
+        .filter(|&(_, n)| n == 1)
+        .map(|(e, _)| e)
+        .collect();
+    edges.sort_unstable();
+    for &(a, b) in &edges {
+        next.entry(a).or_default().push(b);
+        next.entry(b).or_default().push(a);
+    }
+    let mut paths = Vec::new();
+    for &(a, b) in &edges {
+        if !unlink(&mut next, a, b) {
+            continue;
+        }
+        let mut path = vec![a, b];
+        let mut at = b;
+        while let Some(&n) = next.get(&at).and_then(|v| v.first()) {
+            unlink(&mut next, at, n);
+            path.push(n);
+            at = n;
+        }
+        paths.push(path);
+    }
+    paths
+}
+
+/// Removes the edge a–b from `next`; false if it was already gone.
+fn unlink(next: &mut std::collections::HashMap<usize, Vec<usize>>, a: usize, b: usize) -> bool {
+    let mut drop = |from: usize, to: usize| {
+        next.get_mut(&from)
+            .and_then(|v| v.iter().position(|&x| x == to).map(|i| v.swap_remove(i)))
+            .is_some()
+    };
+    let found = drop(a, b);
+    drop(b, a);
+    found
 }
 
 /// Widens `x` or `y` about its centre so that one unit is as long on both axes, for a plotting
@@ -288,10 +364,12 @@ fn equal_aspect(x: Range<f64>, y: Range<f64>, aspect: f64) -> (Range<f64>, Range
     }
 }
 
-/// The colour bar of `range` with five labelled ticks, in `area`.
+/// The colour bar of `range` with five labelled ticks, in `area`, and below it the range of
+/// the stresses drawn (`data`).
 fn colour_bar<DB: DrawingBackend>(
     area: &DrawingArea<DB, Shift>,
     range: &Range<f64>,
+    data: &Range<f64>,
     units: &Units,
 ) -> Result<()> {
     let (top, bottom, steps) = (60, 400, 85);
@@ -314,7 +392,33 @@ fn colour_bar<DB: DrawingBackend>(
         ok(area.draw(&PathElement::new(vec![(30, y), (35, y)], BLACK)))?;
         ok(area.draw(&Text::new(tick(v, range), (38, y - 7), ("sans-serif", 13))))?;
     }
+    let lines = [
+        format!("min {}", significant(data.start)),
+        format!("max {}", significant(data.end)),
+    ];
+    for (i, line) in lines.into_iter().enumerate() {
+        let at = (0, bar_end + 14 + 17 * i as i32);
+        ok(area.draw(&Text::new(line, at, ("sans-serif", 13))))?;
+    }
     Ok(())
+}
+
+/// `v` to four significant digits, without trailing zeros (powers of ten beyond 1e5).
+fn significant(v: f64) -> String {
+    if v == 0.0 || !v.is_finite() {
+        return format!("{v}");
+    }
+    let magnitude = v.abs().log10().floor() as i32;
+    if !(-2..5).contains(&magnitude) {
+        return format!("{v:.3e}");
+    }
+    let decimals = (3 - magnitude).max(0) as usize;
+    let s = format!("{v:.decimals$}");
+    if s.contains('.') {
+        s.trim_end_matches('0').trim_end_matches('.').to_string()
+    } else {
+        s
+    }
 }
 
 #[cfg(test)]
@@ -337,6 +441,32 @@ mod tests {
             .map(String::from)
             .into();
         assert_eq!(last_step(&files), ["lower.vtu", "upper.vtu"]);
+    }
+
+    #[test]
+    fn a_narrow_stress_range_is_widened_to_zero() {
+        assert_eq!(colour_range(&(88.3..88.9)), 0.0..88.9);
+        assert_eq!(colour_range(&(734.0..3898.0)), 734.0..3898.0);
+        assert_eq!(colour_range(&(0.0..0.0)), 0.0..1.0);
+        assert_eq!(significant(88.3), "88.3");
+        assert_eq!(significant(3898.4), "3898");
+        assert_eq!(significant(0.012345), "0.01235");
+        assert_eq!(significant(2.5e6), "2.500e6");
+    }
+
+    #[test]
+    fn the_outline_is_the_boundary_of_the_mesh() {
+        // A square of two triangles: four boundary edges, the diagonal inside.
+        let paths = outline(&[[0, 1, 2], [0, 2, 3]]);
+        assert_eq!(paths.len(), 1);
+        let path = &paths[0];
+        assert_eq!(path.len(), 5, "{path:?}");
+        assert_eq!(path.first(), path.last());
+        let mut nodes = path[..4].to_vec();
+        nodes.sort_unstable();
+        assert_eq!(nodes, [0, 1, 2, 3]);
+        // Two separate triangles: two loops.
+        assert_eq!(outline(&[[0, 1, 2], [3, 4, 5]]).len(), 2);
     }
 
     #[test]

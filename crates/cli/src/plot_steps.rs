@@ -1,6 +1,7 @@
 //! The load-step figures of `contactdd plot`, from `steps.csv`: the load–displacement curve (the
 //! monitored displacement against each pair's resultant contact force) and the force against the
-//! load factor. Steps that did not converge are marked apart.
+//! load factor. Every curve starts at the unloaded state (0, 0); steps that did not converge are
+//! marked apart.
 
 use std::path::{Path, PathBuf};
 
@@ -24,10 +25,12 @@ struct Steps {
     forces: Vec<(String, Vec<f64>)>,
 }
 
-/// `load-displacement` (with a monitor) and `steps-force`.
+/// `load-displacement` (with a monitor) and `steps-force`; `monitor` names the monitored
+/// boundary ("top of upper") when known.
 pub fn figures(
     table: &Table,
     units: &Units,
+    monitor: Option<&str>,
     out: &Path,
     formats: &[Format],
 ) -> Result<Vec<PathBuf>> {
@@ -37,6 +40,7 @@ pub fn figures(
         let fig = StepFigure {
             steps: &steps,
             units,
+            monitor,
             against_factor: false,
         };
         written.extend(render(&fig, out, "load-displacement", formats)?);
@@ -44,6 +48,7 @@ pub fn figures(
     let fig = StepFigure {
         steps: &steps,
         units,
+        monitor,
         against_factor: true,
     };
     written.extend(render(&fig, out, "steps-force", formats)?);
@@ -101,19 +106,20 @@ fn read(table: &Table) -> Result<Steps> {
 struct StepFigure<'a> {
     steps: &'a Steps,
     units: &'a Units,
+    monitor: Option<&'a str>,
     against_factor: bool,
 }
 
 impl StepFigure<'_> {
     fn abscissa(&self) -> (&[f64], String) {
         match (&self.steps.monitor, self.against_factor) {
-            (Some((name, u)), false) => (
-                u,
-                Units::label(
-                    &format!("monitored displacement {name}"),
-                    self.units.length.as_deref(),
-                ),
-            ),
+            (Some((name, u)), false) => {
+                let what = match self.monitor {
+                    Some(boundary) => format!("mean {name} on {boundary}"),
+                    None => format!("monitored displacement {name}"),
+                };
+                (u, Units::label(&what, self.units.length.as_deref()))
+            }
             _ => (&self.steps.factor, "load factor".to_string()),
         }
     }
@@ -131,10 +137,12 @@ impl Figure for StepFigure<'_> {
         let x = span(xs.iter().copied().chain([0.0]), 0.05, 0.0..1.0);
         let y = 0.0..span(all_f().chain([0.0]), 0.08, 0.0..1.0).end;
         let frame = Frame {
-            caption: if self.against_factor {
-                "contact force per load step".into()
-            } else {
-                "load–displacement curve".into()
+            caption: match (self.against_factor, self.monitor) {
+                (true, _) => "contact force per load step".into(),
+                (false, Some(boundary)) => {
+                    format!("load–displacement curve, monitored: {boundary}")
+                }
+                (false, None) => "load–displacement curve".into(),
             },
             x_label,
             y_label: Units::label("resultant contact force |F|", self.units.force().as_deref()),
@@ -157,7 +165,9 @@ impl Figure for StepFigure<'_> {
         let (left, right) = legend.split(root);
         let mut chart = linear(&left, &frame, x, y)?;
         for (p, (_, f)) in self.steps.forces.iter().enumerate() {
-            let pts: Vec<(f64, f64)> = xs.iter().copied().zip(f.iter().copied()).collect();
+            // From the unloaded state: no load, no displacement, no contact force.
+            let steps = xs.iter().copied().zip(f.iter().copied());
+            let pts: Vec<(f64, f64)> = std::iter::once((0.0, 0.0)).chain(steps).collect();
             series(&mut chart, &pts, pair_look(p))?;
         }
         let failed: Vec<(f64, f64)> = self

@@ -80,6 +80,13 @@ pub fn figures(table: &Table, out: &Path, stem: &str, formats: &[Format]) -> Res
 fn read(table: &Table) -> Result<Vec<MethodRuns>> {
     let [mc, gc, ic, cc, rc] =
         ["method", "gamma", "iterations", "converged", "reason"].map(|n| table.column(n));
+    if mc.is_err() || gc.is_err() {
+        bail!(
+            "'{}' is not the CSV of a sweep (no columns method and gamma): `contactdd plot` \
+             takes a result folder, its summary.json, or the CSV of `contactdd sweep`",
+            table.path.display()
+        );
+    }
     let (mc, gc, ic, cc, rc) = (mc?, gc?, ic?, cc?, rc?);
     let mut methods: Vec<MethodRuns> = Vec::new();
     for (r, row) in table.rows.iter().enumerate() {

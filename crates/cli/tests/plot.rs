@@ -1,6 +1,7 @@
 //! `contactdd plot`: the figures of a solved example exist, are SVG with their labels, and draw
 //! the pressures of contact.csv; PNG is a real image; a sweep CSV gets its figure; a folder that
-//! is not a result, or a malformed file in it, is an error naming it.
+//! is not a result, a malformed file in it or a listed name that is not a regular file, is an
+//! error naming it; `-o`, `-q` and a summary.json path work as in the other commands.
 
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
@@ -253,7 +254,7 @@ fn load_steps_get_the_load_displacement_curve() {
     let curve = svg(&out.join("plots/load-displacement.svg"));
     for label in [
         "monitored displacement −u_y (cm)",
-        "|F| (N/cm^2·cm)",
+        "|F| (N/cm)",
         "pair notch",
     ] {
         assert!(
@@ -265,8 +266,157 @@ fn load_steps_get_the_load_displacement_curve() {
     assert!(svg(&out.join("plots/bodies.svg")).contains("<polygon"));
     let forces = svg(&out.join("plots/steps-force.svg"));
     assert!(forces.contains("load factor"));
-    // Three steps: a polyline through three points.
-    assert!(polylines(&forces).iter().any(|l| l.len() == 3));
+    // Three steps after the unloaded state: a polyline through four points, the first at the
+    // axes' origin (both axes start at 0).
+    let line = polylines(&forces)
+        .into_iter()
+        .find(|l| l.len() == 4)
+        .expect("a polyline through (0, 0) and three steps");
+    let curve_line = polylines(&curve)
+        .into_iter()
+        .find(|l| l.len() == 4)
+        .expect("the load–displacement curve from (0, 0)");
+    for l in [&line, &curve_line] {
+        // The origin is the leftmost and lowest point (largest pixel y).
+        assert!(l.iter().all(|p| p.0 >= l[0].0 && p.1 <= l[0].1), "{l:?}");
+    }
+    // The history is the last step's, and says so.
+    assert!(svg(&out.join("plots/history.svg")).contains("load step 3 (the last)"));
+
+    // With the problem file, the monitored boundary is named.
+    let o = contactdd(&[
+        "plot",
+        path(&out),
+        "--format",
+        "svg",
+        "--problem",
+        path(&file),
+    ]);
+    succeeded(&o);
+    let curve = svg(&out.join("plots/load-displacement.svg"));
+    for label in ["monitored: top of upper", "mean −u_y on top of upper (cm)"] {
+        assert!(curve.contains(label), "load–displacement lacks '{label}'");
+    }
+}
+
+#[test]
+fn out_quiet_and_a_summary_path_work_as_in_the_other_commands() {
+    let dir = temp("flags");
+    let out = solved_notch(&dir);
+    let figures = dir.join("figures");
+    let summary = out.join("summary.json");
+    let o = contactdd(&[
+        "plot",
+        path(&summary),
+        "-o",
+        path(&figures),
+        "-q",
+        "--format",
+        "svg",
+    ]);
+    succeeded(&o);
+    let stdout = String::from_utf8_lossy(&o.stdout);
+    // One line, no line per file.
+    assert_eq!(
+        stdout.trim_end(),
+        format!("wrote 4 figure files to {}", figures.display()),
+        "{stdout}"
+    );
+    for name in ["pressure-notch", "gap-notch", "history", "bodies"] {
+        svg(&figures.join(format!("{name}.svg")));
+    }
+    assert!(!out.join("plots").exists(), "-o was not followed");
+    // Without -q, a line per file.
+    let o = contactdd(&["plot", path(&summary), "--format", "png"]);
+    succeeded(&o);
+    let stdout = String::from_utf8_lossy(&o.stdout);
+    assert_eq!(
+        stdout.lines().filter(|l| l.starts_with("wrote ")).count(),
+        4
+    );
+    assert!(out.join("plots/history.png").exists());
+    // Another file of the folder is not a sweep: the message says what plot takes.
+    let o = contactdd(&["plot", path(&out.join("contact.csv"))]);
+    assert_eq!(o.status.code(), Some(1));
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(err.contains("not the CSV of a sweep"), "{err}");
+}
+
+#[test]
+fn a_narrow_stress_range_is_drawn_from_zero_and_the_outline_is_drawn() {
+    let dir = temp("uniform");
+    let out = solved_notch(&dir);
+    // Every element of lower at 88.3 to 88.9: a range of 0.6 next to values near 89.
+    let lower = out.join("lower.vtu");
+    let text = read(&lower);
+    let tag = "Name=\"element_von_mises\" NumberOfComponents=\"1\" format=\"ascii\">";
+    let start = text.find(tag).expect("element_von_mises") + tag.len();
+    let end = start + text[start..].find("</DataArray>").expect("end");
+    let n = text[start..end].split_whitespace().count();
+    let values: Vec<String> = (0..n)
+        .map(|i| format!("{}", 88.3 + 0.6 * i as f64 / (n - 1) as f64))
+        .collect();
+    let text = format!("{}{}{}", &text[..start], values.join(" "), &text[end..]);
+    std::fs::write(&lower, text).expect("write");
+    let upper = out.join("upper.vtu");
+    std::fs::copy(&lower, &upper).expect("copy");
+    let o = contactdd(&["plot", path(&out), "--format", "svg"]);
+    succeeded(&o);
+    let bodies = svg(&out.join("plots/bodies.svg"));
+    // The bar runs from 0: its ticks are 0, 22.2, 44.5, 66.7 and 88.9.
+    for label in [
+        "min 88.3",
+        "max 88.9",
+        "\n22.2\n",
+        "\n66.7\n",
+        "red: undeformed",
+    ] {
+        assert!(bodies.contains(label), "bodies figure lacks '{label}'");
+    }
+    // Each body's undeformed outline: one closed polyline of 2 × (32 + 16) boundary edges.
+    let outlines = polylines(&bodies)
+        .into_iter()
+        .filter(|l| l.len() == 2 * (32 + 16) + 1)
+        .count();
+    assert_eq!(outlines, 2);
+}
+
+#[test]
+fn the_history_reads_its_columns_by_name() {
+    let dir = temp("history");
+    let out = solved_notch(&dir);
+    // An extra column, before and among the known ones, is ignored.
+    let history = out.join("history.csv");
+    let text = read(&history);
+    let mut lines = text.lines();
+    let header = lines.next().expect("a header");
+    let mut new = format!("extra,{header},rel_change_max\n");
+    for l in lines {
+        new += &format!("1e-3,{l},5\n");
+    }
+    std::fs::write(&history, new).expect("write");
+    let o = contactdd(&["plot", path(&out), "--format", "svg"]);
+    succeeded(&o);
+    let figure = svg(&out.join("plots/history.svg"));
+    // The bodies of summary.json, not "max".
+    assert!(figure.contains("lower") && figure.contains("upper"));
+    assert!(!figure.contains(">max<"), "rel_change_max drawn as a body");
+}
+
+#[test]
+fn listed_files_that_are_not_regular_files_are_refused() {
+    let dir = temp("devices");
+    let out = solved_notch(&dir);
+    let contact = out.join("contact.csv");
+    std::fs::remove_file(&contact).expect("remove");
+    std::os::unix::fs::symlink("/dev/zero", &contact).expect("symlink");
+    let o = contactdd(&["plot", path(&out), "--format", "svg"]);
+    assert_eq!(o.status.code(), Some(1));
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(
+        err.contains("contact.csv") && err.contains("not a regular file"),
+        "{err}"
+    );
 }
 
 #[test]

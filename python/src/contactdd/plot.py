@@ -40,20 +40,59 @@ def _axes(ax: Optional["Axes"]) -> "Axes":
     return ax
 
 
+def _units(result: Any, units: Optional[str]) -> tuple[Optional[str], Optional[str]]:
+    """(length, stress) from a units note ``"length, stress"``: ``units`` if given, else the
+    ``units`` of the result's summary (a result read back from a folder the command line wrote);
+    (None, None) for a note of another form (free text) or none."""
+    if units is None:
+        try:
+            summary = result.summary()
+        except Exception:  # pragma: no cover - a summary that cannot be made has no units
+            summary = {}
+        note = summary.get("units") if isinstance(summary, dict) else None
+        units = note if isinstance(note, str) else None
+    parts = [p.strip() for p in units.split(",")] if units else []
+    if len(parts) == 2 and all(parts):
+        return parts[0], parts[1]
+    return None, None
+
+
+def _contact_window(coord: np.ndarray, closed: np.ndarray) -> tuple[float, float]:
+    """The stretch of the contact line to show: the closed points and half their extent again on
+    either side (at least 5 % of the whole line), within the points' own extent; the whole line
+    when no point is closed."""
+    lo_all, hi_all = float(np.min(coord)), float(np.max(coord))
+    if not closed.any():
+        return lo_all, hi_all
+    lo, hi = float(np.min(coord[closed])), float(np.max(coord[closed]))
+    margin = max(0.5 * (hi - lo), 0.05 * (hi_all - lo_all))
+    return max(lo - margin, lo_all), min(hi + margin, hi_all)
+
+
 def contact_pressure(
     result: Union["Result", "MonolithicResult"],
     pair: Union[int, str] = 0,
     ax: Optional["Axes"] = None,
     along: Optional[str] = None,
+    units: Optional[str] = None,
+    whole: bool = False,
 ) -> "Axes":
     """Plots the contact pressure −σ_n (positive in compression) of one contact pair.
+
+    The horizontal axis shows the contact zone (the closed points) and half its length again on
+    either side, so that a small zone such as a Hertz contact is not a spike on a long boundary;
+    ``whole=True`` shows the whole contact boundary.
 
     Args:
         result: a solve or monolithic result.
         pair: index or name of the contact pair.
         ax: axes to draw into (default: a new figure).
         along: coordinate on the horizontal axis, ``"x"`` or ``"y"`` (default: the one in which
-            the contact zone is longer).
+            the contact boundary is longer).
+        units: a units note ``"length, stress"`` (e.g. ``"mm, N/mm^2"``) for the axis labels
+            (default: the ``units`` of ``result.summary()``, present in a result read back from a
+            folder; a note of another form labels the axes "unit of the problem").
+        whole: show the whole contact boundary rather than the contact zone.
 
     Returns:
         The axes.
@@ -85,8 +124,14 @@ def contact_pressure(
             markersize=3,
             label=f"{body}",
         )
-    ax.set_xlabel(along)
-    ax.set_ylabel("contact pressure −σₙ")
+    length, stress = _units(result, units)
+    ax.set_xlabel(f"{along} ({length or 'length unit of the problem'})")
+    ax.set_ylabel(f"contact pressure −σₙ ({stress or 'stress unit of the problem'})")
+    if len(coord) and not whole:
+        lo, hi = _contact_window(coord, np.asarray(c.closed, dtype=bool))
+        if hi > lo:
+            ax.set_xlim(lo, hi)
+    ax.set_ylim(bottom=0.0)
     ax.set_title(f"contact pressure, pair '{c.name}'")
     ax.grid(True, alpha=0.3)
     ax.legend()
