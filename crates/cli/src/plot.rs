@@ -86,6 +86,7 @@ fn folder(args: &PlotArgs, dir: &Path) -> Result<(Vec<PathBuf>, PathBuf)> {
             table: table("history.csv")?,
             bodies: &summary.bodies,
             tol: args.tol.or(summary.tol),
+            measure: summary.stop_measure.as_deref(),
             steps: summary.steps,
         };
         written.extend(plot_history::figures(&history, &out, &args.format)?);

@@ -88,6 +88,9 @@ impl Table {
 pub struct Summary {
     /// The stopping tolerance, when the summary records it.
     pub tol: Option<f64>,
+    /// What the stopping test compares with the tolerance (`relative residual`, …), when the
+    /// summary records it.
+    pub stop_measure: Option<String>,
     /// The problem's units note, when the summary records it.
     pub units: Option<String>,
     /// The files of the result set (the reader's rule of docs/outputs.md).
@@ -132,6 +135,7 @@ impl Summary {
         };
         Ok(Summary {
             tol: json["tol"].as_f64(),
+            stop_measure: json["stop_measure"].as_str().map(String::from),
             units: json["units"].as_str().map(String::from),
             files: strings(&json["files"]),
             bodies: bodies.unwrap_or_default(),

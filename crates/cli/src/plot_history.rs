@@ -1,5 +1,6 @@
-//! The convergence figure of `contactdd plot`: each body's relative change per iteration from
-//! `history.csv`, on a log scale, with the stopping tolerance as a line. With load steps,
+//! The convergence figure of `contactdd plot`: what the stopping test measures (the `measure`
+//! column of `history.csv`, named by `stop_measure` in summary.json) against the stopping
+//! tolerance, and each body's relative change, per iteration on a log scale. With load steps,
 //! `history.csv` holds the last step's iterations, and the caption says so.
 
 use std::path::{Path, PathBuf};
@@ -21,6 +22,8 @@ pub struct History<'a> {
     pub bodies: &'a [String],
     /// The stopping tolerance, if known.
     pub tol: Option<f64>,
+    /// What the `measure` column is (`relative residual`, …), if known.
+    pub measure: Option<&'a str>,
     /// The number of load steps (0 without): history.csv is the last step's.
     pub steps: usize,
 }
@@ -43,20 +46,23 @@ pub fn figures(history: &History, out: &Path, formats: &[Format]) -> Result<Vec<
         if table.column(&column).is_err() {
             continue;
         }
-        let change = table.numbers(&column)?;
-        // A log scale has no place for 0, NaN or infinity: those iterations are left out.
-        let pts: Vec<(f64, f64)> = k
-            .iter()
-            .zip(change)
-            .filter(|(_, c)| c.is_finite() && *c > 0.0)
-            .map(|(&k, c)| (k, c))
-            .collect();
-        bodies.push((body, pts));
+        bodies.push((body, positive(&k, table.numbers(&column)?)));
     }
     if bodies.is_empty() {
         bail!("'{}' has no rel_change_<body> column", table.path.display());
     }
+    let measure = match table.column("measure") {
+        Ok(_) => {
+            let name = history.measure.unwrap_or("stopping measure");
+            Some((
+                format!("stop test: {name}"),
+                positive(&k, table.numbers("measure")?),
+            ))
+        }
+        Err(_) => None,
+    };
     let fig = Curves {
+        measure,
         bodies,
         tol: history.tol,
         steps: history.steps,
@@ -64,8 +70,20 @@ pub fn figures(history: &History, out: &Path, formats: &[Format]) -> Result<Vec<
     render(&fig, out, "history", formats)
 }
 
-/// Relative change per body against the iteration.
+/// The points (k, v) of a column; a log scale has no place for 0, NaN or infinity, so those
+/// iterations are left out.
+fn positive(k: &[f64], values: Vec<f64>) -> Vec<(f64, f64)> {
+    k.iter()
+        .zip(values)
+        .filter(|(_, v)| v.is_finite() && *v > 0.0)
+        .map(|(&k, v)| (k, v))
+        .collect()
+}
+
+/// The stopping measure and the relative change per body against the iteration.
 struct Curves {
+    /// The stopping test's measure, with its legend entry.
+    measure: Option<(String, Vec<(f64, f64)>)>,
     bodies: Vec<(String, Vec<(f64, f64)>)>,
     tol: Option<f64>,
     steps: usize,
@@ -88,7 +106,13 @@ impl Curves {
 
 impl Figure for Curves {
     fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Result<()> {
-        let pts = || self.bodies.iter().flat_map(|(_, p)| p.iter());
+        let measured = self.measure.iter().flat_map(|(_, p)| p.iter());
+        let pts = || {
+            self.bodies
+                .iter()
+                .flat_map(|(_, p)| p.iter())
+                .chain(measured.clone())
+        };
         let k_max = pts().map(|p| p.0).fold(1.0, f64::max);
         let values = || pts().map(|p| p.1).chain(self.tol);
         let lo = values().fold(f64::INFINITY, f64::min);
@@ -101,6 +125,10 @@ impl Figure for Curves {
         };
         let caption = self.caption();
         let mut legend = Legend::default();
+        let measure_look = Look::new(BLACK, Line::Solid, Marker::Square);
+        if let Some((name, _)) = &self.measure {
+            legend.add(name.clone(), measure_look);
+        }
         for (b, (name, _)) in self.bodies.iter().enumerate() {
             legend.add(name.clone(), body_look(b));
         }
@@ -119,7 +147,7 @@ impl Figure for Curves {
         ok(chart
             .configure_mesh()
             .x_desc("iteration k")
-            .y_desc("relative change of the contact displacements")
+            .y_desc("stop test and relative change per body")
             .y_label_formatter(&|v| format!("{v:.0e}"))
             // Iterations are whole numbers: no label between them.
             .x_labels((k_max as usize + 1).clamp(2, 11))
@@ -137,6 +165,9 @@ impl Figure for Curves {
             .draw())?;
         for (b, (_, pts)) in self.bodies.iter().enumerate() {
             series(&mut chart, pts, body_look(b))?;
+        }
+        if let Some((_, pts)) = &self.measure {
+            series(&mut chart, pts, measure_look)?;
         }
         if let Some(tol) = self.tol {
             series(&mut chart, &[(0.0, tol), (k_max + 0.5, tol)], tol_look)?;

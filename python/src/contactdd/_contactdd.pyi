@@ -305,14 +305,23 @@ class Result:
     @property
     def message(self) -> Optional[str]: ...
     @property
-    def method(self) -> str: ...
+    def iteration(self) -> Literal["interface-newton", "robin-sweeps"]:
+        """The iteration that ran."""
+    @property
+    def solver(self) -> str:
+        """The solver settings in words, as contactdd solve and contactdd check print them."""
+    @property
+    def method(self) -> str:
+        """The Robin sweeps' method (unused by the interface Newton method)."""
     @property
     def gamma(self) -> _GammaValue: ...
     @property
     def theta(self) -> list[float]: ...
     @property
     def history(self) -> dict[str, npt.NDArray[Any]]:
-        """k, gamma (m,); rel_change, active, normal_force (m, number of bodies)."""
+        """k, gamma (the sweeps' γ, the Newton method's step length), measure (what the stopping
+        test compares with the tolerance), all (m,); rel_change, active, normal_force (m, number
+        of bodies)."""
     @property
     def bodies(self) -> list[Body]: ...
     @property

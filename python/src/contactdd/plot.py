@@ -193,7 +193,9 @@ def deformed_mesh(
 
 
 def history(result: "Result", ax: Optional["Axes"] = None) -> "Axes":
-    """Plots every body's relative change ‖uₙᵏ⁺¹ − uₙᵏ‖ / ‖uₙᵏ⁺¹‖ per iteration (log scale).
+    """Plots what the stopping test measures (``history["measure"]``) against the tolerance, and
+    every body's relative change ‖uₙᵏ⁺¹ − uₙᵏ‖ / ‖uₙᵏ⁺¹‖, per iteration (log scale); the title
+    names the solver that ran.
 
     Args:
         result: a solve result.
@@ -204,12 +206,17 @@ def history(result: "Result", ax: Optional["Axes"] = None) -> "Axes":
     """
     ax = _axes(ax)
     k = np.asarray(result.history["k"])
+    measure = np.asarray(result.history["measure"])
+    ax.semilogy(k, measure, "ks-", markersize=4, label="stop test")
     rel = np.asarray(result.history["rel_change"])
     for b, body in enumerate(result.bodies):
-        ax.semilogy(k, rel[:, b], "o-", markersize=3, label=body.name)
+        ax.semilogy(k, rel[:, b], "o-", markersize=3, alpha=0.6, label=body.name)
+    tol = result.summary().get("tol")
+    if tol is not None:
+        ax.axhline(tol, color="k", linestyle="--", label=f"tol = {tol:g}")
     ax.set_xlabel("iteration k")
-    ax.set_ylabel("relative change")
-    ax.set_title(f"{result.method}, γ = {result.gamma}")
+    ax.set_ylabel("stop test and relative change")
+    ax.set_title(result.solver)
     ax.grid(True, which="both", alpha=0.3)
     ax.legend()
     return ax
