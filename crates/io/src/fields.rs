@@ -217,6 +217,26 @@ mod tests {
     }
 
     #[test]
+    fn a_following_point_reads_the_nearest_reference_segment() {
+        let segments = [
+            ([[0.0, 0.0], [1.0, 0.0]], [0.0, 10.0]),
+            ([[1.0, 0.0], [2.0, 0.0]], [10.0, 4.0]),
+        ];
+        // Above the first segment at a quarter of its length, slightly off the line.
+        assert!((read_pressure(&segments, [0.25, 0.01]) - 2.5).abs() < 1e-12);
+        assert!((read_pressure(&segments, [1.5, -0.02]) - 7.0).abs() < 1e-12);
+        // Beyond the reference side's end: its end value.
+        assert_eq!(read_pressure(&segments, [3.0, 0.0]), 4.0);
+        assert_eq!(read_pressure(&[], [0.0, 0.0]), 0.0);
+    }
+
+    #[test]
+    fn own_pressure_is_never_negative_zero() {
+        assert_eq!(own_pressure(-3.0), 3.0);
+        assert!(own_pressure(0.0).is_sign_positive() && own_pressure(-0.0).is_sign_positive());
+    }
+
+    #[test]
     fn pure_shear_has_principal_values_plus_and_minus_tau() {
         let p = principal(&[0.0, 0.0, 5.0, 0.0]);
         assert_eq!(p, [5.0, 0.0, -5.0]);
