@@ -141,13 +141,15 @@ pub fn pair_report(pairs: &[PairResult], theta: &[f64]) -> Vec<String> {
             "  closed points: {} {c0} of {n0}, {} {c1} of {n1}",
             pair.bodies[0], pair.bodies[1]
         ));
-        // Pressure is σ_n ≤ 0; the largest pressure is the most negative σ_n.
+        // The contact pressure p = −σ_n ≥ 0 of the points whose own pressure acts; a following
+        // point's p is read from them (contactdd_io::fields::contact_pressures), so never larger.
+        let own = |i: usize| pair.enforced.get(i).copied().unwrap_or(true);
         let peak = (0..pair.pressure.len())
-            .filter(|&i| pair.pressure[i].is_finite())
+            .filter(|&i| own(i) && pair.pressure[i].is_finite())
             .min_by(|&a, &b| pair.pressure[a].total_cmp(&pair.pressure[b]));
         match peak {
             Some(i) if pair.pressure[i] < 0.0 => lines.push(format!(
-                "  max contact pressure |σn| = {} at {} on {}",
+                "  max contact pressure p = {} at {} on {}",
                 sig(-pair.pressure[i]),
                 vec2([pair.x[i], pair.y[i]]),
                 pair.bodies[pair.side[i]]

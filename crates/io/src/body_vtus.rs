@@ -1,6 +1,6 @@
 //! The `.vtu` file of each body of a result: its nodal fields (displacement, stress, principal
-//! stresses, von Mises, contact pressure), with the model the contact point data and the element
-//! von Mises. File names are the [`safe_file_name`]s of the body names, made unique.
+//! stresses, von Mises, σ_n of the contact nodes), with the model and the pairs' results the contact
+//! pressure, the contact point data and the element von Mises. File names are the [`safe_file_name`]s of the body names, made unique.
 
 use std::collections::HashSet;
 use std::io::{Error, ErrorKind};
@@ -9,15 +9,19 @@ use std::path::{Path, PathBuf};
 use contactdd_ddm::solution::{BodyResult, PairResult};
 use contactdd_ddm::Model;
 
-use crate::fields::{contact_point_data, element_von_mises, principal, tensor, ContactPointData};
+use crate::fields::{
+    contact_point_data, contact_pressures, element_von_mises, nodal_contact_pressure, principal,
+    tensor, ContactPointData,
+};
 use crate::result_set::ResultSet;
 use crate::vtu::{write_vtu, Field, VtuData};
 
 /// Writes `<body>.vtu` per body into `dir` with the nodal fields of the results alone:
 /// `displacement` (vector), `stress` (3×3 tensor), `principal_stress_1` ≥ `_2` ≥ `_3`,
-/// `sigma_xx`, `sigma_yy`, `sigma_xy`, `sigma_zz`, `von_mises` and `contact_pressure` (scalars,
-/// which ParaView colours by directly). File names are [`safe_file_name`]s of the body names,
-/// made unique. [`write_solution_vtus`] adds the contact point data and the element von Mises.
+/// `sigma_xx`, `sigma_yy`, `sigma_xy`, `sigma_zz`, `von_mises` and `sigma_n` (scalars, which
+/// ParaView colours by directly; `sigma_n` is [`BodyResult::contact_pressure`], ≤ 0). File names
+/// are [`safe_file_name`]s of the body names, made unique. [`write_solution_vtus`] adds the
+/// contact pressure p ≥ 0, the contact point data and the element von Mises.
 pub fn write_body_vtus(dir: &Path, bodies: &[BodyResult]) -> std::io::Result<Vec<PathBuf>> {
     let mut written = Vec::with_capacity(bodies.len());
     let all = |_| true;
@@ -33,8 +37,8 @@ pub fn write_body_vtus(dir: &Path, bodies: &[BodyResult]) -> std::io::Result<Vec
 }
 
 /// [`write_body_vtus`] into a result set, plus, from the model and the pairs' results, the point
-/// data `gap` and `contact_status` (1 closed, 0 open, −1 no partner; both NaN off the contact
-/// points) and the cell data `element_von_mises` (at each element's centroid). `bodies` are in the
+/// data `contact_pressure` (p ≥ 0 of [`nodal_contact_pressure`], 0 off the contact points), `gap`
+/// and `contact_status` (1 closed, 0 open, −1 no partner; both NaN off the contact points) and the cell data `element_von_mises` (at each element's centroid). `bodies` are in the
 /// order of `model.bodies`. Each file joins the set as soon as it is written, so that a failure
 /// part way removes it with the set ([`ResultSet::abandon`]).
 pub fn write_solution_vtus(
@@ -82,6 +86,7 @@ pub(crate) fn write_solution_vtus_of(
     owns: &dyn Fn(usize) -> bool,
     written: &mut Vec<PathBuf>,
 ) -> std::io::Result<()> {
+    let pressures = contact_pressures(contact, bodies);
     write_vtus(
         dir,
         suffix,
@@ -95,6 +100,12 @@ pub(crate) fn write_solution_vtus_of(
                 )
             })?;
             Ok(Extra {
+                pressure: Some(nodal_contact_pressure(
+                    &body.name,
+                    body.mesh.num_nodes(),
+                    contact,
+                    &pressures,
+                )),
                 contact: Some(contact_point_data(
                     &body.name,
                     body.mesh.num_nodes(),
@@ -110,6 +121,7 @@ pub(crate) fn write_solution_vtus_of(
 /// The fields of a body's `.vtu` that need more than its [`BodyResult`].
 #[derive(Default)]
 struct Extra {
+    pressure: Option<Vec<f64>>,
     contact: Option<ContactPointData>,
     element_von_mises: Option<Vec<f64>>,
 }
@@ -169,8 +181,11 @@ fn write_vtus(
             field("sigma_xy", 1, &sxy),
             field("sigma_zz", 1, &szz),
             field("von_mises", 1, &body.von_mises),
-            field("contact_pressure", 1, &body.contact_pressure),
+            field("sigma_n", 1, &body.contact_pressure),
         ];
+        if let Some(p) = &extra.pressure {
+            points.push(field("contact_pressure", 1, p));
+        }
         if let Some(c) = &extra.contact {
             points.push(field("gap", 1, &c.gap));
             points.push(field("contact_status", 1, &c.status));

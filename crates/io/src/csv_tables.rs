@@ -3,20 +3,36 @@
 //! `inf`, `-inf` or `NaN`, which Python's `float()`, numpy and pandas read back.
 
 use contactdd_ddm::gamma_study::SweepRun;
-use contactdd_ddm::solution::{PairResult, Solution};
+use contactdd_ddm::solution::{BodyResult, PairResult, Solution};
 
+use crate::fields::contact_pressures;
 use crate::number::format_f64 as num;
 use crate::summary::point_status;
 
 /// `contact.csv` of a solve: one row per contact point.
 pub fn contact_csv(sol: &Solution) -> String {
-    pairs_csv(&sol.contact)
+    pairs_csv(&sol.contact, &sol.bodies)
 }
 
-/// The contact CSV of any list of pair results, with header `pair,body,x,y,gap,pressure,status`.
-pub fn pairs_csv(pairs: &[PairResult]) -> String {
-    let header = ["pair", "body", "x", "y", "gap", "pressure", "status"];
-    let rows = pairs.iter().flat_map(|p| {
+/// The contact CSV of any list of pair results (`bodies`: the bodies they name, for their
+/// meshes), with header `pair,body,x,y,gap,pressure,nodal_traction,status`: `pressure` is the
+/// contact pressure p ≥ 0 of [`contact_pressures`], `nodal_traction` the normal traction of the
+/// point's nodal contact force, [`PairResult::pressure`] (σ_n = −p where the point's own pressure
+/// acts; on the following side of a balanced pair the reference side's forces on the node over its
+/// weight).
+pub fn pairs_csv(pairs: &[PairResult], bodies: &[BodyResult]) -> String {
+    let header = [
+        "pair",
+        "body",
+        "x",
+        "y",
+        "gap",
+        "pressure",
+        "nodal_traction",
+        "status",
+    ];
+    let pressures = contact_pressures(pairs, bodies);
+    let rows = pairs.iter().zip(pressures).flat_map(|(p, pressure)| {
         (0..p.gap.len()).map(move |i| {
             vec![
                 p.name.clone(),
@@ -24,6 +40,7 @@ pub fn pairs_csv(pairs: &[PairResult]) -> String {
                 num(p.x[i]),
                 num(p.y[i]),
                 num(p.gap[i]),
+                num(pressure[i]),
                 num(p.pressure[i]),
                 point_status(p, i).to_string(),
             ]

@@ -1,10 +1,15 @@
-//! The derived fields of a body written to its `.vtu` file: the stress as a 3×3 tensor, its
-//! principal values, the contact point data (gap and status) and the element von Mises stress.
+//! The derived fields of the result files: the stress as a 3×3 tensor, its principal values, the
+//! contact pressure p ≥ 0 of every contact point ([`contact_pressures`]) and node
+//! ([`nodal_contact_pressure`]), the contact point data (gap and status) and the element von Mises
+//! stress.
+
+use std::collections::HashMap;
 
 use contactdd_core::material::von_mises;
+use contactdd_core::mesh::dist;
 use contactdd_core::post::{stresses, Stress};
-use contactdd_core::ElasticBody;
-use contactdd_ddm::solution::PairResult;
+use contactdd_core::{ElasticBody, Mesh, Point};
+use contactdd_ddm::solution::{BodyResult, PairResult};
 
 /// The 3×3 stress tensor of `[σ_xx, σ_yy, σ_xy, σ_zz]`, row-major (9 values, the VTK tensor
 /// layout; the plane problem has σ_xz = σ_yz = 0).
@@ -61,6 +66,138 @@ pub fn contact_point_data(name: &str, num_nodes: usize, pairs: &[PairResult]) ->
     data
 }
 
+/// The contact pressure p ≥ 0 of every point of every pair (one `Vec` per pair, in the points'
+/// order), from the pairs' results and the bodies' meshes (`bodies` holds the body each pair
+/// names; a body whose fields another process holds still has its mesh).
+///
+/// Where a point's own pressure acts (every point of an `own-side` pair; the reference side of a
+/// `balanced` pair, whose `enforced` is true) p = −σ_n = (s − d)⁺/θ. A point of a balanced
+/// pair's following side carries no pressure of its own: its p is the reference side's pressure
+/// read at the point, the linear interpolation of the reference points' p along the reference
+/// body's boundary edges between them, at the point of those edges nearest to it; 0 without a
+/// partner. The nodal traction of the following side (the reference side's forces on its node
+/// over its weight, [`PairResult::pressure`] there) is another quantity: it is no pressure field
+/// and can change sign near the edge of the contact zone.
+pub fn contact_pressures(pairs: &[PairResult], bodies: &[BodyResult]) -> Vec<Vec<f64>> {
+    let meshes: HashMap<&str, &Mesh> = bodies.iter().map(|b| (b.name.as_str(), &b.mesh)).collect();
+    pairs
+        .iter()
+        .map(|pair| pair_pressures(pair, &meshes))
+        .collect()
+}
+
+/// The p ≥ 0 of a point whose own pressure acts: −σ_n (never −0).
+fn own_pressure(sigma_n: f64) -> f64 {
+    if sigma_n < 0.0 {
+        -sigma_n
+    } else {
+        0.0
+    }
+}
+
+/// [`contact_pressures`] of one pair.
+fn pair_pressures(pair: &PairResult, meshes: &HashMap<&str, &Mesh>) -> Vec<f64> {
+    let enforced = |i: usize| pair.enforced.get(i).copied().unwrap_or(true);
+    let mut p: Vec<f64> = (0..pair.gap.len())
+        .map(|i| {
+            if enforced(i) {
+                own_pressure(pair.pressure[i])
+            } else {
+                0.0
+            }
+        })
+        .collect();
+    for side in 0..2 {
+        let followers: Vec<usize> = (0..pair.gap.len())
+            .filter(|&i| pair.side[i] == side && !enforced(i) && pair.gap[i].is_finite())
+            .collect();
+        if followers.is_empty() {
+            continue;
+        }
+        let reference = &pair.bodies[1 - side];
+        let carried: HashMap<usize, f64> = (0..pair.gap.len())
+            .filter(|&i| pair.side[i] != side && enforced(i))
+            .map(|i| (pair.node[i], p[i]))
+            .collect();
+        let Some(mesh) = meshes.get(reference.as_str()) else {
+            continue;
+        };
+        let segments = reference_segments(mesh, &carried);
+        for i in followers {
+            p[i] = read_pressure(&segments, [pair.x[i], pair.y[i]]);
+        }
+    }
+    p
+}
+
+/// A straight piece of the reference side: its two end points and their pressures.
+type Segment = ([Point; 2], [f64; 2]);
+
+/// The boundary edges (each half of a P2 edge) of `mesh` whose two nodes are reference points,
+/// with their pressures `carried` (node → p).
+fn reference_segments(mesh: &Mesh, carried: &HashMap<usize, f64>) -> Vec<Segment> {
+    let nodes = mesh.nodes();
+    let mut segments = Vec::new();
+    for edge in mesh.boundaries().values().flatten() {
+        let pieces = match edge.mid {
+            Some(m) => vec![(edge.a, m), (m, edge.b)],
+            None => vec![(edge.a, edge.b)],
+        };
+        for (a, b) in pieces {
+            if let (Some(&pa), Some(&pb), Some(&xa), Some(&xb)) =
+                (carried.get(&a), carried.get(&b), nodes.get(a), nodes.get(b))
+            {
+                segments.push(([xa, xb], [pa, pb]));
+            }
+        }
+    }
+    segments
+}
+
+/// The pressure of the segment nearest to `x`, interpolated at its point nearest to `x` (0 if
+/// there is no segment).
+fn read_pressure(segments: &[Segment], x: Point) -> f64 {
+    let mut best = (f64::INFINITY, 0.0);
+    for ([a, b], [pa, pb]) in segments {
+        let (ab, ax) = ([b[0] - a[0], b[1] - a[1]], [x[0] - a[0], x[1] - a[1]]);
+        let length2 = ab[0] * ab[0] + ab[1] * ab[1];
+        let t = if length2 > 0.0 {
+            ((ab[0] * ax[0] + ab[1] * ax[1]) / length2).clamp(0.0, 1.0)
+        } else {
+            0.0
+        };
+        let nearest = [a[0] + t * ab[0], a[1] + t * ab[1]];
+        let d = dist(x, nearest);
+        if d < best.0 {
+            best = (d, (1.0 - t) * pa + t * pb);
+        }
+    }
+    best.1
+}
+
+/// The contact pressure p ≥ 0 of every node of body `name` with `num_nodes` nodes: the largest p
+/// ([`contact_pressures`], given as `pressures`) of its contact points over the pairs `pairs`, 0
+/// at the other nodes.
+pub fn nodal_contact_pressure(
+    name: &str,
+    num_nodes: usize,
+    pairs: &[PairResult],
+    pressures: &[Vec<f64>],
+) -> Vec<f64> {
+    let mut nodal = vec![0.0; num_nodes];
+    for (pair, p) in pairs.iter().zip(pressures) {
+        if !pair.bodies.iter().any(|b| b == name) {
+            continue;
+        }
+        for i in (0..pair.side.len()).filter(|&i| pair.bodies[pair.side[i]] == name) {
+            if let (Some(v), Some(&pi)) = (nodal.get_mut(pair.node[i]), p.get(i)) {
+                *v = f64::max(*v, pi);
+            }
+        }
+    }
+    nodal
+}
+
 /// The von Mises stress of each element of `body`, at its centroid, from the displacement `u`.
 pub fn element_von_mises(body: &ElasticBody, u: &[f64]) -> Vec<f64> {
     stresses(&body.mesh, &body.material, body.plane, u)
@@ -77,6 +214,26 @@ mod tests {
     #[test]
     fn principal_values_of_a_diagonal_stress_are_its_sorted_entries() {
         assert_eq!(principal(&[1.0, 3.0, 0.0, 2.0]), [3.0, 2.0, 1.0]);
+    }
+
+    #[test]
+    fn a_following_point_reads_the_nearest_reference_segment() {
+        let segments = [
+            ([[0.0, 0.0], [1.0, 0.0]], [0.0, 10.0]),
+            ([[1.0, 0.0], [2.0, 0.0]], [10.0, 4.0]),
+        ];
+        // Above the first segment at a quarter of its length, slightly off the line.
+        assert!((read_pressure(&segments, [0.25, 0.01]) - 2.5).abs() < 1e-12);
+        assert!((read_pressure(&segments, [1.5, -0.02]) - 7.0).abs() < 1e-12);
+        // Beyond the reference side's end: its end value.
+        assert_eq!(read_pressure(&segments, [3.0, 0.0]), 4.0);
+        assert_eq!(read_pressure(&[], [0.0, 0.0]), 0.0);
+    }
+
+    #[test]
+    fn own_pressure_is_never_negative_zero() {
+        assert_eq!(own_pressure(-3.0), 3.0);
+        assert!(own_pressure(0.0).is_sign_positive() && own_pressure(-0.0).is_sign_positive());
     }
 
     #[test]

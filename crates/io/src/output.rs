@@ -68,7 +68,10 @@ pub fn write_monolithic_results(
     let mut summary = monolithic_summary_json(model, sol);
     summary["reactions"] = reactions_json(model, &sol.bodies, &sol.contact);
     write_set(dir, summary, |set| {
-        set.write("contact.csv", pairs_csv(&sol.contact).as_bytes())?;
+        set.write(
+            "contact.csv",
+            pairs_csv(&sol.contact, &sol.bodies).as_bytes(),
+        )?;
         write_solution_vtus(set, model, &sol.bodies, &sol.contact)
     })
 }

@@ -39,6 +39,19 @@ fn check_balance(model: &contactdd_ddm::Model, summary: &Value, tol: f64) -> Vec
         let entry = &summary["reactions"][b];
         assert_eq!(entry["body"], body.name.as_str());
         let reaction = vector(&entry["total"]);
+        // Each supported DOF counts in one boundary: the boundaries add up to the total.
+        let mut supports = [0.0; 2];
+        for s in entry["supports"].as_array().expect("supports") {
+            let f = vector(&s["force"]);
+            supports[0] += f[0];
+            supports[1] += f[1];
+        }
+        let gap = (supports[0] - reaction[0]).hypot(supports[1] - reaction[1]);
+        assert!(
+            gap <= 1e-12 * scale,
+            "body {}: {supports:?} vs {reaction:?}",
+            body.name
+        );
         let mut sum = [0.0; 2];
         for k in 0..2 {
             sum[k] = applied_load(&body.load)[k] + reaction[k];
@@ -90,6 +103,16 @@ fn notch_held_at_the_bottom_balances_load_reactions_and_contact() {
         .map(|s| s["boundary"].as_str().expect("a name"))
         .collect();
     assert_eq!(supports, ["bottom", "right"]);
+    // The corner (4, 0) lies on both: its x reaction is the right side's (u_x held there), its y
+    // reaction the bottom's, so the bottom takes no x force and the right side no y force.
+    let force = |k: usize| vector(&summary["reactions"][0]["supports"][k]["force"]);
+    let (bottom, right) = (force(0), force(1));
+    assert_eq!(bottom[0], 0.0, "bottom {bottom:?}");
+    assert_eq!(right[1], 0.0, "right {right:?}");
+    assert!(
+        (bottom[1] - 8400.0).abs() <= 1e-6 * 8400.0,
+        "bottom {bottom:?}"
+    );
 }
 
 #[test]
@@ -234,10 +257,10 @@ fn reactions_on_inclined_normal_supports_rotate_with_the_model() {
             }
         }
         // The base's supports push it up along the floor's normal and take nothing along the
-        // floor: no support resists sliding. (Per boundary the corner node, on both supports,
-        // counts twice; the total counts it once.) The normal part is the contact force on the
-        // base: the whole load 100 · 1, since the pair's forces are balanced on the non-matching
-        // meshes too.
+        // floor: no support resists sliding. The corner node, on both supports, splits its
+        // reaction along their normals. The normal part is the contact force on the base: the
+        // whole load 100 · 1, since the pair's forces are balanced on the non-matching meshes
+        // too.
         let r = vector(&summary["reactions"][0]["total"]);
         let (normal, tangential) = (-r[0] * s + r[1] * c, r[0] * c + r[1] * s);
         println!("{angle}° base: normal reaction {normal}, tangential {tangential:.2e}");

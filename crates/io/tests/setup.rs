@@ -232,6 +232,138 @@ fn every_example_resolves_and_converges_with_balanced_forces() {
         assert!(sol.converged, "{name}: {:?}", sol.message);
         check_balance(&name, &loaded.model, &sol);
         check_physics(&name, &loaded, &sol);
+        check_contact_csv(&name, &sol);
+        check_reactions(&name, &loaded.model, &sol);
+    }
+}
+
+/// `contact.csv`: the pressure p ≥ 0 at every point, p = −σ_n where the point's own pressure
+/// acts, and the nodal traction column is the solution's σ_n / traction, read back exactly.
+fn check_contact_csv(name: &str, sol: &Solution) {
+    let text = output::contact_csv(sol);
+    let mut reader = csv::Reader::from_reader(text.as_bytes());
+    let header: Vec<String> = reader
+        .headers()
+        .expect("a header")
+        .iter()
+        .map(String::from)
+        .collect();
+    assert_eq!(
+        header,
+        [
+            "pair",
+            "body",
+            "x",
+            "y",
+            "gap",
+            "pressure",
+            "nodal_traction",
+            "status"
+        ],
+        "{name}"
+    );
+    let rows: Vec<csv::StringRecord> = reader.records().map(|r| r.expect("a row")).collect();
+    let points: Vec<(&contactdd_ddm::solution::PairResult, usize)> = sol
+        .contact
+        .iter()
+        .flat_map(|p| (0..p.gap.len()).map(move |i| (p, i)))
+        .collect();
+    assert_eq!(rows.len(), points.len(), "{name}");
+    // A balanced pair's following side reads its pressure from the reference side: the two
+    // sides' Σ w p, computed from different points and weights, carry the same load.
+    let pressures = fields::contact_pressures(&sol.contact, &sol.bodies);
+    for (pair, p) in sol.contact.iter().zip(&pressures) {
+        let load = |enforced: bool| -> f64 {
+            (0..p.len())
+                .filter(|&i| pair.enforced[i] == enforced)
+                .map(|i| pair.weight[i] * p[i])
+                .sum()
+        };
+        let (reference, following) = (load(true), load(false));
+        if pair.enforced.iter().any(|&e| !e) {
+            assert!(
+                (following - reference).abs() <= 0.01 * reference,
+                "{name}: pair {}: Σ w p {following} on the following side, {reference} on the reference side",
+                pair.name
+            );
+        }
+    }
+    if name == "hertz.toml" {
+        // The nodal traction of the disc (the following side) is positive at some open points:
+        // that is why it is not the pressure.
+        let disc = &sol.contact[0];
+        assert!((0..disc.gap.len()).any(|i| !disc.enforced[i] && disc.pressure[i] > 0.0));
+    }
+    let number = |row: &csv::StringRecord, k: usize| -> f64 {
+        row[k]
+            .parse()
+            .unwrap_or_else(|e| panic!("{name}: {:?}: {e}", &row[k]))
+    };
+    for (row, (pair, i)) in rows.iter().zip(points) {
+        let (p, traction) = (number(row, 5), number(row, 6));
+        assert!(
+            p >= 0.0,
+            "{name}: pair {} point {i}: pressure {p}",
+            pair.name
+        );
+        assert_eq!(traction.to_bits(), pair.pressure[i].to_bits(), "{name}");
+        if pair.enforced[i] {
+            assert_eq!(p, (-pair.pressure[i]).max(0.0), "{name}: point {i}");
+        }
+        if row[7] != *"closed" && pair.enforced[i] {
+            assert_eq!(p, 0.0, "{name}: open point {i} under pressure");
+        }
+    }
+}
+
+/// The support reactions: per body, the boundaries' reactions add up to the total (each DOF
+/// counted once), and the total balances the applied load and the contact forces.
+fn check_reactions(name: &str, model: &Model, sol: &Solution) {
+    let all = reactions::reactions(model, &sol.bodies, &sol.contact);
+    for (b, r) in all.iter().enumerate() {
+        let load = output::applied_load(&model.bodies[b].load);
+        let scale = load[0].hypot(load[1]).max(r.total[0].hypot(r.total[1]));
+        let mut sum = [0.0; 2];
+        for s in &r.supports {
+            sum[0] += s.force[0];
+            sum[1] += s.force[1];
+        }
+        let diff = (sum[0] - r.total[0]).hypot(sum[1] - r.total[1]);
+        assert!(
+            diff <= 1e-12 * scale.max(1.0),
+            "{name}: body {}: supports {:?} add up to {sum:?}, total {:?}",
+            r.body,
+            r.supports,
+            r.total
+        );
+        let contact = contact_force(model, sol, b);
+        let imbalance =
+            (load[0] + r.total[0] + contact[0]).hypot(load[1] + r.total[1] + contact[1]);
+        assert!(
+            imbalance <= 1e-6 * scale.max(1.0),
+            "{name}: body {}: load {load:?} + reactions {:?} + contact {contact:?}",
+            r.body,
+            r.total
+        );
+    }
+    if name == "three_bodies.toml" {
+        // The lower block: u_y = 0 on its bottom, u_x = 0 on its right side. The corner node
+        // (4, 0) is on both: its x reaction counts on `right`, its y reaction on `bottom`.
+        let lower = &all[0];
+        let force = |boundary: &str| {
+            let s = lower.supports.iter().find(|s| s.boundary == boundary);
+            s.unwrap_or_else(|| panic!("{name}: no reaction on {boundary}"))
+                .force
+        };
+        let (bottom, right) = (force("bottom"), force("right"));
+        assert_eq!(lower.supports.len(), 2, "{:?}", lower.supports);
+        assert_eq!(bottom[0], 0.0, "bottom {bottom:?}");
+        assert_eq!(right[1], 0.0, "right {right:?}");
+        assert!(
+            (bottom[1] - 4000.0).abs() <= 1e-6 * 4000.0,
+            "bottom {bottom:?}"
+        );
+        assert!(right[0].abs() <= 1e-6 * 4000.0, "right {right:?}");
     }
 }
 

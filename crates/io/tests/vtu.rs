@@ -432,16 +432,23 @@ fn contact_point_data_on_the_notch() {
         let xml = std::fs::read_to_string(dir.join(format!("{}.vtu", body.name))).expect("read");
         let gap = array_values(&xml, "gap");
         let status = array_values(&xml, "contact_status");
+        let pressure = array_values(&xml, "contact_pressure");
+        let sigma_n = array_values(&xml, "sigma_n");
+        assert_eq!(sigma_n, body.contact_pressure);
         let mut contact_node = vec![false; body.mesh.num_nodes()];
         for i in (0..pair.side.len()).filter(|&i| pair.side[i] == b) {
             let v = pair.node[i];
             contact_node[v] = true;
             assert_eq!(gap[v], pair.gap[i]);
             assert_eq!(status[v], if pair.closed[i] { 1.0 } else { 0.0 });
+            // The notch's pair is own-side (matching meshes): p = −σ_n, positive where closed.
+            assert_eq!(pressure[v], (-pair.pressure[i]).max(0.0), "node {v}");
+            assert_eq!(pressure[v] > 0.0, pair.closed[i], "node {v}");
         }
         assert!(contact_node.iter().any(|&c| c));
         for v in (0..gap.len()).filter(|&v| !contact_node[v]) {
             assert!(gap[v].is_nan() && status[v].is_nan(), "node {v}");
+            assert_eq!(pressure[v], 0.0, "node {v}");
         }
     }
     std::fs::remove_dir_all(&dir).expect("clean up");

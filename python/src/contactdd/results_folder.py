@@ -172,7 +172,8 @@ def _parse_body(text: str, info: dict[str, Any]) -> Body:
         "displacement": np.ascontiguousarray(arrays["displacement"][:, :2]),
         "stress": stress,
         "von_mises": arrays["von_mises"],
-        "contact_pressure": arrays["contact_pressure"],
+        # The body's σ_n ≤ 0 at its contact nodes; the file's contact_pressure is p ≥ 0.
+        "contact_pressure": arrays["sigma_n"],
     })
 
 
