@@ -12,6 +12,7 @@ use pyo3::types::{PyDict, PyList, PyTuple, PyType};
 use contactdd_core::DIM;
 use contactdd_ddm::solution::{BodyResult, PairResult};
 use contactdd_ddm::{Condensation, Model, MonolithicSolution, Solution};
+use contactdd_io::fields::contact_pressures;
 use contactdd_io::output::{point_status, stop_name};
 
 use crate::convert::{array1, array2, name_of};
@@ -67,7 +68,7 @@ const BODY_STATE: [&str; 9] = [
 ];
 
 /// The attributes of a [`Contact`], in its state dict.
-const CONTACT_STATE: [&str; 16] = [
+const CONTACT_STATE: [&str; 17] = [
     "name",
     "bodies",
     "side",
@@ -76,6 +77,7 @@ const CONTACT_STATE: [&str; 16] = [
     "y",
     "gap",
     "pressure",
+    "nodal_traction",
     "closed",
     "status",
     "weight",
@@ -145,7 +147,8 @@ pub struct Body {
     /// ``(n,)`` nodal von Mises stress.
     #[pyo3(get)]
     von_mises: Py<PyAny>,
-    /// ``(n,)`` contact pressure σ_n (≤ 0, compressive) at contact nodes, 0 elsewhere.
+    /// ``(n,)`` normal contact stress σ_n (≤ 0, compressive) at contact nodes, 0 elsewhere (the
+    /// VTU files' ``sigma_n``; :attr:`Contact.pressure` is the pressure p ≥ 0).
     #[pyo3(get)]
     contact_pressure: Py<PyAny>,
 }
@@ -234,9 +237,15 @@ pub struct Contact {
     /// the normal misses the other body).
     #[pyo3(get)]
     gap: Py<PyAny>,
-    /// Normal contact stress σ_n = (d − s)⁻/θ (≤ 0).
+    /// Contact pressure p ≥ 0: −σ_n where the point's own pressure acts (an own-side pair, the
+    /// reference side of a balanced pair), the reference side's pressure read at the point on a
+    /// balanced pair's following side; 0 where open (``contact.csv``'s ``pressure``).
     #[pyo3(get)]
     pressure: Py<PyAny>,
+    /// The point's own value: σ_n = (d − s)⁻/θ (≤ 0) where its pressure acts, on a balanced
+    /// pair's following side the nodal traction F/w (``contact.csv``'s ``nodal_traction``).
+    #[pyo3(get)]
+    nodal_traction: Py<PyAny>,
     /// True where the point is closed (d − s < 0).
     #[pyo3(get)]
     closed: Py<PyAny>,
@@ -286,6 +295,7 @@ impl Contact {
             y: get(state, "y")?.unbind(),
             gap: get(state, "gap")?.unbind(),
             pressure: get(state, "pressure")?.unbind(),
+            nodal_traction: get(state, "nodal_traction")?.unbind(),
             closed: get(state, "closed")?.unbind(),
             status: get(state, "status")?.extract()?,
             weight: get(state, "weight")?.unbind(),
@@ -309,7 +319,7 @@ impl Contact {
 }
 
 impl Contact {
-    fn new(py: Python<'_>, p: &PairResult) -> PyResult<Contact> {
+    fn new(py: Python<'_>, p: &PairResult, pressure: &[f64]) -> PyResult<Contact> {
         let [b0, b1] = p.bodies.clone();
         let normal: Vec<f64> = p.nx.iter().zip(&p.ny).flat_map(|(&a, &b)| [a, b]).collect();
         let nodal_force: Vec<f64> = p.fx.iter().zip(&p.fy).flat_map(|(&a, &b)| [a, b]).collect();
@@ -325,7 +335,8 @@ impl Contact {
             x: array1(py, p.x.clone()).unbind(),
             y: array1(py, p.y.clone()).unbind(),
             gap: array1(py, p.gap.clone()).unbind(),
-            pressure: array1(py, p.pressure.clone()).unbind(),
+            pressure: array1(py, pressure.to_vec()).unbind(),
+            nodal_traction: array1(py, p.pressure.clone()).unbind(),
             closed: array1(py, p.closed.clone()).unbind(),
             status: (0..p.x.len())
                 .map(|i| point_status(p, i).to_string())
@@ -355,10 +366,16 @@ fn bodies_list(
     Ok(PyList::new(py, items)?.unbind())
 }
 
-fn contact_list(py: Python<'_>, pairs: &[PairResult]) -> PyResult<Py<PyList>> {
+fn contact_list(
+    py: Python<'_>,
+    pairs: &[PairResult],
+    bodies: &[BodyResult],
+) -> PyResult<Py<PyList>> {
+    let pressures = contact_pressures(pairs, bodies);
     let items = pairs
         .iter()
-        .map(|p| Py::new(py, Contact::new(py, p)?))
+        .zip(&pressures)
+        .map(|(p, pressure)| Py::new(py, Contact::new(py, p, pressure)?))
         .collect::<PyResult<Vec<_>>>()?;
     Ok(PyList::new(py, items)?.unbind())
 }
@@ -475,7 +492,7 @@ impl SolveResult {
             theta: sol.theta.clone(),
             history: history.unbind(),
             bodies: bodies_list(py, &sol.bodies, Some(&sol.condensation))?,
-            contact: contact_list(py, &sol.contact)?,
+            contact: contact_list(py, &sol.contact, &sol.bodies)?,
             timing: timing.unbind(),
             updates: sol.updates,
             gap_tol: sol.gap_tol,
@@ -622,7 +639,7 @@ impl MonolithicResult {
             newton_steps: sol.newton_steps,
             rigid_modes: sol.rigid_modes.clone(),
             bodies: bodies_list(py, &sol.bodies, None)?,
-            contact: contact_list(py, &sol.contact)?,
+            contact: contact_list(py, &sol.contact, &sol.bodies)?,
             seconds: sol.seconds,
             origin: Origin::Solved {
                 model,

@@ -7,7 +7,7 @@ import contactdd
 
 BODY = ["name", "order", "nodes", "triangles", "displacement", "stress", "von_mises",
         "contact_pressure"]
-CONTACT = ["name", "bodies", "side", "node", "x", "y", "gap", "pressure", "closed", "status",
+CONTACT = ["name", "bodies", "side", "node", "x", "y", "gap", "pressure", "nodal_traction", "closed", "status",
            "weight", "normal", "forces", "max_penetration", "complementarity"]
 RESULT = ["converged", "stop", "iterations", "message", "method", "gamma", "theta", "history",
           "bodies", "contact", "updates", "gap_tol", "load_factor"]

@@ -138,14 +138,15 @@ def test_force_balance(notch):
     assert f0y == pytest.approx(-Q * L, rel=1e-9)
     assert f1y == pytest.approx(Q * L, rel=1e-9)
     assert abs(f0x) < 1e-9 * Q * L and abs(f1x) < 1e-9 * Q * L
-    # The same from the per-point arrays: Σ w σ_n n_y per side.
+    # The same from the per-point arrays: Σ w σ_n n_y = −Σ w p n_y per side (own-side pair).
     side = np.asarray(c.side)
     for s, f in [(0, f0y), (1, f1y)]:
         m = side == s
-        total = np.sum(c.weight[m] * c.pressure[m] * c.normal[m, 1])
+        total = np.sum(c.weight[m] * c.nodal_traction[m] * c.normal[m, 1])
         assert total == pytest.approx(f, rel=1e-12)
-    assert np.all(c.pressure <= 0)
-    assert np.array_equal(c.closed, c.pressure < 0)
+        assert -np.sum(c.weight[m] * c.pressure[m] * c.normal[m, 1]) == pytest.approx(f, rel=1e-12)
+    assert np.all(c.pressure >= 0) and np.all(c.nodal_traction <= 0)
+    assert np.array_equal(c.closed, c.pressure > 0)
     assert set(c.status) <= {"closed", "open", "no-partner"}
     # The notch opens next to the symmetry line x = 4, the rest is closed.
     lower = side == 0

@@ -11,7 +11,7 @@
 //!                      [--threads N]
 //! contactdd check FILE
 //! contactdd monolithic FILE [--out DIR] [--threads N] [--max-steps K] [--quiet]
-//! contactdd plot RESULTS [--out DIR] [--format svg,png] [--tol T] [--units U]
+//! contactdd plot RESULTS [--out DIR] [--format svg,png] [--tol T] [--units U] [--quiet]
 //! ```
 //!
 //! Exit codes ([`Exit`]):

@@ -152,7 +152,7 @@ fn window(pair: &Pair, along: fn(&Point) -> f64) -> Range<f64> {
     let all = || pair.sides.iter().flat_map(|s| s.points.iter());
     let whole = span(all().map(along), 0.02, 0.0..1.0);
     let pressed = span(
-        all().filter(|p| p.pressure < 0.0).map(along),
+        all().filter(|p| p.pressure > 0.0).map(along),
         0.5,
         whole.clone(),
     );
@@ -175,7 +175,8 @@ fn frame(
     }
 }
 
-/// Contact pressure −σn ≥ 0 against the coordinate along the contact line.
+/// Contact pressure p ≥ 0 (`contact.csv`'s `pressure`) against the coordinate along the contact
+/// line.
 struct Pressure<'a> {
     pair: &'a Pair,
     units: &'a Units,
@@ -186,7 +187,7 @@ impl Figure for Pressure<'_> {
         let (axis, along) = self.pair.along();
         let x = window(self.pair, along);
         let all = || self.pair.sides.iter().flat_map(|s| s.points.iter());
-        let top = span(all().map(|p| -p.pressure), 0.0, 0.0..1.0).end.max(0.0);
+        let top = span(all().map(|p| p.pressure), 0.0, 0.0..1.0).end.max(0.0);
         let y = 0.0..if top > 0.0 { top * 1.1 } else { 1.0 };
         let mut legend = Legend::default();
         for (s, side) in self.pair.sides.iter().enumerate() {
@@ -198,7 +199,7 @@ impl Figure for Pressure<'_> {
             "contact pressure",
             self.pair,
             axis,
-            "contact pressure −σn",
+            "contact pressure p",
             stress,
             self.units,
         );
@@ -206,7 +207,7 @@ impl Figure for Pressure<'_> {
         for (s, side) in self.pair.sides.iter().enumerate() {
             series(
                 &mut chart,
-                &curve(side, along, &x, |p| -p.pressure),
+                &curve(side, along, &x, |p| p.pressure),
                 side_look(s),
             )?;
         }

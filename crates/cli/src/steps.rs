@@ -108,7 +108,7 @@ pub fn run_steps(run: StepRun<'_>, prepared: &mut Prepared) -> Result<Exit> {
 }
 
 /// `step 2/4, factor 0.5: converged in 3 iterations (relative residual 2.1e-12); pair: force
-/// (0, 4200), max |σn| 2647[; monitor (ux, uy)]` with the monitored displacement.
+/// (0, 4200), max p 2647[; monitor (ux, uy)]` with the monitored displacement.
 fn step_line(
     k: usize,
     count: usize,
@@ -128,13 +128,12 @@ fn step_line(
     };
     let mut line = format!("step {k}/{count}, factor {}: {state}", sig(factor));
     for pair in &sol.contact {
-        let peak = pair.pressure.iter().fold(0.0f64, |m, p| m.max(p.abs()));
         line += &format!(
-            "; {}: force on {} {}, max |σn| {}",
+            "; {}: force on {} {}, max p {}",
             pair.name,
             pair.bodies[0],
             vec2(pair.force_on(0)),
-            sig(peak)
+            sig(pair.max_pressure())
         );
     }
     if let Some(u) = monitored {

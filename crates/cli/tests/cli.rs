@@ -138,7 +138,7 @@ fn solving_the_notch_example_succeeds_and_writes_every_result_file() {
     }
 
     let csv = std::fs::read_to_string(res.join("contact.csv")).unwrap();
-    assert!(csv.starts_with("pair,body,x,y,gap,pressure,status\n"));
+    assert!(csv.starts_with("pair,body,x,y,gap,pressure,nodal_traction,status\n"));
     assert_eq!(csv.lines().count(), points + 1);
     let history = std::fs::read_to_string(res.join("history.csv")).unwrap();
     assert!(history.starts_with(

@@ -97,7 +97,7 @@ fn pressures(csv: &str, body: &str) -> Vec<(f64, f64)> {
         .skip(1)
         .filter_map(|l| {
             let f: Vec<&str> = l.split(',').collect();
-            (f[1] == body).then(|| (f[2].parse().unwrap(), -f[5].parse::<f64>().unwrap()))
+            (f[1] == body).then(|| (f[2].parse().unwrap(), f[5].parse::<f64>().unwrap()))
         })
         .collect();
     rows.sort_by(|a, b| a.0.total_cmp(&b.0));

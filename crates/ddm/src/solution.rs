@@ -91,6 +91,14 @@ pub struct PairResult {
 }
 
 impl PairResult {
+    /// The largest contact pressure p = −σ_n ≥ 0 over the points whose own pressure acts (a
+    /// following point's pressure is read from them, so it is never larger); 0 if none presses.
+    pub fn max_pressure(&self) -> f64 {
+        (0..self.pressure.len())
+            .filter(|&i| self.is_enforced(i) && self.pressure[i].is_finite())
+            .fold(0.0, |m: f64, i| m.max(-self.pressure[i]))
+    }
+
     /// The largest penetration max (s − d)⁺ over the points with a partner whose gap the contact
     /// enforces (a length; 0 if none).
     pub fn max_penetration(&self) -> f64 {

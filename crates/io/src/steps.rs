@@ -19,7 +19,7 @@ use crate::summary::json_number;
 
 /// What one step reports per pair: the resultant contact force on the pair's first body, the
 /// length of its closed contact zone (the quadrature weights of its closed points) and the
-/// largest contact pressure |σn| of either side.
+/// largest contact pressure p ≥ 0 ([`PairResult::max_pressure`]).
 struct PairStep {
     force: [f64; 2],
     contact_length: f64,
@@ -35,7 +35,7 @@ impl PairStep {
                 .filter(|&i| pair.closed[i])
                 .map(|i| pair.weight[i])
                 .sum(),
-            max_pressure: pair.pressure.iter().fold(0.0, |m: f64, p| m.max(p.abs())),
+            max_pressure: pair.max_pressure(),
         }
     }
 }

@@ -24,7 +24,7 @@
 //! | `accelerator`, `coarse` | the accelerator and coarse mode used                           |
 //! | `history`   | per iteration `{k, gamma, measure, rel_change, active, normal_force}`; `gamma` is the Newton method's step length |
 //! | `bodies`    | per body `{name, nodes, elements, dofs, order, applied_load, condensation}` |
-//! | `contact`   | per pair `{name, bodies, body, node, x, y, gap, pressure, status, weight, normal, force}` |
+//! | `contact`   | per pair `{name, bodies, body, node, x, y, gap, pressure, nodal_traction, status, weight, normal, force}`: `pressure` is p ≥ 0, `nodal_traction` as in `contact.csv` |
 //! | `reactions` | per body `{body, supports: [{boundary, force}], total}` ([`reactions_json`]) |
 //! | `timing_s`  | wall time per phase, seconds                                               |
 //! | `version`   | contactdd version                                                          |
@@ -45,6 +45,7 @@ use contactdd_core::{num_dofs, Order};
 use contactdd_ddm::solution::{BodyResult, PairResult, Solution};
 use contactdd_ddm::{Condensation, Gamma, Model, MonolithicSolution, Stop};
 
+use crate::fields::contact_pressures;
 use crate::reactions::{reactions, BodyReactions};
 
 /// A JSON number, or `null` for NaN and ±infinity (which JSON cannot represent).
@@ -117,7 +118,7 @@ pub fn summary_json_with(model: &Model, sol: &Solution, reactions: &[BodyReactio
         "coarse": sol.coarse.to_string(),
         "history": history,
         "bodies": with_paths(bodies_json(model), &sol.condensation),
-        "contact": contact_json(&sol.contact),
+        "contact": contact_json(&sol.contact, &sol.bodies),
         "enforcement": model.pairs.iter().map(|p| p.enforcement.to_string()).collect::<Vec<_>>(),
         "updates": sol.updates,
         "gap_tol": sol.gap_tol.map(json_number),
@@ -158,7 +159,7 @@ pub fn monolithic_summary_json(model: &Model, sol: &MonolithicSolution) -> Value
         "equilibrium": json_numbers(&sol.equilibrium),
         "imbalance": json_numbers(&sol.imbalance),
         "bodies": bodies_json(model),
-        "contact": contact_json(&sol.contact),
+        "contact": contact_json(&sol.contact, &sol.bodies),
         "timing_s": { "total": json_number(sol.seconds) },
         "version": env!("CARGO_PKG_VERSION"),
     })
@@ -235,10 +236,12 @@ fn reactions_value(reactions: &[BodyReactions]) -> Value {
         .collect()
 }
 
-fn contact_json(pairs: &[PairResult]) -> Value {
+fn contact_json(pairs: &[PairResult], bodies: &[BodyResult]) -> Value {
+    let pressures = contact_pressures(pairs, bodies);
     pairs
         .iter()
-        .map(|p| {
+        .zip(&pressures)
+        .map(|(p, pressure)| {
             let status: Vec<&str> = (0..p.gap.len()).map(|i| point_status(p, i)).collect();
             let body: Vec<&str> = p.side.iter().map(|&s| p.bodies[s].as_str()).collect();
             json!({
@@ -249,7 +252,8 @@ fn contact_json(pairs: &[PairResult]) -> Value {
                 "x": json_numbers(&p.x),
                 "y": json_numbers(&p.y),
                 "gap": json_numbers(&p.gap),
-                "pressure": json_numbers(&p.pressure),
+                "pressure": json_numbers(pressure),
+                "nodal_traction": json_numbers(&p.pressure),
                 "status": status,
                 "weight": json_numbers(&p.weight),
                 "normal": p.nx.iter().zip(&p.ny).map(|(&x, &y)| json_numbers(&[x, y])).collect::<Vec<_>>(),

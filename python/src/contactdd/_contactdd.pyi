@@ -268,7 +268,11 @@ class Contact:
     @property
     def gap(self) -> npt.NDArray[np.float64]: ...
     @property
-    def pressure(self) -> npt.NDArray[np.float64]: ...
+    def pressure(self) -> npt.NDArray[np.float64]:
+        """Contact pressure p >= 0 (0 where open), as contact.csv's pressure."""
+    @property
+    def nodal_traction(self) -> npt.NDArray[np.float64]:
+        """The point's own sigma_n <= 0, or a following point's nodal traction F/w."""
     @property
     def closed(self) -> npt.NDArray[np.bool_]: ...
     @property

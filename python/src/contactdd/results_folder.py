@@ -193,6 +193,7 @@ def _contact(pair: dict[str, Any], folder: Path) -> Contact:
             "y": _floats(pair["y"]),
             "gap": gap,
             "pressure": _floats(pair["pressure"]),
+            "nodal_traction": _floats(pair["nodal_traction"]),
             "closed": np.array([s == "closed" for s in status], dtype=bool),
             "status": list(status),
             "weight": _floats(pair["weight"]),
