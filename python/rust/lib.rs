@@ -24,6 +24,7 @@ use contactdd_ddm::{Gamma, Method, SetupError};
 use contactdd_io::setup::MAX_RECTANGLE_CELLS;
 
 mod benchmark;
+mod contact_result;
 mod convert;
 mod error;
 mod options;
@@ -35,10 +36,11 @@ mod solve;
 mod state;
 mod steps;
 
+use contact_result::Contact;
 use error::{convergence_error_type, input_error, io_error_type, setup_error, ContactddError};
 use options::{gamma, gamma_to_py, GammaArg, SolverOptions};
 use problem::Problem;
-use results::{Body, Contact, MonolithicResult, SolveResult};
+use results::{Body, MonolithicResult, SolveResult};
 use run::{run_interruptible, warn_contact, with_threads};
 
 /// The methods a sweep runs by default: the three of the paper's γ study.
