@@ -90,7 +90,7 @@ fn polylines(svg: &str) -> Vec<Vec<(f64, f64)>> {
         .collect()
 }
 
-/// The pressures −σn of `body` in contact.csv, sorted along x (the notch's contact line).
+/// The pressures p ≥ 0 of `body` in contact.csv, sorted along x (the notch's contact line).
 fn pressures(csv: &str, body: &str) -> Vec<(f64, f64)> {
     let mut rows: Vec<(f64, f64)> = csv
         .lines()
@@ -140,11 +140,17 @@ fn a_solved_example_gets_its_figures() {
 
     let pressure = svg(&plots.join("pressure-notch.svg"));
     // Units come from the problem's `units = "cm, N/cm^2"`.
-    for label in ["contact pressure −σn (N/cm^2)", "x (cm)", "lower", "upper"] {
+    for label in ["contact pressure p (N/cm^2)", "x (cm)", "lower", "upper"] {
         assert!(pressure.contains(label), "pressure figure lacks '{label}'");
     }
     let history = svg(&plots.join("history.svg"));
-    for label in ["iteration k", "tol = 1e-3", "lower", "upper"] {
+    for label in [
+        "iteration k",
+        "tol = 1e-3",
+        "stop test: relative change",
+        "lower",
+        "upper",
+    ] {
         assert!(history.contains(label), "history figure lacks '{label}'");
     }
     // Every element of both bodies (32 × 16 × 2 triangles each) is a coloured polygon.
