@@ -6,7 +6,12 @@ compares the numbers where the files' layout differs on purpose.
 
 Usage: python3 scripts/same_numbers.py REFERENCE_BINARY CURRENT_BINARY   (exit 1 on a difference)
 """
-import json, subprocess, sys, tempfile, re
+import json
+import re
+import shutil
+import subprocess
+import sys
+import tempfile
 from pathlib import Path
 ref, cur = sys.argv[1], sys.argv[2]
 root = Path(tempfile.mkdtemp())
@@ -38,5 +43,6 @@ for ex in sorted(Path('examples').glob('*.toml')):
             bad += 1
             print(f'{ex.stem}: {key} differs')
     print(f'{ex.stem}: {len(checks)} quantities compared')
+shutil.rmtree(root)
 print('differences:', bad)
 sys.exit(1 if bad else 0)
