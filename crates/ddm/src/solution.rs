@@ -29,12 +29,15 @@ pub struct BodyResult {
     pub von_mises: Vec<f64>,
     /// Contact pressure σ_n at the body's contact nodes (≤ 0, compressive), 0 elsewhere.
     pub contact_pressure: Vec<f64>,
+    /// Where `mesh` is the skin of a body that another process meshes: the body's own number of
+    /// each skin node (the numbering of the contact results); empty when `mesh` is the body's.
+    pub node_ids: Vec<usize>,
 }
 
 impl BodyResult {
     /// The entry of a body whose fields another process holds (a distributed solve): its name
     /// and skin, no fields.
-    pub fn elsewhere(body: &ElasticBody) -> BodyResult {
+    pub fn elsewhere(body: &ElasticBody, node_ids: &[usize]) -> BodyResult {
         BodyResult {
             name: body.name.clone(),
             mesh: body.mesh.clone(),
@@ -42,7 +45,13 @@ impl BodyResult {
             stress: Vec::new(),
             von_mises: Vec::new(),
             contact_pressure: Vec::new(),
+            node_ids: node_ids.to_vec(),
         }
+    }
+
+    /// The body's own number of node `n` of `mesh`.
+    pub fn body_node(&self, n: usize) -> usize {
+        self.node_ids.get(n).copied().unwrap_or(n)
     }
 
     /// Whether this process holds the body's fields.
@@ -441,7 +450,8 @@ pub fn body_results(
         .map(|(b, (body, u))| {
             // Another process recovered this body's field.
             if u.is_empty() {
-                return BodyResult::elsewhere(body);
+                let remote = model.remote.get(b).and_then(Option::as_ref);
+                return BodyResult::elsewhere(body, remote.map_or(&[], |r| r.ids.as_slice()));
             }
             let st = stresses(&body.mesh, &body.material, body.plane, &u);
             let mut pressure = vec![0.0; body.mesh.num_nodes()];
@@ -458,6 +468,7 @@ pub fn body_results(
                 stress: st.nodal,
                 von_mises: st.von_mises,
                 contact_pressure: pressure,
+                node_ids: Vec::new(),
             }
         })
         .collect()

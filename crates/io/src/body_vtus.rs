@@ -249,6 +249,7 @@ mod tests {
             stress: Vec::new(),
             von_mises: Vec::new(),
             contact_pressure: Vec::new(),
+            node_ids: Vec::new(),
         };
         let bodies = ["a b", "c", "a_b", "a/b"].map(body);
         let names: Vec<String> = vtu_paths(Path::new("out"), "", &bodies)

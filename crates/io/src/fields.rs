@@ -8,7 +8,7 @@ use std::collections::HashMap;
 use contactdd_core::material::von_mises;
 use contactdd_core::mesh::dist;
 use contactdd_core::post::{stresses, Stress};
-use contactdd_core::{ElasticBody, Mesh, Point};
+use contactdd_core::{ElasticBody, Point};
 use contactdd_ddm::solution::{BodyResult, PairResult};
 
 /// The 3×3 stress tensor of `[σ_xx, σ_yy, σ_xy, σ_zz]`, row-major (9 values, the VTK tensor
@@ -79,7 +79,7 @@ pub fn contact_point_data(name: &str, num_nodes: usize, pairs: &[PairResult]) ->
 /// over its weight, [`PairResult::pressure`] there) is another quantity: it is no pressure field
 /// and can change sign near the edge of the contact zone.
 pub fn contact_pressures(pairs: &[PairResult], bodies: &[BodyResult]) -> Vec<Vec<f64>> {
-    let meshes: HashMap<&str, &Mesh> = bodies.iter().map(|b| (b.name.as_str(), &b.mesh)).collect();
+    let meshes: HashMap<&str, &BodyResult> = bodies.iter().map(|b| (b.name.as_str(), b)).collect();
     pairs
         .iter()
         .map(|pair| pair_pressures(pair, &meshes))
@@ -96,7 +96,7 @@ fn own_pressure(sigma_n: f64) -> f64 {
 }
 
 /// [`contact_pressures`] of one pair.
-fn pair_pressures(pair: &PairResult, meshes: &HashMap<&str, &Mesh>) -> Vec<f64> {
+fn pair_pressures(pair: &PairResult, meshes: &HashMap<&str, &BodyResult>) -> Vec<f64> {
     let enforced = |i: usize| pair.enforced.get(i).copied().unwrap_or(true);
     let mut p: Vec<f64> = (0..pair.gap.len())
         .map(|i| {
@@ -119,10 +119,10 @@ fn pair_pressures(pair: &PairResult, meshes: &HashMap<&str, &Mesh>) -> Vec<f64> 
             .filter(|&i| pair.side[i] != side && enforced(i))
             .map(|i| (pair.node[i], p[i]))
             .collect();
-        let Some(mesh) = meshes.get(reference.as_str()) else {
+        let Some(body) = meshes.get(reference.as_str()) else {
             continue;
         };
-        let segments = reference_segments(mesh, &carried);
+        let segments = reference_segments(body, &carried);
         for i in followers {
             p[i] = read_pressure(&segments, [pair.x[i], pair.y[i]]);
         }
@@ -133,9 +133,11 @@ fn pair_pressures(pair: &PairResult, meshes: &HashMap<&str, &Mesh>) -> Vec<f64> 
 /// A straight piece of the reference side: its two end points and their pressures.
 type Segment = ([Point; 2], [f64; 2]);
 
-/// The boundary edges (each half of a P2 edge) of `mesh` whose two nodes are reference points,
-/// with their pressures `carried` (node → p).
-fn reference_segments(mesh: &Mesh, carried: &HashMap<usize, f64>) -> Vec<Segment> {
+/// The boundary edges (each half of a P2 edge) of the body's mesh (its skin on a process that does
+/// not mesh it) whose two nodes are reference points, with their pressures `carried` (the body's
+/// own node number → p).
+fn reference_segments(body: &BodyResult, carried: &HashMap<usize, f64>) -> Vec<Segment> {
+    let (mesh, id) = (&body.mesh, |n: usize| body.body_node(n));
     let nodes = mesh.nodes();
     let mut segments = Vec::new();
     for edge in mesh.boundaries().values().flatten() {
@@ -144,9 +146,12 @@ fn reference_segments(mesh: &Mesh, carried: &HashMap<usize, f64>) -> Vec<Segment
             None => vec![(edge.a, edge.b)],
         };
         for (a, b) in pieces {
-            if let (Some(&pa), Some(&pb), Some(&xa), Some(&xb)) =
-                (carried.get(&a), carried.get(&b), nodes.get(a), nodes.get(b))
-            {
+            if let (Some(&pa), Some(&pb), Some(&xa), Some(&xb)) = (
+                carried.get(&id(a)),
+                carried.get(&id(b)),
+                nodes.get(a),
+                nodes.get(b),
+            ) {
                 segments.push(([xa, xb], [pa, pb]));
             }
         }

@@ -284,6 +284,7 @@ fn fields_of(
         stress: st.nodal,
         von_mises: st.von_mises,
         contact_pressure: vec![0.0; body.mesh.num_nodes()],
+        node_ids: Vec::new(),
     }
 }
 
