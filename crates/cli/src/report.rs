@@ -207,12 +207,15 @@ pub fn reaction_report(reactions: &[BodyReactions]) -> Vec<String> {
 }
 
 /// `applied loads: lower (0, 8400), upper (0, -8400)`.
-pub fn applied_loads(model: &Model) -> String {
+pub fn applied_loads(model: &Model, factor: f64) -> String {
     let items: Vec<String> = model
         .bodies
         .iter()
         .enumerate()
-        .map(|(i, b)| format!("{} {}", b.name, vec2(model.facts(i).applied_load)))
+        .map(|(i, b)| {
+            let f = model.facts(i).applied_load.map(|x| x * factor);
+            format!("{} {}", b.name, vec2(f))
+        })
         .collect();
     format!("applied loads: {}", items.join(", "))
 }

@@ -317,7 +317,7 @@ fn print_summary(
     for line in pair_report(&sol.contact, &sol.theta) {
         say!("{line}");
     }
-    say!("{}", applied_loads(model));
+    say!("{}", applied_loads(model, sol.load_factor));
     let sparse: Vec<&str> = (model.bodies.iter().zip(&sol.condensation))
         .filter(|(_, &path)| path == Condensation::Sparse)
         .map(|(b, _)| b.name.as_str())
@@ -502,7 +502,7 @@ fn report_monolithic(model: &Model, sol: &MonolithicSolution) {
     for line in pair_report(&sol.contact, &model.thetas()) {
         say!("{line}");
     }
-    say!("{}", applied_loads(model));
+    say!("{}", applied_loads(model, 1.0));
 }
 
 /// `./<problem name>-<suffix>`.

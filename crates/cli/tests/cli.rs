@@ -575,3 +575,41 @@ fn monolithic_cut_short_writes_its_last_iterate_and_exits_2() {
     assert_eq!(read_json(&dir.join("m/summary.json"))["converged"], true);
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// Load steps that stop below the full load: `summary.json` gives the applied loads of the last
+/// step, so that they and the reactions balance; factors that do not increase are refused.
+#[test]
+fn the_summary_of_load_steps_is_at_the_last_steps_load() {
+    let dir = temp_dir("partial-steps");
+    // The default solver: with PAIR's own sweeps the first step stops unconverged.
+    let newton = PAIR.replace("method = \"newton-kurchatov\"\ngamma = 0.5\n", "");
+    let steps = newton.replace("tol = 1e-8", "tol = 1e-8\nload-steps = [0.25, 0.5]");
+    std::fs::write(dir.join("pair.toml"), &steps).unwrap();
+    let out = contactdd(&dir, &["solve", "pair.toml", "--out", "res", "--quiet"]);
+    assert!(out.status.success(), "{}", stderr(&out));
+    let summary = read_json(&dir.join("res/summary.json"));
+    // The upper block's top (2 long) carries the pressure 100, half of it at the last step.
+    let applied = &summary["bodies"][1]["applied_load"];
+    assert!(
+        (applied[1].as_f64().unwrap() + 100.0).abs() < 1e-9,
+        "{applied}"
+    );
+    let mut net = [0.0f64; 2];
+    for b in 0..2 {
+        for c in 0..2 {
+            net[c] += summary["bodies"][b]["applied_load"][c].as_f64().unwrap();
+            net[c] += summary["reactions"][b]["total"][c].as_f64().unwrap();
+        }
+    }
+    assert!(net.iter().all(|f| f.abs() < 1e-6 * 100.0), "{net:?}");
+
+    let unsorted = PAIR.replace("tol = 1e-8", "tol = 1e-8\nload-steps = [0.5, 0.25]");
+    std::fs::write(dir.join("unsorted.toml"), unsorted).unwrap();
+    let out = contactdd(
+        &dir,
+        &["solve", "unsorted.toml", "--out", "res2", "--quiet"],
+    );
+    assert_eq!(out.status.code(), Some(1));
+    assert!(stderr(&out).contains("must increase"), "{}", stderr(&out));
+    let _ = std::fs::remove_dir_all(&dir);
+}

@@ -561,3 +561,19 @@ fn curved_p2_triangles_are_rejected_with_the_ways_out() {
         "line {line}: {element}"
     );
 }
+
+/// A triangle listed twice (its three vertices again, in any order) would be assembled twice; it
+/// is refused with the line of the repeat.
+#[test]
+fn a_repeated_triangle_is_refused() {
+    let text = square_text();
+    let i = line_index(&text, "11 1 20 8");
+    // Element 10 is the triangle 1 5 20.
+    let repeated = replace_line(&text, i, "11 5 20 1");
+    assert_eq!(parse_error_line(parse_msh(&repeated)), i + 1);
+    match parse_msh(&repeated) {
+        Err(e) => assert!(e.to_string().contains("same three vertices"), "{e}"),
+        Ok(_) => panic!("accepted"),
+    }
+    assert!(parse_msh(&text).is_ok());
+}

@@ -34,12 +34,15 @@ pub struct Prepared {
     pub coarse: Coarse,
     /// Setup wall times, seconds.
     pub timing: Vec<(String, f64)>,
+    /// The factor of every load and prescribed displacement ([`Prepared::set_load_factor`]).
+    pub load_factor: f64,
 }
 
 impl Prepared {
     /// Scales every body's loads and prescribed displacements by `factor` (1: the problem as
     /// given): the load steps of [`crate::steps`] reuse one factorisation.
     pub fn set_load_factor(&mut self, factor: f64) {
+        self.load_factor = factor;
         for body in self.bodies.iter_mut().flatten() {
             body.set_load_factor(factor);
         }
@@ -164,6 +167,7 @@ pub fn prepare_on(
             ("numeric".into(), sum(|t| t.numeric)),
             ("condensation".into(), sum(|t| t.condensation)),
         ],
+        load_factor: 1.0,
     })
 }
 

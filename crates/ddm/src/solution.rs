@@ -179,6 +179,9 @@ pub struct Solution {
     pub gap_tol: Option<f64>,
     /// The stopping tolerance the solve used (`Settings::tol`).
     pub tol: f64,
+    /// The factor of every load and prescribed displacement of the model that this solve used
+    /// (1 unless it is a load step).
+    pub load_factor: f64,
     /// The settings of the solve; their `Display` is the description of the solver that the
     /// console, `check`, `summary.json` and Python print.
     pub settings: Settings,

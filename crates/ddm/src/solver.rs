@@ -114,6 +114,7 @@ pub fn solve_from(
         gap_tol,
         tol: settings.tol,
         settings: settings.clone(),
+        load_factor: prepared.load_factor,
         interface_loads: outcome.t_load,
         condensation: prepared.paths.clone(),
         timing,

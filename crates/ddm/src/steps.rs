@@ -17,13 +17,19 @@ pub fn equal_steps(count: usize) -> Vec<f64> {
     (1..=count).map(|k| k as f64 / count as f64).collect()
 }
 
-/// Checks a list of load factors: at least one, each finite and positive.
+/// Checks a list of load factors: at least one, each finite and positive, increasing.
 pub fn check_factors(factors: &[f64]) -> Result<(), String> {
     if factors.is_empty() {
         return Err("needs at least one load factor".into());
     }
-    match factors.iter().find(|f| !(f.is_finite() && **f > 0.0)) {
-        Some(f) => Err(format!("load factors must be positive and finite, got {f}")),
+    if let Some(f) = factors.iter().find(|f| !(f.is_finite() && **f > 0.0)) {
+        return Err(format!("load factors must be positive and finite, got {f}"));
+    }
+    match factors.windows(2).find(|w| w[1] <= w[0]) {
+        Some(w) => Err(format!(
+            "load factors must increase from step to step, got {} after {}",
+            w[1], w[0]
+        )),
         None => Ok(()),
     }
 }

@@ -31,7 +31,7 @@
 //! | `files`     | the manifest: the other files of the result set (written last, [`crate::result_set`]) |
 //!
 //! `dofs` counts the unknowns (2 per node minus the prescribed ones); `applied_load` is the total
-//! applied force `[fx, fy]`; `condensation` is the path the body took, `dense` or `sparse`
+//! applied force `[fx, fy]` at the result's load factor (the last step's with load steps); `condensation` is the path the body took, `dense` or `sparse`
 //! (docs/sparse-path.md). In `contact`, the arrays have one entry per contact point of both
 //! sides; `status` is `closed` (d − s < 0, the point carries pressure), `open`, or `no-partner`
 //! (the normal ray misses the other body: infinite gap, written as `null`); `force` holds the total
@@ -117,7 +117,7 @@ pub fn summary_json_with(model: &Model, sol: &Solution, reactions: &[BodyReactio
         "accelerator": sol.accelerator.to_string(),
         "coarse": sol.coarse.to_string(),
         "history": history,
-        "bodies": with_paths(bodies_json(model), &sol.condensation),
+        "bodies": with_paths(bodies_json(model, sol.load_factor), &sol.condensation),
         "contact": contact_json(&sol.contact, &sol.bodies),
         "enforcement": model.pairs.iter().map(|p| p.enforcement.to_string()).collect::<Vec<_>>(),
         "updates": sol.updates,
@@ -158,7 +158,7 @@ pub fn monolithic_summary_json(model: &Model, sol: &MonolithicSolution) -> Value
         "rigid_modes": sol.rigid_modes,
         "equilibrium": json_numbers(&sol.equilibrium),
         "imbalance": json_numbers(&sol.imbalance),
-        "bodies": bodies_json(model),
+        "bodies": bodies_json(model, 1.0),
         "contact": contact_json(&sol.contact, &sol.bodies),
         "timing_s": { "total": json_number(sol.seconds) },
         "version": env!("CARGO_PKG_VERSION"),
@@ -184,7 +184,8 @@ fn gamma_json(gamma: Gamma) -> Value {
     }
 }
 
-fn bodies_json(model: &Model) -> Value {
+/// The bodies' sizes, orders and applied loads (at the load `factor` the result used).
+fn bodies_json(model: &Model, factor: f64) -> Value {
     model
         .bodies
         .iter()
@@ -200,7 +201,7 @@ fn bodies_json(model: &Model) -> Value {
                     Order::P1 => "p1",
                     Order::P2 => "p2",
                 },
-                "applied_load": json_numbers(&f.applied_load),
+                "applied_load": json_numbers(&f.applied_load.map(|x| x * factor)),
             })
         })
         .collect()

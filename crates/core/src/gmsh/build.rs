@@ -1,7 +1,7 @@
 //! The mesh assembled from a file's raw content: the body's triangles chosen, nodes renumbered,
 //! elements sorted into cells, boundaries and node sets.
 
-use std::collections::{BTreeMap, BTreeSet};
+use std::collections::{BTreeMap, BTreeSet, HashMap};
 
 use crate::error::{GmshError, MeshError};
 use crate::geometry::{Point, DIM};
@@ -152,12 +152,27 @@ impl RawMsh {
     fn triangle_order_and_nodes(&self, body: Option<i64>) -> Result<(Order, Vec<bool>), GmshError> {
         let mut order = None;
         let mut used = vec![false; self.coords.len()];
+        // A triangle listed twice would be assembled twice: a body twice as stiff there.
+        let mut vertices: HashMap<[u64; 3], usize> = HashMap::new();
         for element in &self.elements {
             let Kind::Triangle(o) = element.kind else {
                 continue;
             };
             if !self.in_body(element, body) {
                 continue;
+            }
+            let mut key = [0; 3];
+            key.iter_mut()
+                .zip(&element.nodes)
+                .for_each(|(k, &n)| *k = n);
+            key.sort_unstable();
+            if let Some(first) = vertices.insert(key, element.line) {
+                return Err(GmshError::Parse {
+                    line: element.line,
+                    message: format!(
+                        "this triangle has the same three vertices as the one on line {first}"
+                    ),
+                });
             }
             match order {
                 None => order = Some(o),
