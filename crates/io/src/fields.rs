@@ -6,10 +6,11 @@
 use std::collections::HashMap;
 
 use contactdd_core::material::von_mises;
-use contactdd_core::mesh::dist;
 use contactdd_core::post::{stresses, Stress};
-use contactdd_core::{ElasticBody, Point};
+use contactdd_core::ElasticBody;
 use contactdd_ddm::solution::{BodyResult, PairResult};
+
+use crate::nearest_segment::{Segment, Segments};
 
 /// The 3×3 stress tensor of `[σ_xx, σ_yy, σ_xy, σ_zz]`, row-major (9 values, the VTK tensor
 /// layout; the plane problem has σ_xz = σ_yz = 0).
@@ -123,15 +124,13 @@ fn pair_pressures(pair: &PairResult, meshes: &HashMap<&str, &BodyResult>) -> Vec
             continue;
         };
         let segments = reference_segments(body, &carried);
+        let index = Segments::new(&segments);
         for i in followers {
-            p[i] = read_pressure(&segments, [pair.x[i], pair.y[i]]);
+            p[i] = index.read([pair.x[i], pair.y[i]]);
         }
     }
     p
 }
-
-/// A straight piece of the reference side: its two end points and their pressures.
-type Segment = ([Point; 2], [f64; 2]);
 
 /// The boundary edges (each half of a P2 edge) of the body's mesh (its skin on a process that does
 /// not mesh it) whose two nodes are reference points, with their pressures `carried` (the body's
@@ -157,27 +156,6 @@ fn reference_segments(body: &BodyResult, carried: &HashMap<usize, f64>) -> Vec<S
         }
     }
     segments
-}
-
-/// The pressure of the segment nearest to `x`, interpolated at its point nearest to `x` (0 if
-/// there is no segment).
-fn read_pressure(segments: &[Segment], x: Point) -> f64 {
-    let mut best = (f64::INFINITY, 0.0);
-    for ([a, b], [pa, pb]) in segments {
-        let (ab, ax) = ([b[0] - a[0], b[1] - a[1]], [x[0] - a[0], x[1] - a[1]]);
-        let length2 = ab[0] * ab[0] + ab[1] * ab[1];
-        let t = if length2 > 0.0 {
-            ((ab[0] * ax[0] + ab[1] * ax[1]) / length2).clamp(0.0, 1.0)
-        } else {
-            0.0
-        };
-        let nearest = [a[0] + t * ab[0], a[1] + t * ab[1]];
-        let d = dist(x, nearest);
-        if d < best.0 {
-            best = (d, (1.0 - t) * pa + t * pb);
-        }
-    }
-    best.1
 }
 
 /// The contact pressure p ≥ 0 of every node of body `name` with `num_nodes` nodes: the largest p
@@ -227,12 +205,13 @@ mod tests {
             ([[0.0, 0.0], [1.0, 0.0]], [0.0, 10.0]),
             ([[1.0, 0.0], [2.0, 0.0]], [10.0, 4.0]),
         ];
+        let read = |x| Segments::new(&segments).read(x);
         // Above the first segment at a quarter of its length, slightly off the line.
-        assert!((read_pressure(&segments, [0.25, 0.01]) - 2.5).abs() < 1e-12);
-        assert!((read_pressure(&segments, [1.5, -0.02]) - 7.0).abs() < 1e-12);
+        assert!((read([0.25, 0.01]) - 2.5).abs() < 1e-12);
+        assert!((read([1.5, -0.02]) - 7.0).abs() < 1e-12);
         // Beyond the reference side's end: its end value.
-        assert_eq!(read_pressure(&segments, [3.0, 0.0]), 4.0);
-        assert_eq!(read_pressure(&[], [0.0, 0.0]), 0.0);
+        assert_eq!(read([3.0, 0.0]), 4.0);
+        assert_eq!(Segments::new(&[]).read([0.0, 0.0]), 0.0);
     }
 
     #[test]

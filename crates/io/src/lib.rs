@@ -31,6 +31,7 @@ pub mod fields;
 pub mod load_steps;
 pub mod meshes;
 pub mod model_builder;
+pub mod nearest_segment;
 pub mod number;
 pub mod output;
 pub mod packed;
