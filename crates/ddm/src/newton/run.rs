@@ -148,11 +148,12 @@ impl<'s, 'a> Run<'s, 'a> {
                 }
                 Err(stop) => return (stop, k),
             };
-            let record = self.record(k, &step);
+            let settled = self.settled(&step);
+            let record = self.record(k, &step, settled);
             if let Some(f) = hooks.on_iteration {
                 f(&record);
             }
-            let converged = self.converged(&step, &record, settings.tol);
+            let converged = self.converged(&step, &record, settled, settings.tol);
             self.history.push(record);
             self.tau = self.along(&step.delta, step.alpha);
             self.state = step.next;
@@ -236,14 +237,28 @@ impl<'s, 'a> Run<'s, 'a> {
     /// (then linear) equations: the primal–dual active set method's own stopping rule, confirmed
     /// by the residual (it keeps any part along the kernel). Otherwise the relative change
     /// decides. A floating body that nothing holds has no determined position: never a solution.
-    fn converged(&self, step: &Step, record: &Record, tol: f64) -> bool {
-        let next = &step.next;
-        let exact = step.chi == self.state.closed
-            && next.closed == step.chi
-            && norm(&next.scaled_residual(&self.system.rho)) <= tol * norm(&next.u);
+    /// `settled`: [`Run::settled`] of `step`.
+    fn converged(
+        &self,
+        step: &Step,
+        record: &Record,
+        settled: Option<(f64, f64)>,
+        tol: f64,
+    ) -> bool {
+        let exact = settled.is_some_and(|(residual, u)| residual <= tol * u);
         step.alpha == 1.0
             && (exact || record.rel_change.iter().all(|&r| r <= tol))
-            && next.stranded.is_none()
+            && step.next.stranded.is_none()
+    }
+
+    /// ‖R̂‖ and ‖U‖ at the step's state where the step left the closed set as it was (the
+    /// equations were then linear), `None` otherwise.
+    fn settled(&self, step: &Step) -> Option<(f64, f64)> {
+        let next = &step.next;
+        (step.chi == self.state.closed && next.closed == step.chi).then(|| {
+            let residual = norm(&next.scaled_residual(&self.system.rho));
+            (residual, norm(&next.u))
+        })
     }
 
     /// τ + α δ.
@@ -299,14 +314,14 @@ impl<'s, 'a> Run<'s, 'a> {
         }
     }
 
-    fn record(&self, k: usize, step: &Step) -> Record {
+    fn record(&self, k: usize, step: &Step, settled: Option<(f64, f64)>) -> Record {
         let (interface, next) = (self.system.interface, &step.next);
         let (active, contact_force) = contact_summary(interface, &next.s, self.system.bodies.len());
         let rel_change = relative_change(interface, &next.u, &self.state.u);
         Record {
             k,
             gamma: step.alpha,
-            measure: self.measure(step, &rel_change),
+            measure: Self::measure(settled, &rel_change),
             rel_change,
             active,
             contact_force,
@@ -315,18 +330,15 @@ impl<'s, 'a> Run<'s, 'a> {
 
     /// What [`Run::converged`] compares with the tolerance: the relative residual ‖R̂‖/‖U‖ where
     /// the step left the closed set as it was, or the largest relative change if that is smaller.
-    fn measure(&self, step: &Step, rel_change: &[f64]) -> f64 {
-        let (next, change) = (&step.next, largest(rel_change.iter().copied()));
-        if step.chi != self.state.closed || next.closed != step.chi {
-            return change;
+    fn measure(settled: Option<(f64, f64)>, rel_change: &[f64]) -> f64 {
+        let change = largest(rel_change.iter().copied());
+        match settled {
+            None => change,
+            Some((residual, u)) => {
+                let relative = if residual == 0.0 { 0.0 } else { residual / u };
+                relative.min(change)
+            }
         }
-        let residual = norm(&next.scaled_residual(&self.system.rho));
-        let relative = if residual == 0.0 {
-            0.0
-        } else {
-            residual / norm(&next.u)
-        };
-        relative.min(change)
     }
 }
 
