@@ -83,6 +83,7 @@ fn stack(n: usize, cells: usize) -> Model {
             profile: None,
             enforcement: Enforcement::Penalty,
             forces: Default::default(),
+            friction: Default::default(),
         })
         .collect();
     Model {

@@ -73,6 +73,7 @@ pub fn top_bottom(name: &str, a: usize, b: usize, c: f64, h: f64) -> ContactPair
         profile: None,
         enforcement: Enforcement::Penalty,
         forces: Default::default(),
+        friction: Default::default(),
     }
 }
 

@@ -37,6 +37,7 @@ fn strips(n: usize) -> Model {
             profile: None,
             enforcement: Enforcement::Penalty,
             forces: Default::default(),
+            friction: Default::default(),
         }],
         remote: Vec::new(),
     }

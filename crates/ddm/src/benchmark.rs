@@ -143,6 +143,7 @@ impl Notch {
                 }),
                 enforcement: Enforcement::Penalty,
                 forces: Default::default(),
+                friction: Default::default(),
             }],
             remote: Vec::new(),
         })

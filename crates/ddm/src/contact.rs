@@ -5,6 +5,7 @@
 //! The files, each depending only on those listed before it:
 //! - `formulation`: a pair's formulation in one value (penalty law, enforcement, forces, inner
 //!   penalty);
+//! - `friction`: the tangential laws (Coulomb, Tresca) and a frictional point's return mapping;
 //! - `gap_profile`: the prescribed gap profiles of the pairs;
 //! - `points`: the contact points, their roles, and the [`Interface`] they form;
 //! - `edge_index`: the R-tree search for the partner edge a normal ray hits;
@@ -19,6 +20,7 @@ mod builder;
 pub mod check;
 mod edge_index;
 pub mod formulation;
+pub mod friction;
 pub mod gap_profile;
 mod mortar;
 mod nodal_quadrature;
@@ -26,4 +28,5 @@ mod points;
 
 pub use edge_index::EdgeIndex;
 pub use formulation::{Formulation, AUGMENTED_C};
+pub use friction::{Friction, FrictionPoint, Status};
 pub use points::{ContactPoint, Interface, Role};

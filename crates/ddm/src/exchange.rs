@@ -284,6 +284,7 @@ pub(crate) fn encode(status: &Result<(), Breakdown>) -> f64 {
         Err(Breakdown::NonFinite) => 3.0,
         Err(Breakdown::Growth) => 4.0,
         Err(Breakdown::NoDescent) => 5.0,
+        Err(Breakdown::Slides) => 6.0,
     }
 }
 
@@ -294,6 +295,7 @@ pub(crate) fn decode(code: f64) -> Result<(), Breakdown> {
         2 => Err(Breakdown::Singular),
         4 => Err(Breakdown::Growth),
         5 => Err(Breakdown::NoDescent),
+        6 => Err(Breakdown::Slides),
         _ => Err(Breakdown::NonFinite),
     }
 }
@@ -432,6 +434,7 @@ mod tests {
             Err(Breakdown::NonFinite),
             Err(Breakdown::Growth),
             Err(Breakdown::NoDescent),
+            Err(Breakdown::Slides),
         ] {
             assert_eq!(decode(encode(&s)), s);
         }

@@ -43,6 +43,7 @@ pub mod sweeps;
 pub use coarse::CoarseMode;
 pub use condensed::Condensation;
 pub use contact::formulation::{Enforcement, Forces, InnerPenalty, Penalty};
+pub use contact::friction::{Friction, Status as FrictionStatus};
 pub use contact::gap_profile::GapProfile;
 pub use contact::Formulation;
 pub use error::SetupError;

@@ -6,6 +6,7 @@ use contactdd_core::{Constraints, ElasticBody, Material, Mesh, Plane, Point, DIM
 
 use crate::contact::formulation::Formulation;
 use crate::contact::formulation::{Enforcement, Forces, InnerPenalty, Penalty};
+use crate::contact::friction::Friction;
 use crate::contact::gap_profile::GapProfile;
 use crate::error::SetupError;
 use crate::facts::BodyFacts;
@@ -28,6 +29,8 @@ pub struct ContactPair {
     pub enforcement: Enforcement,
     /// How the pressure loads the two bodies.
     pub forces: Forces,
+    /// The tangential law (frictionless by default; friction needs balanced forces).
+    pub friction: Friction,
 }
 
 impl ContactPair {
@@ -46,12 +49,23 @@ impl ContactPair {
                 message: format!("the penalty θ must be positive and finite, got {theta}"),
             });
         }
-        Ok(Formulation::new(
-            theta,
-            self.enforcement,
-            self.forces,
-            inner,
-        ))
+        let problem = self.friction.problem().or_else(|| {
+            (self.friction.is_active() && self.forces == Forces::OwnSide).then(|| {
+                "friction needs forces = \"balanced\" (own-side pairs carry no tangential \
+                 forces)"
+                    .to_string()
+            })
+        });
+        if let Some(message) = problem {
+            return Err(SetupError::Pair {
+                pair: self.name.clone(),
+                message,
+            });
+        }
+        Ok(
+            Formulation::new(theta, self.enforcement, self.forces, inner)
+                .with_friction(self.friction),
+        )
     }
 }
 

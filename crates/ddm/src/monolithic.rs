@@ -159,6 +159,11 @@ pub fn solve_monolithic_with(
     check_settings(settings)?;
     let start = Instant::now();
     let mut interface = Interface::new(model)?;
+    if interface.has_friction() {
+        return Err(SetupError::Solver(
+            "the monolithic reference treats frictionless contact only".into(),
+        ));
+    }
     check_inclined_corners(model, &interface)?;
     // One level of parallelism: over bodies when there are several, inside faer otherwise.
     let par = if model.bodies.len() > 1 {

@@ -16,6 +16,8 @@ pub enum Breakdown {
     Growth,
     /// The interface Newton steps no longer reduce the residual.
     NoDescent,
+    /// The loads push the body along a motion harder than friction can hold it: it slides.
+    Slides,
 }
 
 /// What happened in one iteration.

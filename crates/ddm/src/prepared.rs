@@ -48,6 +48,29 @@ impl Prepared {
         }
         self.coarse.set_load_factor(factor);
     }
+
+    /// Sets the friction state the next solve starts from: per frictional point j in `state`,
+    /// (j, σ_t, g) at the end of the last step ([`crate::solution::Solution::friction_state`]);
+    /// an empty `state` is the unloaded state (λ_t = 0, g₀ = 0).
+    pub fn set_friction_state(&mut self, state: &[(usize, f64, f64)]) {
+        for p in self.interface.points.iter_mut() {
+            if let Some(f) = p.friction.as_mut() {
+                f.multiplier = 0.0;
+                f.reference = 0.0;
+            }
+        }
+        for &(j, traction, g) in state {
+            if let Some(f) = self
+                .interface
+                .points
+                .get_mut(j)
+                .and_then(|p| p.friction.as_mut())
+            {
+                f.multiplier = traction;
+                f.reference = g;
+            }
+        }
+    }
 }
 
 /// How [`prepare_with`] sets the bodies up: their condensation path, and the inner penalty of

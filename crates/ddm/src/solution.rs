@@ -7,7 +7,7 @@ use contactdd_core::{ElasticBody, Mesh, Vector, DIM};
 
 use crate::coarse::CoarseMode;
 use crate::contact::formulation::Forces;
-use crate::contact::Interface;
+use crate::contact::{Interface, Status};
 use crate::method::Method;
 use crate::model::Model;
 use crate::outcome::{Breakdown, Record, Stop};
@@ -97,6 +97,16 @@ pub struct PairResult {
     /// True where the point's gap is one the contact enforces (an own-side point, or the
     /// reference side of a balanced pair); false where it is a reading of the following side.
     pub enforced: Vec<bool>,
+    /// Tangential traction σ_t along t = n turned by +90° (the reference side's points of a
+    /// frictional pair; 0 elsewhere). Its force also enters `fx`, `fy` on both sides.
+    pub tangential: Vec<f64>,
+    /// The slip of this solve (load step): g − g₀, the change of the tangential relative
+    /// displacement g = (u_own − u_partner)·t since the last step (0 without friction).
+    pub slip: Vec<f64>,
+    /// The accumulated tangential relative displacement g since the unloaded state.
+    pub total_slip: Vec<f64>,
+    /// Where each point is on its friction disc (open without friction).
+    pub status: Vec<Status>,
 }
 
 impl PairResult {
@@ -128,6 +138,25 @@ impl PairResult {
     /// Point i's gap is enforced (true where `enforced` is not filled in).
     fn is_enforced(&self, i: usize) -> bool {
         self.enforced.get(i).copied().unwrap_or(true)
+    }
+
+    /// The resultant tangential force Σ w σ_t of the pair's frictional points (a force per unit
+    /// thickness along their tangents; 0 without friction).
+    pub fn tangential_force(&self) -> f64 {
+        (0..self.tangential.len())
+            .map(|i| self.weight[i] * self.tangential[i])
+            .sum()
+    }
+
+    /// The lengths Σ w of the points that stick and of those that slip.
+    pub fn stick_slip_lengths(&self) -> (f64, f64) {
+        let length = |want: Status| {
+            (0..self.status.len())
+                .filter(|&i| self.status[i] == want)
+                .map(|i| self.weight[i])
+                .sum()
+        };
+        (length(Status::Stick), length(Status::Slip))
     }
 
     /// Total contact force on side `side` (the force the other body exerts): the sum of its
@@ -188,6 +217,10 @@ pub struct Solution {
     /// The final interface loads T of the contact points (a warm start for another solve of the
     /// same prepared model: [`crate::solver::solve_from`]).
     pub interface_loads: Vec<f64>,
+    /// The friction state at the end of this solve, the start of the next load step: per
+    /// frictional contact point (j, σ_t, g), its index, tangential traction and tangential
+    /// displacement ([`crate::solver::Prepared::set_friction_state`]); empty without friction.
+    pub friction_state: Vec<(usize, f64, f64)>,
     /// The condensation path every body took (dense or sparse; `docs/sparse-path.md`).
     pub condensation: Vec<crate::condensed::Condensation>,
     /// Wall time per phase, seconds.
@@ -235,6 +268,10 @@ pub fn stop_message(
             ),
             Breakdown::LostContact => format!(
                 "diverged: body '{}' lost all contact at iteration {iteration} (its Robin problem became singular); try a smaller gamma, gamma = \"auto\", another method or the interface Newton method (accelerator = \"newton\")",
+                body(*b)
+            ),
+            Breakdown::Slides => format!(
+                "no equilibrium: body '{}' slides at iteration {iteration}: its loads push it harder than friction can hold it",
                 body(*b)
             ),
             Breakdown::Singular => format!(
@@ -326,6 +363,10 @@ fn newton_message(stop: &Stop, model: &Model, history: &[Record], tol: f64) -> O
                 "diverged: the Newton steps stopped reducing the residual at step {iteration}; try the Robin sweeps (accelerator = \"none\"){}",
                 own_side_hint(model)
             ),
+            Breakdown::Slides => format!(
+                "no equilibrium: body '{}' slides: its loads push it along its contact zones harder than friction can hold it (found at Newton step {iteration}); lower the tangential load, raise the friction, or support the body",
+                body(*b)
+            ),
             Breakdown::Singular => format!(
                 "diverged: the interface Newton system became singular at step {iteration}; try the Robin sweeps (accelerator = \"none\")"
             ),
@@ -360,6 +401,7 @@ pub fn short_reason(model: &Model, stop: &Stop) -> String {
                 Breakdown::NonFinite => "non-finite values",
                 Breakdown::Growth => "growth",
                 Breakdown::NoDescent => "no progress",
+                Breakdown::Slides => "slides",
             };
             format!(
                 "{}: {what} at iteration {iteration}",
@@ -378,6 +420,7 @@ fn body_name(model: &Model, b: usize) -> &str {
 pub fn pair_results(model: &Model, interface: &Interface, un: &[f64]) -> Vec<PairResult> {
     let mut s = vec![0.0; un.len()];
     interface.sum_normal(un, &mut s);
+    let g = interface.slip_sums(un);
     let mut out: Vec<PairResult> = model
         .pairs
         .iter()
@@ -400,12 +443,12 @@ pub fn pair_results(model: &Model, interface: &Interface, un: &[f64]) -> Vec<Pai
             continue;
         }
         let mut force = [0.0; DIM];
-        let fj = interface.force(j, &s);
+        let fj = interface.total_force(j, &s, &g);
         for c in 0..DIM {
             force[c] = fj * p.normal[c];
         }
         if let Some(&t) = tangent.get(&(p.pair, p.body, p.node)) {
-            let ft = interface.force(t, &s);
+            let ft = interface.total_force(t, &s, &g);
             let dir = interface.points[t].normal;
             for c in 0..DIM {
                 force[c] += ft * dir[c];
@@ -432,6 +475,12 @@ pub fn pair_results(model: &Model, interface: &Interface, un: &[f64]) -> Vec<Pai
         r.fx.push(force[0]);
         r.fy.push(force[1]);
         r.enforced.push(p.carries());
+        let (traction, status) = interface.traction(j, &s, &g);
+        let reference = p.friction.as_ref().map_or(0.0, |f| f.reference);
+        r.tangential.push(traction);
+        r.slip.push(g[j] - reference);
+        r.total_slip.push(g[j]);
+        r.status.push(status);
     }
     out
 }

@@ -54,6 +54,7 @@ pub fn solve_from(
     warm: Option<&[f64]>,
 ) -> Result<Solution, SetupError> {
     settings.validate()?;
+    check_friction(prepared, settings)?;
     let iteration = iteration_for(settings);
     let (outcome, interface, updates, gap_tol) = if model.is_augmented() {
         let a = crate::augmented::solve(model, prepared, &*iteration, settings, hooks, warm);
@@ -73,6 +74,7 @@ pub fn solve_from(
     let t = Instant::now();
     let bodies = body_results(model, &interface, &outcome.un, displacements);
     let contact = pair_results(model, &interface, &outcome.un);
+    let friction_state = friction_state(&interface, &outcome.un);
     let t_post = t.elapsed().as_secs_f64();
     let mut timing: std::collections::BTreeMap<String, f64> =
         prepared.timing.iter().cloned().collect();
@@ -116,9 +118,36 @@ pub fn solve_from(
         settings: settings.clone(),
         load_factor: prepared.load_factor,
         interface_loads: outcome.t_load,
+        friction_state,
         condensation: prepared.paths.clone(),
         timing,
     })
+}
+
+/// Friction needs the interface Newton method: the Robin sweeps treat frictionless contact only.
+fn check_friction(prepared: &Prepared, settings: &Settings) -> Result<(), SetupError> {
+    if prepared.interface.has_friction() && settings.accelerator != Accelerator::Newton {
+        return Err(SetupError::Solver(
+            "friction needs the interface Newton method (accelerator = \"newton\", the \
+             default): the Robin sweeps treat frictionless contact only"
+                .into(),
+        ));
+    }
+    Ok(())
+}
+
+/// Per frictional point of `interface`, (j, σ_t, g) at the interface displacements `un`.
+fn friction_state(interface: &Interface, un: &[f64]) -> Vec<(usize, f64, f64)> {
+    if !interface.has_friction() {
+        return Vec::new();
+    }
+    let mut s = vec![0.0; un.len()];
+    interface.sum_normal(un, &mut s);
+    let g = interface.slip_sums(un);
+    (0..un.len())
+        .filter(|&j| interface.points[j].friction.is_some())
+        .map(|j| (j, interface.traction(j, &s, &g).0, g[j]))
+        .collect()
 }
 
 /// The displacement fields for the interface loads `t_load` of the bodies this process owns

@@ -36,7 +36,9 @@ pub fn check_factors(factors: &[f64]) -> Result<(), String> {
 
 /// Solves the model at every load factor in turn, calling `on_step(step, factor, solution)`
 /// after each. Stops after the first step that does not converge (its solution is the last
-/// one returned). The prepared model is left at load factor 1.
+/// one returned). Friction is path dependent: each step starts from the friction state (the
+/// tangential tractions and displacements) that the step before ends in, the first from the
+/// unloaded state. The prepared model is left at load factor 1 and the unloaded state.
 pub fn solve_steps(
     model: &Model,
     prepared: &mut Prepared,
@@ -55,10 +57,12 @@ pub fn solve_steps(
             Ok(s) => s,
             Err(e) => {
                 prepared.set_load_factor(1.0);
+                prepared.set_friction_state(&[]);
                 return Err(e);
             }
         };
         on_step(k + 1, factor, &solution);
+        prepared.set_friction_state(&solution.friction_state);
         let converged = solution.converged;
         steps.push((factor, solution));
         if !converged {
@@ -66,5 +70,6 @@ pub fn solve_steps(
         }
     }
     prepared.set_load_factor(1.0);
+    prepared.set_friction_state(&[]);
     Ok(steps)
 }

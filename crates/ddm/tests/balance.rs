@@ -50,6 +50,7 @@ fn pair(name: &str, bodies: [usize; 2], boundaries: [&str; 2], forces: Forces) -
         profile: None,
         enforcement: Enforcement::Penalty,
         forces,
+        friction: Default::default(),
     }
 }
 

@@ -82,6 +82,7 @@ fn two_bodies(name: &str, lower: ElasticBody, upper: ElasticBody, penalty: Penal
             profile: None,
             enforcement: Enforcement::Penalty,
             forces: Default::default(),
+            friction: Default::default(),
         }],
         remote: Vec::new(),
     }
@@ -262,6 +263,7 @@ fn stack(order: Order, n: usize) -> Model {
             profile: Some(GapProfile::Uniform { value: 0.0 }),
             enforcement: Enforcement::Penalty,
             forces: Default::default(),
+            friction: Default::default(),
         })
         .collect();
     Model {

@@ -95,6 +95,7 @@ fn model(angle: f64) -> Model {
             // sweeps; Anderson on the sparse path loses the contact on the turned balanced
             // problem (tests/balance.rs covers balanced pairs).
             forces: Forces::OwnSide,
+            friction: Default::default(),
         }],
         remote: Vec::new(),
     }

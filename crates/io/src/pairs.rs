@@ -55,6 +55,7 @@ pub fn pair(
         profile,
         enforcement: spec.enforcement.map(Into::into).unwrap_or_default(),
         forces: spec.forces.map(Into::into).unwrap_or_default(),
+        friction: Default::default(),
     })
 }
 

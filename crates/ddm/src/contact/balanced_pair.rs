@@ -28,8 +28,9 @@ use contactdd_core::geometry::dot;
 use contactdd_core::Vector;
 
 use super::formulation::{Forces, Formulation};
+use super::friction::FrictionPoint;
 use super::mortar::Mortar;
-use super::points::{carried, ContactPoint, Role};
+use super::points::{carried, carried_tangential, ContactPoint, Role};
 
 /// What a coefficient of a balanced gap row multiplies.
 #[derive(Clone, Copy, PartialEq)]
@@ -55,7 +56,9 @@ fn of_pairs(points: &[ContactPoint], pairs: usize) -> Vec<Vec<usize>> {
 pub(super) fn resolve(points: &[ContactPoint], formulations: &mut [Formulation]) {
     let of_pair = of_pairs(points, formulations.len());
     for (f, of_pair) in formulations.iter_mut().zip(&of_pair) {
-        if f.forces == Forces::Balanced && matches_node_for_node(points, of_pair) {
+        // A frictional pair keeps its carriers: they carry the tangential tractions.
+        let frictional = f.friction.is_active();
+        if f.forces == Forces::Balanced && !frictional && matches_node_for_node(points, of_pair) {
             f.forces = Forces::OwnSide;
         }
     }
@@ -83,18 +86,10 @@ pub(super) fn balance(
     let reference: Vec<usize> = (0..formulations.len())
         .map(|pair| reference_body(&points, &of_pair[pair], first[pair]))
         .collect();
-    let rows: Vec<(Vec<(Target, f64)>, Vector)> = (0..points.len())
+    let rows: Vec<Rows> = (0..points.len())
         .map(|j| row(&points, j, mortar[j].as_ref(), reference[points[j].pair]))
         .collect();
-    // Tangential unknowns: the nodes some balanced row reads tangentially.
-    let mut tangent = vec![false; points.len()];
-    for (j, _) in points.iter().enumerate().filter(|(_, p)| rewrite[p.pair]) {
-        for (t, _) in &rows[j].0 {
-            if let Target::Tangent(k) = *t {
-                tangent[k] = true;
-            }
-        }
-    }
+    let (frictional, tangent) = tangential_unknowns(&points, &rows, formulations, &reference);
     let numbering = Numbering::new(&body_range, &tangent);
     let mut out: Vec<Option<ContactPoint>> = vec![None; numbering.len];
     for (j, p) in points.iter().enumerate() {
@@ -107,16 +102,22 @@ pub(super) fn balance(
             };
             q.gap = match (&mortar[j], hits[j]) {
                 // The weighted distance along ν.
-                (Some(m), _) => m.profile + dot(m.ray, rows[j].1),
+                (Some(m), _) => m.profile + dot(m.ray, rows[j].nu),
                 // The distance along ν instead of the ray's length.
-                (None, Some(t)) => (p.gap - t) + t * dot(p.normal, rows[j].1),
+                (None, Some(t)) => (p.gap - t) + t * dot(p.normal, rows[j].nu),
                 (None, None) => p.gap,
             };
-            q.partner = rows[j]
-                .0
-                .iter()
-                .map(|&(t, c)| (numbering.of(t), c))
-                .collect();
+            let renumber = |row: &[(Target, f64)]| -> Vec<(usize, f64)> {
+                row.iter().map(|&(t, c)| (numbering.of(t), c)).collect()
+            };
+            q.partner = renumber(&rows[j].gap);
+            q.friction = frictional[j].then(|| FrictionPoint {
+                law: formulations[p.pair].friction,
+                row: renumber(&rows[j].slip),
+                theta: p.theta,
+                multiplier: 0.0,
+                reference: 0.0,
+            });
         } else {
             q.partner = p
                 .partner
@@ -134,6 +135,7 @@ pub(super) fn balance(
                 partner: Vec::new(),
                 spring: 0.0,
                 role: Role::Tangent,
+                friction: None,
                 ..p.clone()
             });
         }
@@ -141,6 +143,38 @@ pub(super) fn balance(
     let mut points: Vec<ContactPoint> = out.into_iter().flatten().collect();
     lump_springs(&mut points);
     (points, numbering.body_range)
+}
+
+/// Which points are frictional carriers (they read their tangential rows), and which nodes need a
+/// tangential unknown: those some balanced gap row, or a frictional carrier's tangential row,
+/// reads tangentially.
+fn tangential_unknowns(
+    points: &[ContactPoint],
+    rows: &[Rows],
+    formulations: &[Formulation],
+    reference: &[usize],
+) -> (Vec<bool>, Vec<bool>) {
+    let frictional: Vec<bool> = points
+        .iter()
+        .map(|p| {
+            formulations[p.pair].friction.is_active()
+                && p.body == reference[p.pair]
+                && p.has_partner()
+        })
+        .collect();
+    let mut tangent = vec![false; points.len()];
+    for (j, p) in points.iter().enumerate() {
+        if formulations[p.pair].forces != Forces::Balanced {
+            continue;
+        }
+        let slip = frictional[j].then_some(rows[j].slip.as_slice());
+        for (t, _) in rows[j].gap.iter().chain(slip.into_iter().flatten()) {
+            if let Target::Tangent(k) = *t {
+                tangent[k] = true;
+            }
+        }
+    }
+    (frictional, tangent)
 }
 
 /// The new numbering of the unknowns: every body's points in their order, then its tangential
@@ -186,31 +220,51 @@ impl Numbering {
 }
 
 /// Reference springs of the balanced pairs' unknowns: the lumped stiffness Σ |a| w_j/θ_j of the
-/// pressures that load them (w/θ for a carrier).
+/// pressures that load them (w/θ for a carrier), and of the frictional points' tangential
+/// tractions, Σ |b| w_j/θ_t,j.
 fn lump_springs(points: &mut [ContactPoint]) {
+    let tangential = carried_tangential(points);
     for (q, loads) in carried(points).iter().enumerate() {
         if points[q].role != Role::OwnSide {
-            points[q].spring = loads
-                .iter()
-                .map(|&(j, a)| a.abs() * points[j].weight / points[j].theta)
-                .sum();
+            let lumped = |list: &[(usize, f64)], theta: &dyn Fn(usize) -> f64| -> f64 {
+                list.iter()
+                    .map(|&(j, a)| a.abs() * points[j].weight / theta(j))
+                    .sum()
+            };
+            let normal = lumped(loads, &|j| points[j].theta);
+            points[q].spring = if tangential[q].is_empty() {
+                normal
+            } else {
+                let theta_t = |j: usize| points[j].friction.as_ref().map_or(1.0, |f| f.theta);
+                normal + lumped(&tangential[q], &theta_t)
+            };
         }
     }
 }
 
-/// The gap row of point j read along ν_j (see the module docs), and ν_j. The row holds its own
-/// normal unknown's coefficient less 1 (the 1 is implicit in `partner`), its own tangential
-/// unknown, and the partner's normal and tangential unknowns with the dual mortar coefficients
-/// (`contact::mortar`; the ray's interpolation where there are none); zero coefficients left out.
-fn row(
-    points: &[ContactPoint],
-    j: usize,
-    mortar: Option<&Mortar>,
-    reference: usize,
-) -> (Vec<(Target, f64)>, Vector) {
+/// The rows of a point of a balanced pair (see [`row`]).
+struct Rows {
+    /// The gap row (its own normal unknown's coefficient less 1).
+    gap: Vec<(Target, f64)>,
+    /// The tangential row along ν turned by +90° (every coefficient).
+    slip: Vec<(Target, f64)>,
+    /// ν.
+    nu: Vector,
+}
+
+/// The gap row of point j read along ν_j (see the module docs), its tangential row read along ν_j
+/// turned by +90°, and ν_j. The gap row holds its own normal unknown's coefficient less 1 (the 1
+/// is implicit in `partner`), its own tangential unknown, and the partner's normal and tangential
+/// unknowns with the dual mortar coefficients (`contact::mortar`; the ray's interpolation where
+/// there are none); zero coefficients left out. The tangential row holds every coefficient.
+fn row(points: &[ContactPoint], j: usize, mortar: Option<&Mortar>, reference: usize) -> Rows {
     let p = &points[j];
     if !p.has_partner() {
-        return (Vec::new(), p.normal);
+        return Rows {
+            gap: Vec::new(),
+            slip: Vec::new(),
+            nu: p.normal,
+        };
     }
     let nu = if p.body == reference {
         p.normal
@@ -223,25 +277,32 @@ fn row(
         let l = n[0].hypot(n[1]);
         [n[0] / l, n[1] / l]
     };
-    let mut out = Vec::with_capacity(2 * p.partner.len() + 2);
-    let mut push = |t: Target, c: f64| {
-        // A tangential coefficient below 1e−12 is a straight zone turned in floating point: no
-        // unknown for it (it would carry a spring of that size).
-        let negligible = matches!(t, Target::Tangent(_)) && c.abs() <= 1e-12;
-        if c != 0.0 && !negligible {
-            out.push((t, c));
-        }
-    };
-    let along = dot(p.normal, nu);
-    push(Target::Normal(j), along - 1.0);
-    push(Target::Tangent(j), dot(turned(p.normal), nu));
     let coefficients = mortar.map_or(p.partner.as_slice(), |m| m.coefficients.as_slice());
-    for &(k, c) in coefficients {
-        let nk = points[k].normal;
-        push(Target::Normal(k), -dot(nk, nu) * c);
-        push(Target::Tangent(k), -dot(turned(nk), nu) * c);
+    // Σ over the own node and the partner's of (unknown, coefficient) along the direction `dir`.
+    let along = |dir: Vector, own: f64| {
+        let mut out = Vec::with_capacity(2 * coefficients.len() + 2);
+        let mut push = |t: Target, c: f64| {
+            // A tangential coefficient below 1e−12 is a straight zone turned in floating point:
+            // no unknown for it (it would carry a spring of that size).
+            let negligible = matches!(t, Target::Tangent(_)) && c.abs() <= 1e-12;
+            if c != 0.0 && !negligible {
+                out.push((t, c));
+            }
+        };
+        push(Target::Normal(j), dot(p.normal, dir) - own);
+        push(Target::Tangent(j), dot(turned(p.normal), dir));
+        for &(k, c) in coefficients {
+            let nk = points[k].normal;
+            push(Target::Normal(k), -dot(nk, dir) * c);
+            push(Target::Tangent(k), -dot(turned(nk), dir) * c);
+        }
+        out
+    };
+    Rows {
+        gap: along(nu, 1.0),
+        slip: along(turned(nu), 0.0),
+        nu,
     }
-    (out, nu)
 }
 
 /// The reference body of a pair (its points `of_pair`, `first` the body of side 0): the side

@@ -20,7 +20,7 @@ use super::edge_index::EdgeIndex;
 use super::formulation::{Forces, Formulation, InnerPenalty};
 use super::mortar::{self, Mortar};
 use super::nodal_quadrature::nodal_quadrature;
-use super::points::{carried, ContactPoint, Interface, Role};
+use super::points::{carried, carried_tangential, ContactPoint, Interface, Role};
 use crate::error::SetupError;
 use crate::model::Model;
 
@@ -95,11 +95,13 @@ impl Interface {
             &first,
         );
         let carried = carried(&points);
+        let carried_tangential = carried_tangential(&points);
         Ok(Interface {
             points,
             body_range,
             carried,
             formulations,
+            carried_tangential,
         })
     }
 }
@@ -243,6 +245,7 @@ fn project_side(
             // The reference spring w/θ; balanced pairs lump theirs (`contact::balanced_pair`).
             spring: side.weights[k] / theta,
             role: Role::OwnSide,
+            friction: None,
         };
         out.push(Projected { point, hit, mortar });
     }

@@ -6,6 +6,8 @@
 
 use contactdd_core::ElasticBody;
 
+use super::friction::Friction;
+
 /// The rod model's factor c of the inner penalty of an augmented balanced pair's point, with the
 /// point's share of its boundary as h: the spring w/θ is then E*/c (E* = 1/(1/E*_α + 1/E*_β)),
 /// about 1/c times the stiffness that the bodies oppose to one node, so each multiplier update
@@ -112,6 +114,9 @@ pub struct Formulation {
     /// The inner penalty of the pair's points: [`InnerPenalty::Stiffened`] only for an
     /// augmented balanced pair whose solve asks for it, [`InnerPenalty::AsGiven`] otherwise.
     pub inner: InnerPenalty,
+    /// The tangential law (resolved: μ = 0 is [`Friction::None`]). A frictional pair keeps its
+    /// balanced forces even where its sides match node for node.
+    pub friction: Friction,
 }
 
 impl Formulation {
@@ -130,6 +135,15 @@ impl Formulation {
             } else {
                 InnerPenalty::AsGiven
             },
+            friction: Friction::None,
+        }
+    }
+
+    /// The same formulation with the tangential law `friction` (resolved).
+    pub fn with_friction(self, friction: Friction) -> Self {
+        Formulation {
+            friction: friction.resolved(),
+            ..self
         }
     }
 

@@ -7,6 +7,7 @@ use std::ops::Range;
 use contactdd_core::Vector;
 
 use super::formulation::Formulation;
+use super::friction::{FrictionPoint, Status};
 
 /// One contact point: a node of a contact boundary of one body, in one contact pair.
 #[derive(Clone, Debug, PartialEq)]
@@ -39,6 +40,8 @@ pub struct ContactPoint {
     pub spring: f64,
     /// What the unknown is and how its point's pressure loads the bodies.
     pub role: Role,
+    /// The friction of a carrier of a frictional pair (`None` elsewhere).
+    pub friction: Option<FrictionPoint>,
 }
 
 /// The role of an interface unknown.
@@ -123,6 +126,10 @@ pub struct Interface {
     /// The formulation of every pair, as the points were built from it (resolved: a balanced
     /// pair whose sides match node for node is own-side).
     pub formulations: Vec<Formulation>,
+    /// Per unknown q, the frictional points whose tangential traction loads it and their shares
+    /// b (the transpose of their tangential rows): F_q gains Σ b w_j σ_t,j. Empty lists without
+    /// friction.
+    pub carried_tangential: Vec<Vec<(usize, f64)>>,
 }
 
 impl Interface {
@@ -147,6 +154,46 @@ impl Interface {
                 a * (p.weight * p.pressure(s[j]))
             })
             .sum()
+    }
+
+    /// True if some point has friction.
+    pub fn has_friction(&self) -> bool {
+        self.points.iter().any(|p| p.friction.is_some())
+    }
+
+    /// The tangential displacement g_j of every frictional point (0 elsewhere) from all the
+    /// interface displacements `u`.
+    pub fn slip_sums(&self, u: &[f64]) -> Vec<f64> {
+        self.points
+            .iter()
+            .map(|p| p.friction.as_ref().map_or(0.0, |f| f.slip_sum(u)))
+            .collect()
+    }
+
+    /// The tangential traction σ_t and status of point j for the pair sums `s` and tangential
+    /// displacements `g` (0 and open without friction).
+    pub fn traction(&self, j: usize, s: &[f64], g: &[f64]) -> (f64, Status) {
+        let p = &self.points[j];
+        match &p.friction {
+            Some(f) if p.has_partner() => f.traction(g[j], -p.pressure(s[j])),
+            _ => (0.0, Status::Open),
+        }
+    }
+
+    /// The contact force along unknown q with friction: [`Interface::force`] plus the
+    /// tangential tractions' shares Σ b w_j σ_t,j (the normal force alone without friction).
+    pub fn total_force(&self, q: usize, s: &[f64], g: &[f64]) -> f64 {
+        let normal = self.force(q, s);
+        match self.carried_tangential.get(q) {
+            Some(list) if !list.is_empty() => {
+                normal
+                    + list
+                        .iter()
+                        .map(|&(j, b)| b * (self.points[j].weight * self.traction(j, s, g).0))
+                        .sum::<f64>()
+            }
+            _ => normal,
+        }
     }
 
     /// The points of body `b`.
@@ -199,6 +246,18 @@ impl Interface {
             })
             .collect()
     }
+}
+
+/// Per unknown, the frictional points whose tangential traction loads it with their shares (see
+/// [`Interface::carried_tangential`]).
+pub(super) fn carried_tangential(points: &[ContactPoint]) -> Vec<Vec<(usize, f64)>> {
+    let mut out = vec![Vec::new(); points.len()];
+    for (j, p) in points.iter().enumerate() {
+        for &(q, b) in p.friction.iter().flat_map(|f| &f.row) {
+            out[q].push((j, b));
+        }
+    }
+    out
 }
 
 /// Per unknown, the points that load it with their shares (see [`Interface::carried`]).

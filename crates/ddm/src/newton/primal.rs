@@ -244,7 +244,7 @@ impl System<'_> {
         // Refinement while each pass halves the residual (as on the LU path).
         let mut last = f64::INFINITY;
         for _ in 0..=MAX_REFINE {
-            let res = self.bordered_residual(applied, chi, z, None, r, &x)?;
+            let res = self.bordered_residual(applied, (chi, &[], &[]), z, None, r, &x)?;
             let size = res.norm_l2();
             if size.is_nan() || size >= 0.5 * last || size <= accuracy.max(STEP_TOL * norm(r)) {
                 last = last.min(size);

@@ -5,7 +5,8 @@ use nalgebra::{DMatrix, DVector};
 
 use super::algebra::{dot, merge};
 use super::null_space::null_space;
-use super::system::{modes_bound, System};
+use super::system::{modes_bound, Evaluation, System};
+use crate::contact::Status;
 
 /// Work of the loads along a free rigid motion, relative to their work along all free modes, above
 /// which the motion is loaded: far above the rounding of loads that balance (the paper's notch,
@@ -18,9 +19,9 @@ impl System<'_> {
     /// the change of point j's pair sum per mode and l_j the modes its force acts on. A balanced
     /// carrier loads both sides through its gap row (l_j = s_j); an own-side point loads its own
     /// body only, so a closed point does not hold its partner: with only one side of an own-side
-    /// pair closed, the other body moves freely away (before, such a motion counted as resisted
-    /// and made J singular).
-    pub(super) fn free_motions(&self, chi: &[bool]) -> Vec<DVector<f64>> {
+    /// pair closed, the other body moves freely away. A frictional point that sticks (`status`,
+    /// empty without friction) resists through its tangential row too.
+    pub(super) fn free_motions(&self, chi: &[bool], status: &[Status]) -> Vec<DVector<f64>> {
         let k = modes_bound(self.mode_range);
         if k == 0 {
             return Vec::new();
@@ -29,15 +30,22 @@ impl System<'_> {
         let mut entries = Vec::new();
         // The size of G's diagonal terms, Σ_j |l_ja s_ja| (for balanced pairs, G's diagonal).
         let mut scale = vec![0.0f64; k];
-        for j in (0..self.len()).filter(|&j| chi[j]) {
-            let (sum, load) = self.mode_entries(j);
-            for &(a, l) in &load {
-                for &(b, s) in &sum {
+        let mut push = |sum: &[(usize, f64)], load: &[(usize, f64)]| {
+            for &(a, l) in load {
+                for &(b, s) in sum {
                     entries.push((a, b, l * s));
                     if a == b {
                         scale[a] += (l * s).abs();
                     }
                 }
+            }
+        };
+        for j in (0..self.len()).filter(|&j| chi[j]) {
+            let (sum, load) = self.mode_entries(j);
+            push(&sum, &load);
+            if status.get(j) == Some(&Status::Stick) {
+                let slip = self.slip_modes(j);
+                push(&slip, &slip);
             }
         }
         let scale = scale.into_iter().fold(0.0, f64::max);
@@ -90,6 +98,72 @@ impl System<'_> {
             own
         };
         (sum, load)
+    }
+
+    /// Point j's change of tangential displacement per free mode (its tangential row, through
+    /// which its traction also loads the bodies); empty without friction.
+    pub(super) fn slip_modes(&self, j: usize) -> Vec<(usize, f64)> {
+        let mut sum = Vec::new();
+        for &(q, c) in self.interface.points[j]
+            .friction
+            .iter()
+            .flat_map(|f| &f.row)
+        {
+            self.push_modes(q, c, &mut sum);
+        }
+        sum.sort_by_key(|e| e.0);
+        sum
+    }
+
+    /// The frictional points that can close whose tangential displacement the rigid motion `v`
+    /// changes: sticking, they would resist it.
+    pub(super) fn resisting_tangentially(&self, v: &DVector<f64>) -> Vec<usize> {
+        if !self.friction {
+            return Vec::new();
+        }
+        let change: Vec<(usize, f64)> = (0..self.len())
+            .filter(|&j| self.interface.points[j].has_partner() && !self.weightless[j])
+            .filter(|&j| self.interface.points[j].friction.is_some())
+            .map(|j| (j, self.slip_modes(j).iter().map(|&(m, x)| x * v[m]).sum()))
+            .collect();
+        let top = change.iter().fold(0.0f64, |m, c| m.max(c.1.abs()));
+        change
+            .into_iter()
+            .filter(|&(_, c)| c.abs() > 1e-8 * top && top > 0.0)
+            .map(|(j, _)| j)
+            .collect()
+    }
+
+    /// A floating body that slides at the state `eval`: with every frictional point on the edge
+    /// of its disc, the closed points leave a rigid motion v free along which the loads do more
+    /// work |W| than friction can oppose, Σ_j w_j b_j |Δg_j(v)| (b_j the slip bound at the
+    /// point's pressure, Δg_j the change of its tangential displacement along v). The body is
+    /// the one that moves most along v. `None` without friction.
+    pub(super) fn sliding(&self, eval: &Evaluation) -> Option<usize> {
+        if !self.friction || self.mode_load_norm == 0.0 {
+            return None;
+        }
+        let slipping: Vec<Status> = eval
+            .status
+            .iter()
+            .map(|&s| if s == Status::Stick { Status::Slip } else { s })
+            .collect();
+        let points = &self.interface.points;
+        self.free_motions(&eval.closed, &slipping)
+            .iter()
+            .find(|v| {
+                let capacity: f64 = (0..self.len())
+                    .filter(|&j| eval.closed[j])
+                    .filter_map(|j| {
+                        let (p, f) = (&points[j], points[j].friction.as_ref()?);
+                        let change: f64 = self.slip_modes(j).iter().map(|&(m, x)| x * v[m]).sum();
+                        Some(p.weight * f.law.bound(-p.pressure(eval.s[j])) * change.abs())
+                    })
+                    .sum();
+                let work = self.work(v).abs();
+                work > WORK_TOL * self.mode_load_norm && work > capacity
+            })
+            .and_then(|v| self.moves_most(v))
     }
 
     /// Adds c·ρ_j (the modes of point j's body) to the (mode, value) list `list`.
@@ -183,10 +257,12 @@ impl System<'_> {
     pub(super) fn unresisted(&self, free: &[DVector<f64>]) -> Option<usize> {
         let v = self.loaded_motion(free)?;
         let push = self.work(&v).signum();
+        // Friction can push back along any motion that slides a frictional point.
         let pushed_back = self
             .along_motion(&v)
             .iter()
-            .any(|&(_, _, a)| a * push > 0.0);
+            .any(|&(_, _, a)| a * push > 0.0)
+            || !self.resisting_tangentially(&v).is_empty();
         if pushed_back {
             return None;
         }

@@ -6,6 +6,7 @@ use std::sync::atomic::Ordering;
 use super::algebra::norm;
 use super::step::Caches;
 use super::system::{Evaluation, System};
+use crate::contact::Status;
 use crate::exchange::share_slices;
 use crate::measures::{contact_summary, largest, relative_change, starting_values};
 use crate::outcome::{Breakdown, Hooks, Record, Stop};
@@ -48,6 +49,7 @@ struct Checkpoint {
     /// ‖R̂‖ there, the value that full steps must fall below.
     merit: f64,
     chi: Vec<bool>,
+    status: Vec<Status>,
     z: Vec<Vec<f64>>,
     delta: Vec<f64>,
     /// Full steps taken since without that decrease.
@@ -59,6 +61,7 @@ struct Checkpoint {
 struct Step {
     alpha: f64,
     chi: Vec<bool>,
+    status: Vec<Status>,
     delta: Vec<f64>,
     next: Evaluation,
 }
@@ -116,20 +119,19 @@ impl<'s, 'a> Run<'s, 'a> {
             if let Some(b) = self.system.unresisted(&self.state.free) {
                 return (diverged(b, k, Breakdown::LostContact), k);
             }
-            let chi = self.system.jacobian_set(&self.state);
+            let (chi, status) = self.system.jacobian_set(&self.state);
             let found;
-            let free = if chi == self.state.closed {
+            let free = if chi == self.state.closed && status == self.state.status {
                 &self.state.free
             } else {
-                found = self.system.free_motions(&chi);
+                found = self.system.free_motions(&chi, &status);
                 &found
             };
             let z = self.system.kernel(free);
-            let r = self.system.residual(&self.tau, &self.state, &chi);
-            let Some(delta) =
-                self.system
-                    .step(&mut self.caches, &chi, &z, &r, FORCING * settings.tol)
-            else {
+            let r = self.system.residual(&self.tau, &self.state, &chi, &status);
+            let sets = (chi.as_slice(), status.as_slice(), self.state.g.as_slice());
+            let forcing = FORCING * settings.tol;
+            let Some(delta) = self.system.step(&mut self.caches, sets, &z, &r, forcing) else {
                 return (self.failure(k, Breakdown::Singular), k);
             };
             let checkpoint = watchdog.take().unwrap_or_else(|| Checkpoint {
@@ -137,11 +139,12 @@ impl<'s, 'a> Run<'s, 'a> {
                 state: self.state.clone(),
                 merit: self.system.merit(&z, &self.state),
                 chi: chi.clone(),
+                status: status.clone(),
                 z: z.clone(),
                 delta: delta.clone(),
                 steps: 0,
             });
-            let step = match self.watch(k, checkpoint, chi, &z, delta) {
+            let step = match self.watch(k, checkpoint, (chi, status), &z, delta) {
                 Ok((step, kept)) => {
                     watchdog = kept;
                     step
@@ -161,7 +164,11 @@ impl<'s, 'a> Run<'s, 'a> {
                 return (Stop::Converged, k);
             }
         }
-        (Stop::MaxIterations, settings.max_iter)
+        let k = settings.max_iter;
+        match self.system.sliding(&self.state) {
+            Some(b) => (diverged(b, k, Breakdown::Slides), k),
+            None => (Stop::MaxIterations, k),
+        }
     }
 
     /// The watchdog's step `k` along `delta` (with closed set `chi` and kernel `z`): the full
@@ -172,7 +179,7 @@ impl<'s, 'a> Run<'s, 'a> {
         &mut self,
         k: usize,
         mut checkpoint: Checkpoint,
-        chi: Vec<bool>,
+        (chi, status): (Vec<bool>, Vec<Status>),
         z: &[Vec<f64>],
         delta: Vec<f64>,
     ) -> Result<(Step, Option<Checkpoint>), Stop> {
@@ -208,6 +215,7 @@ impl<'s, 'a> Run<'s, 'a> {
             let step = Step {
                 alpha: 1.0,
                 chi,
+                status,
                 delta,
                 next,
             };
@@ -227,6 +235,7 @@ impl<'s, 'a> Run<'s, 'a> {
         let step = Step {
             alpha,
             chi: checkpoint.chi,
+            status: checkpoint.status,
             delta: checkpoint.delta,
             next,
         };
@@ -251,11 +260,15 @@ impl<'s, 'a> Run<'s, 'a> {
             && step.next.stranded.is_none()
     }
 
-    /// ‖R̂‖ and ‖U‖ at the step's state where the step left the closed set as it was (the
-    /// equations were then linear), `None` otherwise.
+    /// ‖R̂‖ and ‖U‖ at the step's state where the step left the closed set (and the frictional
+    /// points' statuses) as it was (the equations were then linear), `None` otherwise.
     fn settled(&self, step: &Step) -> Option<(f64, f64)> {
         let next = &step.next;
-        (step.chi == self.state.closed && next.closed == step.chi).then(|| {
+        let same = step.chi == self.state.closed
+            && next.closed == step.chi
+            && step.status == self.state.status
+            && next.status == step.status;
+        same.then(|| {
             let residual = norm(&next.scaled_residual(&self.system.rho));
             (residual, norm(&next.u))
         })
@@ -307,7 +320,11 @@ impl<'s, 'a> Run<'s, 'a> {
 
     /// The stop when the steps make no progress or J is singular: a body that lost its hold (now,
     /// or at a step the watchdog went back from), or `otherwise`.
+    /// A body that slides under friction is named first.
     fn failure(&self, k: usize, otherwise: Breakdown) -> Stop {
+        if let Some(b) = self.system.sliding(&self.state) {
+            return diverged(b, k, Breakdown::Slides);
+        }
         match self.stranded().or(self.pulled) {
             Some(b) => diverged(b, k, Breakdown::LostContact),
             None => diverged(0, k, otherwise),

@@ -10,6 +10,7 @@ use super::algebra::{dot, norm, pin_points};
 use super::linear::{dense_solve, sparse_solve, LuCache};
 use super::primal::PrimalCache;
 use super::system::{Evaluation, System};
+use crate::contact::Status;
 use crate::exchange::share_slices;
 use crate::shared_rows::BodyPart;
 
@@ -17,6 +18,10 @@ use crate::shared_rows::BodyPart;
 /// bodies in contact fill half of it or more, and then the sparse LU does about the dense flops
 /// with more overhead; a chain of bodies stays block-sparse, well below.
 const DENSE_FILL: f64 = 1.0 / 3.0;
+
+/// The sets of a Newton step: the points J treats as closed, the frictional points' statuses
+/// and their tangential displacements g (both empty without friction).
+pub(super) type Sets<'x> = (&'x [bool], &'x [Status], &'x [f64]);
 
 /// What the Newton steps of one run keep for the next: the LU's analysis, the symmetric form's
 /// factor, and the last B δ the bodies computed with its δ (U is affine in τ, U(τ + δ) =
@@ -54,10 +59,11 @@ impl System<'_> {
     ///
     /// The symmetric form refines its step against the true J until the residual is at most
     /// `eta` ‖R‖ (an inexact Newton step); the LU refines while that halves the residual.
+    /// `status`: the frictional points' statuses in J (empty without friction).
     pub(super) fn step(
         &self,
         caches: &mut Caches,
-        chi: &[bool],
+        (chi, status, g): Sets<'_>,
         z: &[Vec<f64>],
         r: &[f64],
         eta: f64,
@@ -76,7 +82,7 @@ impl System<'_> {
         let mut trip = Vec::new();
         let n = self.sparse_body_rows(&mut trip).max(m + z.len());
         let first_sparse = self.sparse_offset.iter().flatten().min().copied();
-        self.interface_rows(&mut trip, chi, first_sparse.is_some());
+        self.interface_rows(&mut trip, (chi, status, g), first_sparse.is_some());
         // With sparse bodies a dense row Zᵀδ = 0 would fill the whole sparse LU: pin one point
         // per kernel vector instead and project the step afterwards (J z = 0, so the projected
         // step solves the same system).
@@ -90,7 +96,8 @@ impl System<'_> {
             // Refinement against the true J (B applied by the bodies' own solves): the coupled
             // matrix's residual is a poor measure of the error in δ.
             let pinned = pins.as_deref();
-            let mut residual = |x: &Mat<f64>| self.bordered_residual(applied, chi, z, pinned, r, x);
+            let mut residual =
+                |x: &Mat<f64>| self.bordered_residual(applied, (chi, status, g), z, pinned, r, x);
             let refine: Option<&mut dyn FnMut(&Mat<f64>) -> Option<Mat<f64>>> =
                 pins.as_ref().map(|_| &mut residual as _);
             sparse_solve(trip, n, &mut rhs, cache, refine)?;
@@ -133,7 +140,7 @@ impl System<'_> {
     fn interface_rows(
         &self,
         trip: &mut Vec<Triplet<usize, usize, f64>>,
-        chi: &[bool],
+        (chi, status, g): Sets<'_>,
         sparse: bool,
     ) {
         for (j, p) in self.interface.points.iter().enumerate() {
@@ -142,7 +149,7 @@ impl System<'_> {
                 continue;
             }
             if self.balanced[j] {
-                let combination = self.balanced_row(j, chi, sparse);
+                let combination = self.balanced_row(j, (chi, status, g), sparse);
                 self.push_rows(trip, j, &combination);
             } else if sparse && p.has_partner() {
                 // Both the closed and the open entries (one set zero): the pattern, and with it
@@ -196,7 +203,7 @@ impl System<'_> {
     pub(super) fn bordered_residual(
         &self,
         applied: &mut Option<(Vec<f64>, Vec<f64>)>,
-        chi: &[bool],
+        (chi, status, g): Sets<'_>,
         z: &[Vec<f64>],
         pins: Option<&[usize]>,
         r: &[f64],
@@ -227,7 +234,7 @@ impl System<'_> {
             } else if self.balanced[j] {
                 delta[j]
                     + self
-                        .balanced_row(j, chi, false)
+                        .balanced_row(j, (chi, status, g), false)
                         .iter()
                         .map(|&(k, c)| c * bd[k])
                         .sum::<f64>()
@@ -252,8 +259,14 @@ impl System<'_> {
     /// Row q of J − I for an unknown of a balanced pair as a combination Σ c_k B_k· of rows of
     /// B: −B_q·, plus for every closed point j that loads q with share a, g (B_j· + Σ c_jk B_k·)
     /// with g = a (w_j/θ_j)/D₀_q. With `pattern`, the open points' entries too, as zeros (the
-    /// sparse LU's pattern then stays the same while the closed set changes).
-    pub(super) fn balanced_row(&self, q: usize, chi: &[bool], pattern: bool) -> Vec<(usize, f64)> {
+    /// sparse LU's pattern then stays the same while the closed set changes). With friction
+    /// (`status`), the tractions of the frictional points that load q too ([`Self::slip_terms`]).
+    pub(super) fn balanced_row(
+        &self,
+        q: usize,
+        (chi, status, g): Sets<'_>,
+        pattern: bool,
+    ) -> Vec<(usize, f64)> {
         let mut row = vec![(q, -1.0)];
         for &(j, a) in &self.interface.carried[q] {
             let p = &self.interface.points[j];
@@ -268,7 +281,40 @@ impl System<'_> {
             row.push((j, g));
             row.extend(p.partner.iter().map(|&(k, c)| (k, g * c)));
         }
+        if self.friction {
+            self.slip_terms(q, (status, g), pattern, &mut row);
+        }
         row
+    }
+
+    /// Adds to row q of J − I the derivative −(1/D₀_q) Σ b w_j dσ_t,j of the tangential tractions
+    /// that load q: where j sticks, dσ_t = −(1/θ_t) (its tangential row)·B; where it slips under
+    /// Coulomb's law, dσ_t = (μ sgn/θ) (its gap row)·B (the bound μ p follows the pressure);
+    /// nothing where it is open or slips under Tresca's (zeros with `pattern`).
+    fn slip_terms(
+        &self,
+        q: usize,
+        (status, g): (&[Status], &[f64]),
+        pattern: bool,
+        row: &mut Vec<(usize, f64)>,
+    ) {
+        for &(j, b) in &self.interface.carried_tangential[q] {
+            let p = &self.interface.points[j];
+            let Some(f) = &p.friction else { continue };
+            let share = b * p.weight / self.d0[q];
+            let (stick, slip) = match status.get(j) {
+                Some(Status::Stick) => (share / f.theta, 0.0),
+                Some(Status::Slip) => (0.0, -share * f.slip_slope(g[j]) / p.theta),
+                _ => (0.0, 0.0),
+            };
+            if stick != 0.0 || pattern {
+                row.extend(f.row.iter().map(|&(k, c)| (k, stick * c)));
+            }
+            if slip != 0.0 || pattern {
+                row.push((j, slip));
+                row.extend(p.partner.iter().map(|&(k, c)| (k, slip * c)));
+            }
+        }
     }
 
     /// Pushes Σ c·(row k of B) over `combination` into row j, summed per dense body first (a
@@ -383,13 +429,13 @@ mod tests {
         let mut symmetric = 0;
         for _ in 0..2 {
             let eval = system.evaluate(&tau);
-            let chi = system.jacobian_set(&eval);
-            let z = system.kernel(&system.free_motions(&chi));
+            let (chi, status) = system.jacobian_set(&eval);
+            let z = system.kernel(&system.free_motions(&chi, &status));
             assert_eq!(z.len(), 1, "one free motion");
-            let r = system.residual(&tau, &eval, &chi);
+            let r = system.residual(&tau, &eval, &chi, &status);
             system.symmetric = false;
             let lu = system
-                .step(&mut caches, &chi, &z, &r, 0.0)
+                .step(&mut caches, (&chi, &status, &eval.g), &z, &r, 0.0)
                 .expect("the LU step");
             // Unrefined (any accuracy will do): the symmetric form itself must be exact.
             let (primal, applied) = (&mut caches.primal, &mut caches.applied);

@@ -9,7 +9,7 @@ use rayon::prelude::*;
 
 use super::algebra::{dot, norm};
 use crate::condensed::CondensedBody;
-use crate::contact::{Interface, Role};
+use crate::contact::{Interface, Role, Status};
 use crate::exchange::{share_matrices, share_slices, Exchange};
 use crate::prepared::Prepared;
 use crate::shared_rows::{body_parts, BodyPart};
@@ -48,6 +48,8 @@ pub(super) struct System<'a> {
     pub(super) balanced: Vec<bool>,
     /// Whether the step may take the symmetric form (`primal`).
     pub(super) symmetric: bool,
+    /// Whether some point has friction.
+    pub(super) friction: bool,
     /// Whether the penalty problem minimises an energy (every pair balanced, or own-side with
     /// matching sides), so that it has one solution whatever the start. Own-side pairs on
     /// non-matching meshes derive from no energy and can have several (a start decides which).
@@ -62,6 +64,10 @@ pub(super) struct Evaluation {
     pub(super) r: Vec<f64>,
     /// The points the complementarity rule counts as closed.
     pub(super) closed: Vec<bool>,
+    /// The tangential displacements g of the frictional points (empty without friction).
+    pub(super) g: Vec<f64>,
+    /// Where each frictional point is on its friction disc (empty without friction).
+    pub(super) status: Vec<Status>,
     /// The rigid motions of floating bodies that the closed points leave free (weights of the
     /// free modes), and the body that nothing holds there, if any.
     pub(super) free: Vec<DVector<f64>>,
@@ -144,9 +150,11 @@ impl<'a> System<'a> {
             balanced,
             d0,
             symmetric: false,
+            friction: interface.has_friction(),
             variational: false,
         };
-        system.symmetric = system.every_body_sparse();
+        // Coulomb's slip makes J nonsymmetric: the LU steps.
+        system.symmetric = system.every_body_sparse() && !system.friction;
         system.variational = system.springs(&vec![true; system.len()]).is_some();
         system
     }
@@ -220,16 +228,27 @@ impl<'a> System<'a> {
                 q + self.rho[j] * (s[j] - p.penalty_gap() - q) > 0.0
             })
             .collect();
+        let (g, status) = if self.friction {
+            let g = self.interface.slip_sums(&u);
+            let status = (0..u.len())
+                .map(|j| self.interface.traction(j, &s, &g).1)
+                .collect();
+            (g, status)
+        } else {
+            (Vec::new(), Vec::new())
+        };
         // A carrier closes exactly where its overlap is negative (ρ = 1), so its linear penalty
         // force on the closed set is its penalty force.
-        let r = self.residual_on(tau, &u, &s, &closed);
-        let free = self.free_motions(&closed);
+        let r = self.residual_on(tau, &u, (&s, &g), &closed, &status);
+        let free = self.free_motions(&closed, &status);
         let stranded = self.stranded(&closed, &free);
         Evaluation {
             u,
             s,
             r,
             closed,
+            g,
+            status,
             free,
             stranded,
         }
@@ -240,16 +259,32 @@ impl<'a> System<'a> {
     /// treats more points as closed (a stranded body), their penalty forces count as linear in
     /// s, so that the step solves the equations of that closed set (with the state's R the step
     /// would only move the body along the springs of points that it then finds open again).
-    pub(super) fn residual(&self, tau: &[f64], eval: &Evaluation, chi: &[bool]) -> Vec<f64> {
-        if chi == eval.closed {
+    /// The frictional points' statuses `status` (as for [`System::residual_on`]).
+    pub(super) fn residual(
+        &self,
+        tau: &[f64],
+        eval: &Evaluation,
+        chi: &[bool],
+        status: &[Status],
+    ) -> Vec<f64> {
+        if chi == eval.closed && status == eval.status {
             return eval.r.clone();
         }
-        self.residual_on(tau, &eval.u, &eval.s, chi)
+        self.residual_on(tau, &eval.u, (&eval.s, &eval.g), chi, status)
     }
 
-    /// R(τ) for the displacements `u`, pair sums `s` and the points `chi` closed, their penalty
-    /// forces linear in s (F_j/w_j = (d − s)/θ).
-    pub(super) fn residual_on(&self, tau: &[f64], u: &[f64], s: &[f64], chi: &[bool]) -> Vec<f64> {
+    /// R(τ) for the displacements `u`, pair sums and tangential displacements `(s, g)`, the
+    /// points `chi` closed, their penalty forces linear in s (F_j/w_j = (d − s)/θ), and the
+    /// frictional points' tractions by `status` (empty without friction): the trial traction
+    /// where they stick, the bound at the linear pressure where they slip.
+    pub(super) fn residual_on(
+        &self,
+        tau: &[f64],
+        u: &[f64],
+        (s, g): (&[f64], &[f64]),
+        chi: &[bool],
+        status: &[Status],
+    ) -> Vec<f64> {
         let points = &self.interface.points;
         let linear = |j: usize| {
             let p = &points[j];
@@ -259,15 +294,31 @@ impl<'a> System<'a> {
                 0.0
             }
         };
+        let traction = |j: usize| {
+            let Some(f) = &points[j].friction else {
+                return 0.0;
+            };
+            match status.get(j) {
+                Some(Status::Stick) => f.trial(g[j]),
+                Some(Status::Slip) => f.law.bound(-linear(j)).copysign(f.trial(g[j])),
+                _ => 0.0,
+            }
+        };
         (0..u.len())
             .map(|j| {
                 if self.weightless[j] {
                     tau[j]
                 } else if self.balanced[j] {
-                    let force: f64 = self.interface.carried[j]
+                    let mut force: f64 = self.interface.carried[j]
                         .iter()
                         .map(|&(k, a)| a * (points[k].weight * linear(k)))
                         .sum();
+                    if self.friction {
+                        force += self.interface.carried_tangential[j]
+                            .iter()
+                            .map(|&(k, b)| b * (points[k].weight * traction(k)))
+                            .sum::<f64>();
+                    }
                     tau[j] - u[j] - force / self.d0[j]
                 } else if chi[j] {
                     tau[j] - u[j] - (points[j].penalty_gap() - s[j])
@@ -301,11 +352,13 @@ impl<'a> System<'a> {
         (0..self.bodies.len()).find(|&b| !self.holds(b, closed))
     }
 
-    /// The points treated as closed in J: the closed points, and every partnered point that loads
-    /// a floating body none of whose loading points is closed.
-    pub(super) fn jacobian_set(&self, eval: &Evaluation) -> Vec<bool> {
+    /// The points treated as closed in J and the frictional points' statuses there: the closed
+    /// points, and every partnered point that loads a floating body none of whose loading points
+    /// is closed; frictional points that J treats as closed beyond the state's closed set stick.
+    pub(super) fn jacobian_set(&self, eval: &Evaluation) -> (Vec<bool>, Vec<Status>) {
         let points = &self.interface.points;
         let mut chi = eval.closed.clone();
+        let mut status = eval.status.clone();
         for b in 0..self.bodies.len() {
             if self.mode_range[b].is_empty() {
                 continue;
@@ -317,15 +370,16 @@ impl<'a> System<'a> {
                 }
             }
         }
+        self.stick_where_closed(&chi, &mut status);
         // Bodies that closed points hold, but not along a motion their loads push them in (a
-        // column of blocks held sideways by its neighbours, open below): the points that would
-        // resist the motion count as closed.
+        // column of blocks held sideways by its neighbours, open below; a block whose frictional
+        // points all slip): the points that would resist the motion count as closed, and stick.
         for _ in 0..self.bodies.len() {
             let found;
-            let free = if chi == eval.closed {
+            let free = if chi == eval.closed && status == eval.status {
                 &eval.free
             } else {
-                found = self.free_motions(&chi);
+                found = self.free_motions(&chi, &status);
                 &found
             };
             let Some(v) = self.loaded_motion(free) else {
@@ -336,12 +390,31 @@ impl<'a> System<'a> {
                 .into_iter()
                 .filter(|&j| !chi[j])
                 .collect();
-            if open.is_empty() {
+            let slipping: Vec<usize> = self
+                .resisting_tangentially(&v)
+                .into_iter()
+                .filter(|&j| status[j] != Status::Stick)
+                .collect();
+            if open.is_empty() && slipping.is_empty() {
                 break;
             }
             open.into_iter().for_each(|j| chi[j] = true);
+            slipping.into_iter().for_each(|j| {
+                chi[j] = true;
+                status[j] = Status::Stick;
+            });
+            self.stick_where_closed(&chi, &mut status);
         }
-        chi
+        (chi, status)
+    }
+
+    /// Frictional points closed in `chi` but open in `status` stick (J treats them as closed).
+    fn stick_where_closed(&self, chi: &[bool], status: &mut [Status]) {
+        for (j, st) in status.iter_mut().enumerate() {
+            if chi[j] && *st == Status::Open && self.interface.points[j].friction.is_some() {
+                *st = Status::Stick;
+            }
+        }
     }
 
     /// ‖R‖ with the components along the kernel `z` removed (those are the bodies' balance,
