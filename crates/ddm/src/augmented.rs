@@ -20,7 +20,7 @@ use std::time::Instant;
 
 use crate::anderson::Anderson;
 use crate::contact::formulation::Enforcement;
-use crate::contact::Interface;
+use crate::contact::{Interface, Status};
 use crate::iteration::Iteration;
 use crate::model::Model;
 use crate::outcome::{Hooks, Outcome, Record, Stop};
@@ -105,7 +105,12 @@ fn update_loop(
         }
         // G(λ): the pressures of this solve on the augmented points, and how far it is from exact.
         let update = uzawa_update(&interface, &outcome.un, &augmented);
-        let distance = update.distance(gap_tol, settings.tol);
+        let slip = friction_update(&interface, &outcome.un, &augmented);
+        let distance = update.distance(gap_tol, settings.tol).max(slip.distance(
+            gap_tol,
+            settings.tol,
+            update.peak,
+        ));
         if distance <= 1.0 {
             return finish(outcome, history, interface, updates, gap_tol);
         }
@@ -139,6 +144,7 @@ fn update_loop(
         last_distance = distance;
         memory.advance(&mut lambda, &mut loads, &next, &t_load, 1.0);
         set_multipliers(&mut interface, &mut lambda, &augmented);
+        slip.apply(&mut interface);
         warm = Some(loads);
     }
 }
@@ -278,6 +284,77 @@ impl Update {
         };
         (self.violation / gap_tol).max(settle)
     }
+}
+
+/// What one Uzawa update of the tangential multipliers finds ([`friction_update`]): the exact
+/// Coulomb (or Tresca) law is the fixed point λ_t = σ_t, where a sticking point keeps its
+/// tangential displacement (g = g₀) and a slipping one slips against its traction.
+pub(crate) struct FrictionUpdate {
+    /// (point, σ_t): the new tangential multipliers of the augmented frictional points.
+    pub tractions: Vec<(usize, f64)>,
+    /// The largest violation of the law (a length): |g − g₀| where a point sticks, the slip
+    /// along its traction (g − g₀)·sgn σ_t where it slips.
+    pub violation: f64,
+    /// The largest change |σ_t − λ_t|.
+    pub settle: f64,
+}
+
+impl FrictionUpdate {
+    /// How far from done, 1 at the tolerances: the violation against `gap_tol`, the
+    /// tractions' last change against `tol` times the peak pressure `peak`.
+    pub fn distance(&self, gap_tol: f64, tol: f64, peak: f64) -> f64 {
+        let settle = if self.settle > 0.0 {
+            self.settle / (tol * peak)
+        } else {
+            0.0
+        };
+        (self.violation / gap_tol).max(settle)
+    }
+
+    /// Gives the new tangential multipliers to the contact points.
+    pub fn apply(&self, interface: &mut Interface) {
+        for &(j, t) in &self.tractions {
+            if let Some(f) = interface.points[j].friction.as_mut() {
+                f.multiplier = t;
+            }
+        }
+    }
+}
+
+/// One Uzawa update of the tangential multipliers from the displacements `un` of a solve, at
+/// the frictional points of the augmented pairs (`augmented`); empty without friction.
+pub(crate) fn friction_update(
+    interface: &Interface,
+    un: &[f64],
+    augmented: &[Option<f64>],
+) -> FrictionUpdate {
+    let mut update = FrictionUpdate {
+        tractions: Vec::new(),
+        violation: 0.0,
+        settle: 0.0,
+    };
+    if !interface.has_friction() {
+        return update;
+    }
+    let mut s = vec![0.0; un.len()];
+    interface.sum_normal(un, &mut s);
+    let g = interface.slip_sums(un);
+    for (j, p) in interface.points.iter().enumerate() {
+        let (Some(f), Some(_)) = (&p.friction, augmented[j]) else {
+            continue;
+        };
+        let (t, status) = interface.traction(j, &s, &g);
+        let slip = g[j] - f.reference;
+        let v = match status {
+            Status::Stick => slip.abs(),
+            Status::Slip => (slip * t.signum()).max(0.0),
+            Status::Open => 0.0,
+        };
+        update.violation = update.violation.max(v);
+        update.settle = update.settle.max((t - f.multiplier).abs());
+        update.tractions.push((j, t));
+    }
+    update
 }
 
 /// One Uzawa update from the normal displacements `un` of a solve with the multipliers of

@@ -7,7 +7,7 @@ use contactdd_core::{ElasticBody, Mesh, Vector, DIM};
 
 use crate::coarse::CoarseMode;
 use crate::contact::formulation::Forces;
-use crate::contact::{Interface, Status};
+use crate::contact::{Friction, Interface, Status};
 use crate::method::Method;
 use crate::model::Model;
 use crate::outcome::{Breakdown, Record, Stop};
@@ -107,6 +107,8 @@ pub struct PairResult {
     pub total_slip: Vec<f64>,
     /// Where each point is on its friction disc (open without friction).
     pub status: Vec<Status>,
+    /// The pair's tangential law.
+    pub friction: Friction,
 }
 
 impl PairResult {
@@ -146,6 +148,30 @@ impl PairResult {
         (0..self.tangential.len())
             .map(|i| self.weight[i] * self.tangential[i])
             .sum()
+    }
+
+    /// How far the tractions leave the friction disc: the largest (|σ_t| − b)⁺ / b over the
+    /// pressed points, b the slip bound at the point's pressure (0 without friction).
+    pub fn traction_excess(&self) -> f64 {
+        (0..self.tangential.len())
+            .filter_map(|i| {
+                let b = self.friction.bound(-self.pressure[i]);
+                (b > 0.0).then(|| (self.tangential[i].abs() - b).max(0.0) / b)
+            })
+            .fold(0.0, f64::max)
+    }
+
+    /// How far the slips are from Coulomb's (or Tresca's) law (a length): the largest slip of a
+    /// point that sticks (the penalty's elastic slip; 0 for the exact law), and of a slipping
+    /// point its slip along its traction (the law has it against the traction).
+    pub fn slip_violation(&self) -> f64 {
+        (0..self.status.len())
+            .map(|i| match self.status[i] {
+                Status::Stick => self.slip[i].abs(),
+                Status::Slip => (self.slip[i] * self.tangential[i].signum()).max(0.0),
+                Status::Open => 0.0,
+            })
+            .fold(0.0, f64::max)
     }
 
     /// The lengths Σ w of the points that stick and of those that slip.
@@ -427,6 +453,7 @@ pub fn pair_results(model: &Model, interface: &Interface, un: &[f64]) -> Vec<Pai
         .map(|p| PairResult {
             name: p.name.clone(),
             bodies: p.bodies.map(|b| model.bodies[b].name.clone()),
+            friction: p.friction.resolved(),
             ..Default::default()
         })
         .collect();

@@ -116,21 +116,30 @@ impl System<'_> {
     }
 
     /// The frictional points that can close whose tangential displacement the rigid motion `v`
-    /// changes: sticking, they would resist it.
+    /// changes (beyond the rounding of its terms): sticking, they would resist it.
     pub(super) fn resisting_tangentially(&self, v: &DVector<f64>) -> Vec<usize> {
         if !self.friction {
             return Vec::new();
         }
-        let change: Vec<(usize, f64)> = (0..self.len())
-            .filter(|&j| self.interface.points[j].has_partner() && !self.weightless[j])
-            .filter(|&j| self.interface.points[j].friction.is_some())
-            .map(|j| (j, self.slip_modes(j).iter().map(|&(m, x)| x * v[m]).sum()))
-            .collect();
-        let top = change.iter().fold(0.0f64, |m, c| m.max(c.1.abs()));
-        change
-            .into_iter()
-            .filter(|&(_, c)| c.abs() > 1e-8 * top && top > 0.0)
-            .map(|(j, _)| j)
+        let points = &self.interface.points;
+        (0..self.len())
+            .filter(|&j| points[j].has_partner() && !self.weightless[j])
+            .filter(|&j| {
+                let slip = self.slip_modes(j);
+                let change: f64 = slip.iter().map(|&(m, x)| x * v[m]).sum();
+                // The size of the terms that cancel in a motion along the zone's normal.
+                let size: f64 =
+                    points[j]
+                        .friction
+                        .iter()
+                        .flat_map(|f| &f.row)
+                        .fold(0.0, |a, &(q, c)| {
+                            let b = self.body_of[q];
+                            let modes = self.mode_range[b].clone().zip(&self.modes[q]);
+                            a + c.abs() * modes.map(|(m, r)| (r * v[m]).abs()).sum::<f64>()
+                        });
+                change.abs() > 1e-8 * size
+            })
             .collect()
     }
 

@@ -455,6 +455,64 @@ mod tests {
         symmetric
     }
 
+    /// J δ (from the bordered residual with no kernel and R = 0) against the change of R with
+    /// the sets held fixed, at states along the Newton steps of a frictional notch sheared by
+    /// `shear` (its stick, slip and open points all present).
+    fn check_jacobian(condensation: Condensation, mu: f64, shear: f64) -> usize {
+        let mut model = notch(17, contactdd_core::Order::P1, crate::Forces::Balanced);
+        model.pairs[0].friction = crate::Friction::Coulomb { mu };
+        // A body force along x on the upper block, freed in x: friction alone holds it.
+        let upper = &mut model.bodies[1];
+        upper.constraints = contactdd_core::Constraints::new(upper.mesh.num_nodes());
+        for x in upper.load.iter_mut().step_by(2) {
+            *x += shear;
+        }
+        let prepared = prepare_with(&model, condensation).expect("the notch prepares");
+        let system = System::new(&prepared, &prepared.interface);
+        let mut caches = Caches::default();
+        let m = system.len();
+        let mut tau = vec![0.0; m];
+        let mut seen = 0;
+        for _ in 0..6 {
+            let eval = system.evaluate(&tau);
+            let (chi, status) = system.jacobian_set(&eval);
+            seen |= status.iter().fold(0, |a, s| a | (1 << (*s as usize)));
+            let sets = (chi.as_slice(), status.as_slice(), eval.g.as_slice());
+            let delta: Vec<f64> = (0..m).map(|j| 1e-7 * ((j * 7 + 3) as f64).sin()).collect();
+            let x = Mat::from_fn(m, 1, |i, _| delta[i]);
+            let zero = vec![0.0; m];
+            let jd = system
+                .bordered_residual(&mut None, sets, &[], None, &zero, &x)
+                .expect("the bodies apply B");
+            let r0 = system.residual(&tau, &eval, &chi, &status);
+            let moved: Vec<f64> = tau.iter().zip(&delta).map(|(t, d)| t + d).collect();
+            let next = system.evaluate(&moved);
+            let r1 = system.residual_on(&moved, &next.u, (&next.s, &next.g), &chi, &status);
+            let scale = (0..m).fold(0.0f64, |a, i| a.max(jd[(i, 0)].abs()));
+            for i in 0..m {
+                let fd = r1[i] - r0[i];
+                assert!(
+                    (fd + jd[(i, 0)]).abs() <= 1e-6 * scale,
+                    "row {i}: {fd} against {}",
+                    -jd[(i, 0)]
+                );
+            }
+            let r = system.residual(&tau, &eval, &chi, &status);
+            let z = system.kernel(&system.free_motions(&chi, &status));
+            let step = system.step(&mut caches, sets, &z, &r, 0.0).expect("a step");
+            tau.iter_mut().zip(&step).for_each(|(t, d)| *t += d);
+        }
+        seen
+    }
+
+    #[test]
+    fn the_frictional_jacobian_is_the_derivative_of_the_residual() {
+        for condensation in [Condensation::Dense, Condensation::Sparse] {
+            let seen = check_jacobian(condensation, 0.3, 15.0);
+            assert!(seen & 0b110 == 0b110, "stick and slip seen: {seen:b}");
+        }
+    }
+
     #[test]
     fn the_symmetric_step_solves_the_bordered_system_of_the_lu() {
         use crate::Forces::{Balanced, OwnSide};

@@ -373,7 +373,7 @@ impl<'a> System<'a> {
         self.stick_where_closed(&chi, &mut status);
         // Bodies that closed points hold, but not along a motion their loads push them in (a
         // column of blocks held sideways by its neighbours, open below; a block whose frictional
-        // points all slip): the points that would resist the motion count as closed, and stick.
+        // points all slip): the points that would resist the motion count as closed.
         for _ in 0..self.bodies.len() {
             let found;
             let free = if chi == eval.closed && status == eval.status {
@@ -390,22 +390,38 @@ impl<'a> System<'a> {
                 .into_iter()
                 .filter(|&j| !chi[j])
                 .collect();
-            let slipping: Vec<usize> = self
+            // Of the slipping points that would resist it, the one nearest its disc sticks: one
+            // resists the motion, and the others keep their slip.
+            let nearest = self
                 .resisting_tangentially(&v)
                 .into_iter()
                 .filter(|&j| status[j] != Status::Stick)
-                .collect();
-            if open.is_empty() && slipping.is_empty() {
+                .min_by(|&a, &b| self.overshoot(eval, a).total_cmp(&self.overshoot(eval, b)));
+            if open.is_empty() && nearest.is_none() {
                 break;
             }
             open.into_iter().for_each(|j| chi[j] = true);
-            slipping.into_iter().for_each(|j| {
+            if let Some(j) = nearest {
                 chi[j] = true;
                 status[j] = Status::Stick;
-            });
+            }
             self.stick_where_closed(&chi, &mut status);
         }
         (chi, status)
+    }
+
+    /// How far point j's trial traction lies beyond its disc at `eval`: |trial|/b (infinite
+    /// where the point is open, b = 0).
+    fn overshoot(&self, eval: &Evaluation, j: usize) -> f64 {
+        let p = &self.interface.points[j];
+        p.friction.as_ref().map_or(f64::INFINITY, |f| {
+            let b = f.law.bound(-p.pressure(eval.s[j]));
+            if b > 0.0 {
+                f.trial(eval.g[j]).abs() / b
+            } else {
+                f64::INFINITY
+            }
+        })
     }
 
     /// Frictional points closed in `chi` but open in `status` stick (J treats them as closed).

@@ -1,88 +1,24 @@
-//! Coulomb and Tresca friction: a block pressed on a foundation and pushed sideways, against the
-//! force balance of the block, the frictionless answer at μ = 0 and the laws' own conditions.
+//! Coulomb and Tresca friction (docs/friction.md): a block pressed on a foundation and pushed
+//! sideways against the block's balance, Coulomb's and Tresca's conditions at every point, the
+//! threshold of sliding, the exact law of the augmented Lagrangian; the interface Newton
+//! method's iteration counts against μ and the penalty; a wall of frictional blocks.
 
-use contactdd_core::{
-    Component, Constraints, Diagonal, ElasticBody, Load, Material, Mesh, Order, Plane, Rectangle,
+use contactdd::ddm::outcome::Breakdown;
+use contactdd::ddm::{
+    prepare, solve, Enforcement, Forces, Friction, FrictionStatus, Hooks, Model, Settings,
+    Solution, Stop,
 };
-use contactdd_ddm::*;
+use contactdd::fem::Order;
+use contactdd::frictional::{block_on_foundation, sheared_wall};
 
-fn rect(x: [f64; 2], y: [f64; 2], nx: usize, ny: usize, order: Order) -> Mesh {
-    Rectangle {
-        origin: [x[0], y[0]],
-        corner: [x[1], y[1]],
-        nx,
-        ny,
-        diagonal: Diagonal::Right,
-        mirror: false,
-        order,
-    }
-    .mesh()
-    .expect("a valid rectangle")
-}
-
-fn body(name: &str, mesh: Mesh, supports: &[(&str, Component)], loads: &[Load]) -> ElasticBody {
-    let mut constraints = Constraints::new(mesh.num_nodes());
-    for &(b, c) in supports {
-        constraints.fix(&mesh, b, c, 0.0).expect("a valid support");
-    }
-    let load = contactdd_core::loads::load_vector(&mesh, loads).expect("valid loads");
-    ElasticBody {
-        name: name.into(),
-        mesh,
-        material: Material::new(1000.0, 0.3).expect("a valid material"),
-        plane: Plane::Strain,
-        constraints,
-        load,
-    }
-}
-
-/// A 2 × 1 block (`upper` cells in x) on a 4 × 1 foundation clamped at its bottom, pressed by
-/// `p` on its top and pushed by the traction `q` (force per length) on its left side; the block
-/// has no support, so friction alone holds it sideways.
+/// The block of [`block_on_foundation`] with `upper` P1 cells and the paper's penalty factor.
 fn block(p: f64, q: f64, friction: Friction, upper: usize) -> Model {
-    block_with(p, q, friction, upper, Order::P1)
+    block_on_foundation(p, q, friction, (upper, Order::P1), 0.05)
 }
 
 /// [`block`] with elements of `order`.
 fn block_with(p: f64, q: f64, friction: Friction, upper: usize, order: Order) -> Model {
-    let lower = body(
-        "foundation",
-        rect([0.0, 4.0], [0.0, 1.0], 16, 4, order),
-        &[("bottom", Component::X), ("bottom", Component::Y)],
-        &[],
-    );
-    let loads = [
-        Load::Pressure {
-            boundary: "top".into(),
-            value: p,
-        },
-        Load::Traction {
-            boundary: "left".into(),
-            value: [q, 0.0],
-        },
-    ];
-    let upper = body(
-        "block",
-        rect([1.0, 3.0], [1.0, 2.0], upper, 4, order),
-        &[],
-        &loads,
-    );
-    Model {
-        name: "block".into(),
-        plane: Plane::Strain,
-        bodies: vec![lower, upper],
-        pairs: vec![ContactPair {
-            name: "joint".into(),
-            bodies: [0, 1],
-            boundaries: ["top".into(), "bottom".into()],
-            penalty: Penalty::RodModel { c: 0.05, h: 1.0 },
-            profile: None,
-            enforcement: Enforcement::Penalty,
-            forces: Forces::Balanced,
-            friction,
-        }],
-        remote: Vec::new(),
-    }
+    block_on_foundation(p, q, friction, (upper, order), 0.05)
 }
 
 fn run(model: &Model) -> Solution {
@@ -161,7 +97,7 @@ fn a_push_beyond_mu_n_slides_and_is_no_solution() {
             sol.stop,
             Stop::Diverged {
                 body: 1,
-                reason: outcome::Breakdown::Slides,
+                reason: Breakdown::Slides,
                 ..
             }
         ),
@@ -206,4 +142,91 @@ fn bad_friction_parameters_are_refused_with_the_pair_named() {
         panic!("own-side friction accepted");
     };
     assert!(e.to_string().contains("balanced"), "{e}");
+}
+
+#[test]
+fn the_augmented_lagrangian_meets_coulombs_law_exactly_whatever_the_penalty() {
+    let (p, q, mu) = (10.0, 4.0, 0.25);
+    let solve_with = |c: f64, enforcement: Enforcement| {
+        let mut model = block_on_foundation(p, q, Friction::Coulomb { mu }, (11, Order::P1), c);
+        model.pairs[0].enforcement = enforcement;
+        let sol = run(&model);
+        assert!(sol.converged, "{c} {enforcement}: {:?}", sol.message);
+        balanced(&sol, p, q);
+        sol
+    };
+    let penalty = solve_with(0.5, Enforcement::Penalty);
+    let soft = solve_with(0.5, Enforcement::Augmented);
+    let stiff = solve_with(0.002, Enforcement::Augmented);
+    let displacement = |sol: &Solution| {
+        sol.bodies[1]
+            .displacement
+            .iter()
+            .fold(0.0f64, |m, v| m.max(v.abs()))
+    };
+    let scale = displacement(&stiff);
+    // The penalty's sticking points slip elastically; the exact law's do not.
+    assert!(penalty.contact[0].slip_violation() > 1e-4 * scale);
+    for sol in [&soft, &stiff] {
+        assert!(sol.contact[0].slip_violation() <= 1e-5 * scale);
+        assert!(sol.contact[0].traction_excess() <= 1e-12);
+    }
+    // One exact answer whatever θ: the two augmented solves agree.
+    let (a, b) = (&soft.contact[0].tangential, &stiff.contact[0].tangential);
+    let peak = a.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+    let worst = a
+        .iter()
+        .zip(b)
+        .fold(0.0f64, |m, (x, y)| m.max((x - y).abs()));
+    assert!(worst <= 1e-5 * peak, "{worst} of {peak}");
+}
+
+#[test]
+fn zero_friction_is_the_frictionless_answer_to_the_bit() {
+    // Held sideways by a support on its left side, the block has a frictionless answer too.
+    let held = |friction: Friction| {
+        let mut model = block(10.0, 0.0, friction, 11);
+        let block = &mut model.bodies[1];
+        let mut constraints = contactdd::fem::Constraints::new(block.mesh.num_nodes());
+        constraints
+            .fix(&block.mesh, "left", contactdd::fem::Component::X, 0.0)
+            .expect("the left side exists");
+        block.constraints = constraints;
+        run(&model)
+    };
+    let (none, zero) = (held(Friction::None), held(Friction::Coulomb { mu: 0.0 }));
+    assert!(none.converged && zero.converged);
+    assert_eq!(none.iterations, zero.iterations);
+    for (a, b) in none.bodies.iter().zip(&zero.bodies) {
+        assert!(a
+            .displacement
+            .iter()
+            .zip(&b.displacement)
+            .all(|(x, y)| x.to_bits() == y.to_bits()));
+    }
+}
+
+#[test]
+fn the_block_converges_in_few_newton_steps_from_stick_to_near_sliding() {
+    // Q/N = 0.075: μ = 0.1 slips almost everywhere, μ = 1 sticks everywhere. The counts against
+    // μ and a stiffer penalty are in docs/friction.md (examples/friction_iterations.rs).
+    for mu in [0.1, 0.3, 1.0] {
+        let model = block_on_foundation(10.0, 1.5, Friction::Coulomb { mu }, (11, Order::P1), 0.05);
+        let sol = run(&model);
+        assert!(sol.converged, "{mu}: {:?}", sol.message);
+        assert!(sol.iterations <= 30, "{mu}: {}", sol.iterations);
+        balanced(&sol, 10.0, 1.5);
+        coulomb(&sol, mu);
+    }
+}
+
+#[test]
+fn a_small_sheared_wall_of_floating_blocks_is_held_by_friction() {
+    let sol = run(&sheared_wall(2, 0.5, 0.2, 0.05));
+    assert!(sol.converged, "{:?}", sol.message);
+    assert!(
+        sol.equilibrium.iter().all(|&e| e <= 1e-8),
+        "{:?}",
+        sol.equilibrium
+    );
 }
