@@ -17,6 +17,7 @@
 //! converged only if it is also in equilibrium.
 
 mod balance;
+mod friction;
 mod modes;
 mod reduced;
 mod system;
@@ -26,7 +27,7 @@ use std::time::Instant;
 use rayon::prelude::*;
 
 use crate::augmented::{augmented_points, default_gap_tol, uzawa_update};
-use crate::contact::Interface;
+use crate::contact::{Interface, Status};
 use crate::error::SetupError;
 use crate::model::Model;
 use crate::solution::{body_results, pair_results, BodyResult, PairResult};
@@ -159,11 +160,6 @@ pub fn solve_monolithic_with(
     check_settings(settings)?;
     let start = Instant::now();
     let mut interface = Interface::new(model)?;
-    if interface.has_friction() {
-        return Err(SetupError::Solver(
-            "the monolithic reference treats frictionless contact only".into(),
-        ));
-    }
     check_inclined_corners(model, &interface)?;
     // One level of parallelism: over bodies when there are several, inside faer otherwise.
     let par = if model.bodies.len() > 1 {
@@ -245,7 +241,7 @@ fn finish(
         unenforced,
         updates,
     } = end;
-    let contact = system.contact_forces(model, &run.eval.s);
+    let contact = system.contact_forces(model, &run.eval);
     let displacements = bodies
         .par_iter()
         .enumerate()
@@ -255,17 +251,19 @@ fn finish(
             body.recover(&model.bodies[b], &contact[b], &x, &rigid)
         })
         .collect::<Result<Vec<_>, _>>()?;
-    let kernel = modes::kernel(modes, &run.eval.closed);
+    let kernel = modes::kernel(modes, &run.eval.closed, &run.eval.sticking());
     let check = balance::balance(model, system, &displacements, &contact, modes, &kernel);
     let rigid_modes: Vec<String> = kernel
         .weights
         .iter()
         .map(|w| modes::describe_motion(model, modes, w))
         .collect();
+    // A body that slides is named first: no state balances its loads.
     let message = run
         .stop
         .or(unenforced)
-        .or_else(|| verdict(model, settings, &check, &rigid_modes, run.steps));
+        .or_else(|| verdict(model, settings, &check, &rigid_modes, run.steps))
+        .map(|m| friction::sliding(model, system, modes, &run.eval).unwrap_or(m));
     let interface = system.interface;
     Ok(MonolithicSolution {
         converged: message.is_none(),
@@ -365,9 +363,10 @@ fn newton(
         stop,
     };
     for k in 1..=settings.max_steps {
-        let chi = jacobian_set(system, modes, &eval);
-        let z = modes::kernel(modes, &chi).on_x;
-        let Some((dx, dlam)) = system.direction(&chi, &z, &eval, &lam) else {
+        let (chi, status) = jacobian_set(system, modes, &eval);
+        let stick: Vec<bool> = status.iter().map(|&s| s == Status::Stick).collect();
+        let z = modes::kernel(modes, &chi, &stick).on_x;
+        let Some((dx, dlam)) = system.direction((&chi, &status), &z, &eval, &lam) else {
             let stop = format!("step {k}: the Newton system is singular");
             return end(x, eval, k - 1, history, Some(stop));
         };
@@ -377,7 +376,8 @@ fn newton(
             .rev()
             .take(WINDOW)
             .fold(0.0, |a: f64, &b| a.max(b));
-        let new_set = seen.insert(chi.clone());
+        let statuses: Vec<u8> = status.iter().map(|&s| s as u8).collect();
+        let new_set = seen.insert((chi.clone(), statuses));
         let (alpha, next, decreased) =
             step_length(system, &z, new_set, (&x, &lam), (&dx, &dlam), reference);
         failures = if decreased { 0 } else { failures + 1 };
@@ -395,6 +395,7 @@ fn newton(
         let before = merits.last().copied().unwrap_or(0.0) / scale;
         let settled = alpha == 1.0
             && next.closed == chi
+            && next.status == status
             && (record.residual <= ROUND_OFF || record.residual > 0.1 * before);
         if let Some(f) = on_step {
             f(&record);
@@ -450,11 +451,16 @@ fn step_length(
     }
 }
 
-/// The points treated as closed in J: the closed points, and for a body with free rigid modes
-/// that no closed point loads, the partnered points loading it of smallest gap d − s (it moves until they
-/// touch, instead of being held still; closing every partnered point would glue it on across
-/// gaps of any size and cost the line search many short steps).
-fn jacobian_set(system: &ReducedSystem, modes: &[Mode], eval: &Evaluation) -> Vec<bool> {
+/// The points treated as closed in J and the frictional points' statuses there: the closed
+/// points, and for a body with free rigid modes that no closed point loads, the partnered points
+/// loading it of smallest gap d − s (it moves until they touch, instead of being held still;
+/// closing every partnered point would glue it on across gaps of any size and cost the line
+/// search many short steps). Frictional points that J treats as closed but are open stick.
+fn jacobian_set(
+    system: &ReducedSystem,
+    modes: &[Mode],
+    eval: &Evaluation,
+) -> (Vec<bool>, Vec<Status>) {
     let points = &system.interface.points;
     let mut chi = eval.closed.clone();
     for (b, range) in system.interface.body_range.iter().enumerate() {
@@ -478,43 +484,76 @@ fn jacobian_set(system: &ReducedSystem, modes: &[Mode], eval: &Evaluation) -> Ve
             chi[j] = true;
         }
     }
-    // A body held by closed points, but not along a motion its loads push it in (a column of
-    // blocks held sideways by its neighbours, open below): the points that would resist the
-    // motion, of smallest gap, count as closed, until no such motion is left free.
+    let mut status = eval.status.clone();
+    friction::stick_where_closed(system, &chi, &mut status);
+    hold_loaded_motions(system, modes, eval, &mut chi, &mut status);
+    (chi, status)
+}
+
+/// A body held by closed points, but not along a motion its loads push it in (a column of
+/// blocks held sideways by its neighbours, open below; a block whose frictional points all
+/// slip): the points that would resist the motion, of smallest gap, count as closed in `chi`,
+/// or if none is open, the frictional points that would resist it stick in `status`, until no
+/// such motion is left free.
+fn hold_loaded_motions(
+    system: &ReducedSystem,
+    modes: &[Mode],
+    eval: &Evaluation,
+    chi: &mut [bool],
+    status: &mut [Status],
+) {
+    let points = &system.interface.points;
     for _ in 0..modes.len() {
-        let Some(resisting) = loaded_motion(modes, &chi).map(|w| resisting(system, modes, &w))
-        else {
+        let stick: Vec<bool> = status.iter().map(|&s| s == Status::Stick).collect();
+        let Some(w) = loaded_motion(modes, chi, &stick) else {
             break;
         };
-        let open: Vec<usize> = resisting.into_iter().filter(|&j| !chi[j]).collect();
+        let open: Vec<usize> = resisting(system, modes, &w)
+            .into_iter()
+            .filter(|&j| !chi[j])
+            .collect();
         let gap = |j: usize| points[j].penalty_gap() - eval.s[j];
         let Some(least) = open.iter().map(|&j| gap(j)).min_by(f64::total_cmp) else {
-            break;
+            let slipping: Vec<usize> = friction::resisting_tangentially(system, modes, &w)
+                .into_iter()
+                .filter(|&j| status[j] != Status::Stick)
+                .collect();
+            if slipping.is_empty() {
+                break;
+            }
+            for j in slipping {
+                chi[j] = true;
+                status[j] = Status::Stick;
+            }
+            continue;
         };
         let size = system.size.iter().fold(0.0f64, |a, &b| a.max(b));
         let tie = 1e-9 * (least.abs() + size);
         for j in open.into_iter().filter(|&j| gap(j) <= least + tie) {
             chi[j] = true;
         }
+        friction::stick_where_closed(system, chi, status);
     }
-    chi
 }
 
 /// Work of the loads along a free motion, relative to their work along all free modes, above
 /// which the motion is loaded (far above the rounding of loads that balance).
 const WORK_TOL: f64 = 1e-8;
 
-/// The weights of a rigid motion that the closed points `chi` leave free and along which the
-/// applied loads do work.
-fn loaded_motion(modes: &[Mode], chi: &[bool]) -> Option<Vec<f64>> {
+/// The weights of a rigid motion that the closed points `chi` and the sticking points `stick`
+/// leave free and along which the applied loads do work.
+fn loaded_motion(modes: &[Mode], chi: &[bool], stick: &[bool]) -> Option<Vec<f64>> {
     let total = modes.iter().map(|m| m.work * m.work).sum::<f64>().sqrt();
     if total == 0.0 {
         return None;
     }
-    modes::kernel(modes, chi).weights.into_iter().find(|w| {
-        let work: f64 = w.iter().zip(modes).map(|(c, m)| c * m.work).sum();
-        work.abs() > WORK_TOL * total
-    })
+    modes::kernel(modes, chi, stick)
+        .weights
+        .into_iter()
+        .find(|w| {
+            let work: f64 = w.iter().zip(modes).map(|(c, m)| c * m.work).sum();
+            work.abs() > WORK_TOL * total
+        })
 }
 
 /// The points that can carry a force (partnered, own-side or carriers) and whose pair sum the
