@@ -27,6 +27,7 @@ use std::time::Instant;
 use rayon::prelude::*;
 
 use crate::augmented::{augmented_points, default_gap_tol, uzawa_update};
+use crate::contact::formulation::InnerPenalty;
 use crate::contact::{Interface, Status};
 use crate::error::SetupError;
 use crate::model::Model;
@@ -159,7 +160,15 @@ pub fn solve_monolithic_with(
 ) -> Result<MonolithicSolution, SetupError> {
     check_settings(settings)?;
     let start = Instant::now();
-    let mut interface = Interface::new(model)?;
+    // The tangential penalty of a frictional point is its θ, so an augmented frictional pair takes
+    // the inner penalty of the interface Newton method, the decomposition's only method with
+    // friction (docs/monolithic.md, "Friction").
+    let inner = if model.pairs.iter().any(|p| p.friction.is_active()) {
+        InnerPenalty::Stiffened
+    } else {
+        InnerPenalty::AsGiven
+    };
+    let mut interface = Interface::with_inner(model, inner)?;
     check_inclined_corners(model, &interface)?;
     // One level of parallelism: over bodies when there are several, inside faer otherwise.
     let par = if model.bodies.len() > 1 {

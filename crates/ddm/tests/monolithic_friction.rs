@@ -97,14 +97,21 @@ fn monolithic(model: &Model) -> MonolithicSolution {
     solve_monolithic(model).unwrap_or_else(|e| panic!("{e}"))
 }
 
-/// max |a − b| / max |b|.
+/// max |a − b| / max |b| over the finite entries (a point without partner has an infinite gap:
+/// both must have it).
 fn relative_difference(a: &[f64], b: &[f64]) -> f64 {
     assert_eq!(a.len(), b.len());
-    let scale = b.iter().fold(0.0f64, |m, v| m.max(v.abs()));
-    let diff = a
+    let finite: Vec<(f64, f64)> = a
         .iter()
         .zip(b)
-        .fold(0.0f64, |m, (x, y)| m.max((x - y).abs()));
+        .filter(|(x, y)| {
+            assert_eq!(x.is_finite(), y.is_finite(), "{x} against {y}");
+            y.is_finite()
+        })
+        .map(|(&x, &y)| (x, y))
+        .collect();
+    let scale = finite.iter().fold(0.0f64, |m, v| m.max(v.1.abs()));
+    let diff = finite.iter().fold(0.0f64, |m, (x, y)| m.max((x - y).abs()));
     if diff == 0.0 {
         0.0
     } else {
@@ -116,8 +123,20 @@ fn relative_difference(a: &[f64], b: &[f64]) -> f64 {
 /// relative difference found and the monolithic solution.
 fn agree(name: &str, model: &Model) -> (f64, MonolithicSolution) {
     let dd = decomposition(model);
-    assert!(dd.converged, "{name}: DD {:?}", dd.message);
     let reference = monolithic(model);
+    compare(name, &dd, reference, true)
+}
+
+/// Checks that both solutions converged and agree (the gaps and closed flags too if `flags`:
+/// exact contact leaves gaps of round-off size, which also decide the flags); returns the
+/// largest relative difference.
+fn compare(
+    name: &str,
+    dd: &Solution,
+    reference: MonolithicSolution,
+    flags: bool,
+) -> (f64, MonolithicSolution) {
+    assert!(dd.converged, "{name}: DD {:?}", dd.message);
     assert!(reference.converged, "{name}: {:?}", reference.message);
     assert!(
         reference.rigid_modes.is_empty(),
@@ -127,8 +146,11 @@ fn agree(name: &str, model: &Model) -> (f64, MonolithicSolution) {
     let (a, b) = (&dd.contact[0], &reference.contact[0]);
     assert_eq!(a.node, b.node, "{name}: the same contact points");
     assert_eq!(a.status, b.status, "{name}: stick/slip/open");
-    assert_eq!(a.closed, b.closed, "{name}: closed points");
+    if flags {
+        assert_eq!(a.closed, b.closed, "{name}: closed points");
+    }
     let mut worst = 0.0f64;
+    let gaps = if flags { 0 } else { 1 };
     for (what, x, y) in [
         ("gap d − s", &a.gap, &b.gap),
         ("tangential displacement", &a.total_slip, &b.total_slip),
@@ -136,7 +158,10 @@ fn agree(name: &str, model: &Model) -> (f64, MonolithicSolution) {
         ("tangential traction", &a.tangential, &b.tangential),
         ("fx", &a.fx, &b.fx),
         ("fy", &a.fy, &b.fy),
-    ] {
+    ]
+    .into_iter()
+    .skip(gaps)
+    {
         let err = relative_difference(x, y);
         assert!(err <= TOL, "{name}: {what} off by {err:e}");
         worst = worst.max(err);
@@ -215,5 +240,35 @@ fn a_push_beyond_what_friction_holds_slides() {
         assert!(!sol.converged, "{friction}");
         let message = sol.message.unwrap_or_default();
         assert!(message.contains("'block' slides"), "{friction}: {message}");
+    }
+}
+
+#[test]
+fn augmented_normal_contact_with_penalised_friction_agrees() {
+    // Both Uzawa loops run to a gap tolerance far below the agreement asked for.
+    for mu in [0.25, 0.5] {
+        let name = format!("augmented, mu = {mu}");
+        let mut model = block(P, Q, Friction::Coulomb { mu }, 8, Order::P1);
+        model.pairs[0].enforcement = Enforcement::Augmented;
+        let prepared = prepare(&model).unwrap_or_else(|e| panic!("{e}"));
+        let settings = Settings {
+            gap_tol: Some(1e-12),
+            ..Settings::default()
+        };
+        let dd = solve(&model, &prepared, &settings, Hooks::default()).expect("it solves");
+        let limits = monolithic::MonolithicSettings {
+            gap_tol: Some(1e-12),
+            ..Default::default()
+        };
+        let reference = monolithic::solve_monolithic_with(&model, &limits, None)
+            .unwrap_or_else(|e| panic!("{e}"));
+        let (worst, sol) = compare(&name, &dd, reference, false);
+        eprintln!("{name}: largest relative difference {worst:.1e}");
+        balanced(&name, &sol);
+        // The exact contact: the gaps of the pressed points vanish.
+        let pair = &sol.contact[0];
+        for (gap, p) in pair.gap.iter().zip(&pair.pressure) {
+            assert!(*p == 0.0 || gap.abs() < 1e-10, "{name}: {gap}");
+        }
     }
 }
