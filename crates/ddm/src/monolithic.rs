@@ -1,20 +1,23 @@
 //! A monolithic reference: the same discrete penalty problem as the domain decomposition, solved
 //! for all bodies at once by a globalised semismooth Newton method on the assembled equations
 //!   K u − f − Σ_j (w_j/θ_j) min(0, d_j − s_j(u)) n_j = 0
-//! (docs/monolithic.md). It shares no solver code with the decomposition: only the model, the
-//! contact geometry and the finite element core.
+//! (docs/monolithic.md), with the tangential forces w_j σ_t,j of Coulomb's or Tresca's law on
+//! the carriers of frictional pairs. It shares no solver code with the decomposition: only the
+//! model, the contact geometry and the finite element core.
 //!
 //! - `reduced`: the contact terms touch only the contact DOFs, so the interior DOFs of every
 //!   body are eliminated once, exactly, by a sparse Cholesky factorisation with the contact DOFs
 //!   ordered last; every Newton step then refactorises only the contact block.
 //! - `system`: the reduced equations F(x) = 0 on the contact DOFs x, their generalised Jacobian
-//!   for a closed set, and the step.
-//! - `modes`: rigid motions that no closed contact resists, kept out of the step.
+//!   for a closed set and the frictional points' stick/slip/open statuses, and the step.
+//! - `modes`: rigid motions that no closed contact (nor sticking point) resists, kept out of the
+//!   step.
+//! - `friction`: the statuses the step assumes beyond the state's, and a body that slides.
 //! - `balance`: the equilibrium check on the assembled system.
 //!
-//! The iteration starts from u = 0 and stops when a full step leaves the closed set unchanged
-//! (then the step solved the linear equations of the final closed set); the result counts as
-//! converged only if it is also in equilibrium.
+//! The iteration starts from u = 0 and stops when a full step leaves the closed set and the
+//! statuses unchanged (then the step solved the linear equations of the final sets); the result
+//! counts as converged only if it is also in equilibrium.
 
 mod balance;
 mod friction;
