@@ -1,22 +1,26 @@
 //! A monolithic reference: the same discrete penalty problem as the domain decomposition, solved
 //! for all bodies at once by a globalised semismooth Newton method on the assembled equations
 //!   K u − f − Σ_j (w_j/θ_j) min(0, d_j − s_j(u)) n_j = 0
-//! (docs/monolithic.md). It shares no solver code with the decomposition: only the model, the
-//! contact geometry and the finite element core.
+//! (docs/monolithic.md), with the tangential forces w_j σ_t,j of Coulomb's or Tresca's law on
+//! the carriers of frictional pairs. It shares no solver code with the decomposition: only the
+//! model, the contact geometry and the finite element core.
 //!
 //! - `reduced`: the contact terms touch only the contact DOFs, so the interior DOFs of every
 //!   body are eliminated once, exactly, by a sparse Cholesky factorisation with the contact DOFs
 //!   ordered last; every Newton step then refactorises only the contact block.
 //! - `system`: the reduced equations F(x) = 0 on the contact DOFs x, their generalised Jacobian
-//!   for a closed set, and the step.
-//! - `modes`: rigid motions that no closed contact resists, kept out of the step.
+//!   for a closed set and the frictional points' stick/slip/open statuses, and the step.
+//! - `modes`: rigid motions that no closed contact (nor sticking point) resists, kept out of the
+//!   step.
+//! - `friction`: the statuses the step assumes beyond the state's, and a body that slides.
 //! - `balance`: the equilibrium check on the assembled system.
 //!
-//! The iteration starts from u = 0 and stops when a full step leaves the closed set unchanged
-//! (then the step solved the linear equations of the final closed set); the result counts as
-//! converged only if it is also in equilibrium.
+//! The iteration starts from u = 0 and stops when a full step leaves the closed set and the
+//! statuses unchanged (then the step solved the linear equations of the final sets); the result
+//! counts as converged only if it is also in equilibrium.
 
 mod balance;
+mod friction;
 mod modes;
 mod reduced;
 mod system;
@@ -26,7 +30,8 @@ use std::time::Instant;
 use rayon::prelude::*;
 
 use crate::augmented::{augmented_points, default_gap_tol, uzawa_update};
-use crate::contact::Interface;
+use crate::contact::formulation::InnerPenalty;
+use crate::contact::{Interface, Status};
 use crate::error::SetupError;
 use crate::model::Model;
 use crate::solution::{body_results, pair_results, BodyResult, PairResult};
@@ -158,12 +163,15 @@ pub fn solve_monolithic_with(
 ) -> Result<MonolithicSolution, SetupError> {
     check_settings(settings)?;
     let start = Instant::now();
-    let mut interface = Interface::new(model)?;
-    if interface.has_friction() {
-        return Err(SetupError::Solver(
-            "the monolithic reference treats frictionless contact only".into(),
-        ));
-    }
+    // The tangential penalty of a frictional point is its θ, so an augmented frictional pair takes
+    // the inner penalty of the interface Newton method, the decomposition's only method with
+    // friction (docs/monolithic.md, "Friction").
+    let inner = if model.pairs.iter().any(|p| p.friction.is_active()) {
+        InnerPenalty::Stiffened
+    } else {
+        InnerPenalty::AsGiven
+    };
+    let mut interface = Interface::with_inner(model, inner)?;
     check_inclined_corners(model, &interface)?;
     // One level of parallelism: over bodies when there are several, inside faer otherwise.
     let par = if model.bodies.len() > 1 {
@@ -245,7 +253,7 @@ fn finish(
         unenforced,
         updates,
     } = end;
-    let contact = system.contact_forces(model, &run.eval.s);
+    let contact = system.contact_forces(model, &run.eval);
     let displacements = bodies
         .par_iter()
         .enumerate()
@@ -255,17 +263,19 @@ fn finish(
             body.recover(&model.bodies[b], &contact[b], &x, &rigid)
         })
         .collect::<Result<Vec<_>, _>>()?;
-    let kernel = modes::kernel(modes, &run.eval.closed);
+    let kernel = modes::kernel(modes, &run.eval.closed, &run.eval.sticking());
     let check = balance::balance(model, system, &displacements, &contact, modes, &kernel);
     let rigid_modes: Vec<String> = kernel
         .weights
         .iter()
         .map(|w| modes::describe_motion(model, modes, w))
         .collect();
+    // A body that slides is named first: no state balances its loads.
     let message = run
         .stop
         .or(unenforced)
-        .or_else(|| verdict(model, settings, &check, &rigid_modes, run.steps));
+        .or_else(|| verdict(model, settings, &check, &rigid_modes, run.steps))
+        .map(|m| friction::sliding(model, system, modes, &run.eval).unwrap_or(m));
     let interface = system.interface;
     Ok(MonolithicSolution {
         converged: message.is_none(),
@@ -365,9 +375,10 @@ fn newton(
         stop,
     };
     for k in 1..=settings.max_steps {
-        let chi = jacobian_set(system, modes, &eval);
-        let z = modes::kernel(modes, &chi).on_x;
-        let Some((dx, dlam)) = system.direction(&chi, &z, &eval, &lam) else {
+        let (chi, status) = jacobian_set(system, modes, &eval);
+        let stick: Vec<bool> = status.iter().map(|&s| s == Status::Stick).collect();
+        let z = modes::kernel(modes, &chi, &stick).on_x;
+        let Some((dx, dlam)) = system.direction((&chi, &status), &z, &eval, &lam) else {
             let stop = format!("step {k}: the Newton system is singular");
             return end(x, eval, k - 1, history, Some(stop));
         };
@@ -377,7 +388,8 @@ fn newton(
             .rev()
             .take(WINDOW)
             .fold(0.0, |a: f64, &b| a.max(b));
-        let new_set = seen.insert(chi.clone());
+        let statuses: Vec<u8> = status.iter().map(|&s| s as u8).collect();
+        let new_set = seen.insert((chi.clone(), statuses));
         let (alpha, next, decreased) =
             step_length(system, &z, new_set, (&x, &lam), (&dx, &dlam), reference);
         failures = if decreased { 0 } else { failures + 1 };
@@ -395,6 +407,7 @@ fn newton(
         let before = merits.last().copied().unwrap_or(0.0) / scale;
         let settled = alpha == 1.0
             && next.closed == chi
+            && next.status == status
             && (record.residual <= ROUND_OFF || record.residual > 0.1 * before);
         if let Some(f) = on_step {
             f(&record);
@@ -450,11 +463,16 @@ fn step_length(
     }
 }
 
-/// The points treated as closed in J: the closed points, and for a body with free rigid modes
-/// that no closed point loads, the partnered points loading it of smallest gap d − s (it moves until they
-/// touch, instead of being held still; closing every partnered point would glue it on across
-/// gaps of any size and cost the line search many short steps).
-fn jacobian_set(system: &ReducedSystem, modes: &[Mode], eval: &Evaluation) -> Vec<bool> {
+/// The points treated as closed in J and the frictional points' statuses there: the closed
+/// points, and for a body with free rigid modes that no closed point loads, the partnered points
+/// loading it of smallest gap d − s (it moves until they touch, instead of being held still;
+/// closing every partnered point would glue it on across gaps of any size and cost the line
+/// search many short steps). Frictional points that J treats as closed but are open stick.
+fn jacobian_set(
+    system: &ReducedSystem,
+    modes: &[Mode],
+    eval: &Evaluation,
+) -> (Vec<bool>, Vec<Status>) {
     let points = &system.interface.points;
     let mut chi = eval.closed.clone();
     for (b, range) in system.interface.body_range.iter().enumerate() {
@@ -478,43 +496,76 @@ fn jacobian_set(system: &ReducedSystem, modes: &[Mode], eval: &Evaluation) -> Ve
             chi[j] = true;
         }
     }
-    // A body held by closed points, but not along a motion its loads push it in (a column of
-    // blocks held sideways by its neighbours, open below): the points that would resist the
-    // motion, of smallest gap, count as closed, until no such motion is left free.
+    let mut status = eval.status.clone();
+    friction::stick_where_closed(system, &chi, &mut status);
+    hold_loaded_motions(system, modes, eval, &mut chi, &mut status);
+    (chi, status)
+}
+
+/// A body held by closed points, but not along a motion its loads push it in (a column of
+/// blocks held sideways by its neighbours, open below; a block whose frictional points all
+/// slip): the points that would resist the motion, of smallest gap, count as closed in `chi`,
+/// or if none is open, the frictional points that would resist it stick in `status`, until no
+/// such motion is left free.
+fn hold_loaded_motions(
+    system: &ReducedSystem,
+    modes: &[Mode],
+    eval: &Evaluation,
+    chi: &mut [bool],
+    status: &mut [Status],
+) {
+    let points = &system.interface.points;
     for _ in 0..modes.len() {
-        let Some(resisting) = loaded_motion(modes, &chi).map(|w| resisting(system, modes, &w))
-        else {
+        let stick: Vec<bool> = status.iter().map(|&s| s == Status::Stick).collect();
+        let Some(w) = loaded_motion(modes, chi, &stick) else {
             break;
         };
-        let open: Vec<usize> = resisting.into_iter().filter(|&j| !chi[j]).collect();
+        let open: Vec<usize> = resisting(system, modes, &w)
+            .into_iter()
+            .filter(|&j| !chi[j])
+            .collect();
         let gap = |j: usize| points[j].penalty_gap() - eval.s[j];
         let Some(least) = open.iter().map(|&j| gap(j)).min_by(f64::total_cmp) else {
-            break;
+            let slipping: Vec<usize> = friction::resisting_tangentially(system, modes, &w)
+                .into_iter()
+                .filter(|&j| status[j] != Status::Stick)
+                .collect();
+            if slipping.is_empty() {
+                break;
+            }
+            for j in slipping {
+                chi[j] = true;
+                status[j] = Status::Stick;
+            }
+            continue;
         };
         let size = system.size.iter().fold(0.0f64, |a, &b| a.max(b));
         let tie = 1e-9 * (least.abs() + size);
         for j in open.into_iter().filter(|&j| gap(j) <= least + tie) {
             chi[j] = true;
         }
+        friction::stick_where_closed(system, chi, status);
     }
-    chi
 }
 
 /// Work of the loads along a free motion, relative to their work along all free modes, above
 /// which the motion is loaded (far above the rounding of loads that balance).
 const WORK_TOL: f64 = 1e-8;
 
-/// The weights of a rigid motion that the closed points `chi` leave free and along which the
-/// applied loads do work.
-fn loaded_motion(modes: &[Mode], chi: &[bool]) -> Option<Vec<f64>> {
+/// The weights of a rigid motion that the closed points `chi` and the sticking points `stick`
+/// leave free and along which the applied loads do work.
+fn loaded_motion(modes: &[Mode], chi: &[bool], stick: &[bool]) -> Option<Vec<f64>> {
     let total = modes.iter().map(|m| m.work * m.work).sum::<f64>().sqrt();
     if total == 0.0 {
         return None;
     }
-    modes::kernel(modes, chi).weights.into_iter().find(|w| {
-        let work: f64 = w.iter().zip(modes).map(|(c, m)| c * m.work).sum();
-        work.abs() > WORK_TOL * total
-    })
+    modes::kernel(modes, chi, stick)
+        .weights
+        .into_iter()
+        .find(|w| {
+            let work: f64 = w.iter().zip(modes).map(|(c, m)| c * m.work).sum();
+            work.abs() > WORK_TOL * total
+        })
 }
 
 /// The points that can carry a force (partnered, own-side or carriers) and whose pair sum the

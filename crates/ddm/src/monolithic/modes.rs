@@ -2,8 +2,10 @@
 //!
 //! Every body's supports leave it a few free rigid modes (the core's [`free_modes`], at most 3
 //! per body, each listed once: an orthonormal basis). A combination of them over all bodies is
-//! in the kernel of J_χ when it changes no closed pair sum s_j: then S, which maps a body's rigid
-//! motion to zero, and the closed contact terms both vanish on it. The kernel is found from the
+//! in the kernel of J_χ when it changes no closed pair sum s_j and no tangential displacement g_j
+//! of a frictional point that sticks: then S, which maps a body's rigid motion to zero, and the
+//! closed contact and stick terms all vanish on it (a slipping point's term acts through s_j
+//! alone, so it does not resist a motion that keeps s_j). The kernel is found from the
 //! Gram matrix of those changes, which holds only geometry (normals and mode values), so neither a
 //! stiffness contrast nor the penalty's size moves the threshold.
 
@@ -24,6 +26,8 @@ pub(super) struct Mode {
     pub on_x: Vec<f64>,
     /// Its change of every contact point's pair sum.
     pub on_s: Vec<f64>,
+    /// Its change of every frictional point's tangential displacement (0 elsewhere).
+    pub on_g: Vec<f64>,
     /// The work of the body's applied loads along it.
     pub work: f64,
 }
@@ -49,6 +53,14 @@ pub(super) fn free_rigid_modes(model: &Model, system: &ReducedSystem) -> Vec<Mod
                 .iter()
                 .map(|a| a.terms.iter().map(|&(i, c)| c * on_x[i]).sum())
                 .collect();
+            let on_g = system
+                .g
+                .iter()
+                .map(|row| {
+                    row.as_ref()
+                        .map_or(0.0, |a| a.terms.iter().map(|&(i, c)| c * on_x[i]).sum())
+                })
+                .collect();
             let dofs: Vec<usize> = (0..body.load.len())
                 .filter(|&d| body.constraints.get(d).is_none())
                 .collect();
@@ -63,6 +75,7 @@ pub(super) fn free_rigid_modes(model: &Model, system: &ReducedSystem) -> Vec<Mod
                 coefficients: v,
                 on_x,
                 on_s,
+                on_g,
                 work,
             });
         }
@@ -70,8 +83,9 @@ pub(super) fn free_rigid_modes(model: &Model, system: &ReducedSystem) -> Vec<Mod
     modes
 }
 
-/// The combinations of `modes` that change no pair sum of the points in `chi`.
-pub(super) fn kernel(modes: &[Mode], chi: &[bool]) -> Kernel {
+/// The combinations of `modes` that change no pair sum of the points in `chi` and no tangential
+/// displacement of the points in `stick` (empty without friction).
+pub(super) fn kernel(modes: &[Mode], chi: &[bool], stick: &[bool]) -> Kernel {
     let q = modes.len();
     let mut out = Kernel {
         on_x: Vec::new(),
@@ -80,12 +94,21 @@ pub(super) fn kernel(modes: &[Mode], chi: &[bool]) -> Kernel {
     if q == 0 {
         return out;
     }
-    let gram = DMatrix::from_fn(q, q, |a, b| {
+    let mut gram = DMatrix::from_fn(q, q, |a, b| {
         (0..chi.len())
             .filter(|&j| chi[j])
             .map(|j| modes[a].on_s[j] * modes[b].on_s[j])
             .sum::<f64>()
     });
+    // Only where some point sticks: a frictionless model's Gram matrix stays the same to the bit.
+    if stick.iter().any(|&s| s) {
+        gram += DMatrix::from_fn(q, q, |a, b| {
+            (0..stick.len())
+                .filter(|&j| stick[j])
+                .map(|j| modes[a].on_g[j] * modes[b].on_g[j])
+                .sum::<f64>()
+        });
+    }
     let scale = (0..q).map(|a| gram[(a, a)]).fold(0.0, f64::max);
     let eig = SymmetricEigen::new(gram);
     for (k, &lambda) in eig.eigenvalues.iter().enumerate() {

@@ -16,6 +16,14 @@
 //! For a closed set χ, eliminating δλ (closed: δλ_j = k_j ∂s_j δx + k_j (s_j − d_j) − λ_j; open:
 //! δλ_j = −λ_j) leaves J_χ δx = rhs with J_χ = S + Σ_{j∈χ} k_j n_j ∂s_jᵀ: dense blocks per body
 //! coupled only across closed pairs, non-symmetric for non-matching meshes.
+//!
+//! A carrier j of a frictional pair adds its tangential force: with g_j(x) = Σ_k c_jk u_k its
+//! tangential row (affine in x like s_j) and σ_t,j = proj_[−b_j, b_j](λ_t − (g_j − g₀)/θ_t) its
+//! traction (b_j = μ p_j or the Tresca bound, p_j = (s_j − d_j + θλ_j)/θ where positive),
+//!   F gains −w_j σ_t,j ∂g_j,
+//! a function of x alone. Its semismooth derivative adds to J_χ the stick spring
+//! (w_j/θ_t) ∂g_j ∂g_jᵀ, or on the slip edge of Coulomb's disc −(w_j μ sign/θ) ∂g_j ∂s_jᵀ (not
+//! symmetric); Tresca's slip and open points add nothing.
 
 use faer::prelude::Solve;
 use faer::sparse::{SparseColMat, Triplet};
@@ -24,7 +32,7 @@ use faer::Mat;
 use contactdd_core::rigid::RigidSpan;
 use contactdd_core::{dof, DIM};
 
-use crate::contact::Interface;
+use crate::contact::{Interface, Status};
 use crate::model::Model;
 
 use super::reduced::ReducedBody;
@@ -54,6 +62,10 @@ pub(super) struct ReducedSystem<'a> {
     pub un: Vec<Affine>,
     /// The pair sum s_j of every contact point.
     pub s: Vec<Affine>,
+    /// The tangential displacement g_j of every frictional point (`None` elsewhere).
+    pub g: Vec<Option<Affine>>,
+    /// True if some point has friction.
+    pub friction: bool,
     /// ρ_j of every contact point.
     rho: Vec<f64>,
     /// Bounding box diameter of every body.
@@ -69,6 +81,20 @@ pub(super) struct Evaluation {
     pub closed: Vec<bool>,
     pub f: Vec<f64>,
     pub phi: Vec<f64>,
+    /// The tangential displacement g_j of every point (0 without friction; empty for a
+    /// frictionless model, as are `traction` and `status`).
+    pub g: Vec<f64>,
+    /// The tangential traction σ_t,j of every point.
+    pub traction: Vec<f64>,
+    /// Where every point is on its friction disc.
+    pub status: Vec<Status>,
+}
+
+impl Evaluation {
+    /// Per point, true where it sticks (empty without friction).
+    pub fn sticking(&self) -> Vec<bool> {
+        self.status.iter().map(|&s| s == Status::Stick).collect()
+    }
 }
 
 impl<'a> ReducedSystem<'a> {
@@ -123,6 +149,7 @@ impl<'a> ReducedSystem<'a> {
             })
             .collect();
         let rho = stiffness_shares(interface, bodies, &offset, &un);
+        let g = tangential_rows(interface, &un);
         ReducedSystem {
             interface,
             bodies,
@@ -130,6 +157,8 @@ impl<'a> ReducedSystem<'a> {
             n,
             un,
             s,
+            g,
+            friction: interface.has_friction(),
             rho,
             size: model
                 .bodies
@@ -191,14 +220,48 @@ impl<'a> ReducedSystem<'a> {
                 }
             }
         }
-        Evaluation { s, closed, f, phi }
+        let (g, traction, status) = self.tangential(x, &s);
+        for (j, row) in self.g.iter().enumerate() {
+            let Some(row) = row else { continue };
+            let force = points[j].weight * traction[j];
+            for &(i, c) in &row.terms {
+                f[i] -= force * c;
+            }
+        }
+        Evaluation {
+            s,
+            closed,
+            f,
+            phi,
+            g,
+            traction,
+            status,
+        }
     }
 
-    /// The Newton direction (δx, δλ) for the closed set `chi`, with δx orthogonal to the
+    /// The tangential displacements, tractions and statuses at x for the pair sums `s` (empty
+    /// without friction).
+    fn tangential(&self, x: &[f64], s: &[f64]) -> (Vec<f64>, Vec<f64>, Vec<Status>) {
+        if !self.friction {
+            return (Vec::new(), Vec::new(), Vec::new());
+        }
+        let g: Vec<f64> = self
+            .g
+            .iter()
+            .map(|row| row.as_ref().map_or(0.0, |a| a.at(x)))
+            .collect();
+        let (traction, status) = (0..g.len())
+            .map(|j| self.interface.traction(j, s, &g))
+            .unzip();
+        (g, traction, status)
+    }
+
+    /// The Newton direction (δx, δλ) for the closed set `chi` and the frictional points'
+    /// statuses `status` (empty without friction), with δx orthogonal to the
     /// orthonormal motions `z`; None if the system is singular.
     pub fn direction(
         &self,
-        chi: &[bool],
+        (chi, status): (&[bool], &[Status]),
         z: &[Vec<f64>],
         eval: &Evaluation,
         lam: &[f64],
@@ -222,7 +285,7 @@ impl<'a> ReducedSystem<'a> {
                 }
             }
         }
-        let dx = self.solve(chi, z, &rhs)?;
+        let dx = self.solve((chi, status), z, &eval.g, &rhs)?;
         let dlam = (0..points.len())
             .map(|j| {
                 if chi[j] {
@@ -235,9 +298,15 @@ impl<'a> ReducedSystem<'a> {
         Some((dx, dlam))
     }
 
-    /// Solves [J_χ Z; Zᵀ 0] [δ; μ] = [rhs; 0] by sparse LU (dense blocks per body); None if
-    /// singular.
-    fn solve(&self, chi: &[bool], z: &[Vec<f64>], rhs: &[f64]) -> Option<Vec<f64>> {
+    /// Solves [J_χ Z; Zᵀ 0] [δ; μ] = [rhs; 0] by sparse LU (dense blocks per body; the
+    /// frictional terms of `status` at the tangential displacements `g`); None if singular.
+    fn solve(
+        &self,
+        (chi, status): (&[bool], &[Status]),
+        z: &[Vec<f64>],
+        g: &[f64],
+        rhs: &[f64],
+    ) -> Option<Vec<f64>> {
         let n = self.n;
         let mut trip = Vec::new();
         for (body, &o) in self.bodies.iter().zip(&self.offset) {
@@ -261,6 +330,7 @@ impl<'a> ReducedSystem<'a> {
                 }
             }
         }
+        self.friction_terms(status, g, &mut trip);
         for (q, zq) in z.iter().enumerate() {
             for (i, &v) in zq.iter().enumerate().filter(|(_, v)| **v != 0.0) {
                 trip.push(Triplet::new(i, n + q, v));
@@ -276,8 +346,42 @@ impl<'a> ReducedSystem<'a> {
         delta.iter().all(|v| v.is_finite()).then_some(delta)
     }
 
-    /// The nodal contact forces on every body (full DOF numbering) for pair sums `s`.
-    pub fn contact_forces(&self, model: &Model, s: &[f64]) -> Vec<Vec<f64>> {
+    /// The friction's part of J for the statuses `status` at the tangential displacements `g`:
+    /// the stick spring (w/θ_t) ∂g ∂gᵀ, Coulomb's slip term −(w μ sign/θ) ∂g ∂sᵀ.
+    fn friction_terms(
+        &self,
+        status: &[Status],
+        g: &[f64],
+        trip: &mut Vec<Triplet<usize, usize, f64>>,
+    ) {
+        let points = &self.interface.points;
+        for (j, row) in self.g.iter().enumerate() {
+            let (Some(row), Some(f)) = (row, points[j].friction.as_ref()) else {
+                continue;
+            };
+            let (k, columns) = match status[j] {
+                Status::Stick => (points[j].weight / f.theta, &row.terms),
+                Status::Slip => (
+                    -points[j].weight * f.slip_slope(g[j]) / points[j].theta,
+                    &self.s[j].terms,
+                ),
+                Status::Open => continue,
+            };
+            if k == 0.0 {
+                continue;
+            }
+            for &(r, a) in &row.terms {
+                for &(c, b) in columns {
+                    trip.push(Triplet::new(r, c, k * a * b));
+                }
+            }
+        }
+    }
+
+    /// The nodal contact forces on every body (full DOF numbering) at the state `eval`: the
+    /// pressures of its pair sums and, with friction, its tangential tractions.
+    pub fn contact_forces(&self, model: &Model, eval: &Evaluation) -> Vec<Vec<f64>> {
+        let s = &eval.s;
         let mut out: Vec<Vec<f64>> = model
             .bodies
             .iter()
@@ -293,8 +397,36 @@ impl<'a> ReducedSystem<'a> {
                 }
             }
         }
+        for (j, p) in points.iter().enumerate().filter(|_| self.friction) {
+            let Some(f) = &p.friction else { continue };
+            let force = p.weight * eval.traction[j];
+            for &(q, c) in &f.row {
+                let (body, node, direction) = (points[q].body, points[q].node, points[q].normal);
+                for d in 0..DIM {
+                    out[body][dof(node, d)] += c * force * direction[d];
+                }
+            }
+        }
         out
     }
+}
+
+/// The tangential row g_j on x of every frictional point: Σ_k c u_k over its row's unknowns.
+fn tangential_rows(interface: &Interface, un: &[Affine]) -> Vec<Option<Affine>> {
+    interface
+        .points
+        .iter()
+        .map(|p| {
+            p.friction.as_ref().map(|f| {
+                let mut a = Affine::default();
+                for &(k, c) in &f.row {
+                    a.terms.extend(un[k].terms.iter().map(|&(i, v)| (i, c * v)));
+                    a.constant += c * un[k].constant;
+                }
+                a
+            })
+        })
+        .collect()
 }
 
 /// ρ_j = b_j/(b_j + k_j) = 1 − k_j a_jᵀ (S + Σ_i k_i a_i a_iᵀ)⁻¹ a_j per point (a_j its own

@@ -1,0 +1,123 @@
+//! Friction and the rigid motions of the monolithic reference: the statuses the Newton step
+//! assumes where the closed set it uses goes beyond the state's, and the verdict on a frictional
+//! model whose loads push a floating body along a rigid motion harder than friction can hold it.
+//! No state balances such loads (the discrete problem has no solution), so the run cannot
+//! converge; the verdict names the body and the motion instead of the residual or imbalance that
+//! the run ends with.
+
+use crate::contact::Status;
+use crate::model::Model;
+
+use super::modes::{describe_motion, kernel, Mode};
+use super::system::{Evaluation, ReducedSystem};
+
+/// Work of the loads along a free rigid motion, relative to their work along all free modes,
+/// above which the motion is loaded (far above the rounding of loads that balance).
+const WORK_TOL: f64 = 1e-8;
+
+/// Why the state `eval` slides, if it does: with every frictional point on the edge of its disc,
+/// the closed points leave a rigid motion v free that moves some closed frictional point
+/// tangentially and along which the loads do more work |W| than friction can oppose,
+/// Σ_j w_j b_j |Δg_j(v)| (b_j the slip bound at the point's pressure, Δg_j the change of its
+/// tangential displacement along v). The body named is the one that moves most along v. `None`
+/// without friction.
+pub(super) fn sliding(
+    model: &Model,
+    system: &ReducedSystem,
+    modes: &[Mode],
+    eval: &Evaluation,
+) -> Option<String> {
+    let total = modes.iter().map(|m| m.work * m.work).sum::<f64>().sqrt();
+    if !system.friction || total == 0.0 {
+        return None;
+    }
+    let points = &system.interface.points;
+    let frictional: Vec<usize> = (0..points.len())
+        .filter(|&j| eval.closed[j] && points[j].friction.is_some())
+        .collect();
+    kernel(modes, &eval.closed, &[])
+        .weights
+        .iter()
+        .find_map(|w| {
+            let along = |j: usize| -> f64 { w.iter().zip(modes).map(|(c, m)| c * m.on_g[j]).sum() };
+            let change: Vec<f64> = frictional.iter().map(|&j| along(j)).collect();
+            let largest = change.iter().fold(0.0f64, |a, c| a.max(c.abs()));
+            let held = modes.iter().fold(0.0f64, |a, m| {
+                a.max(
+                    frictional
+                        .iter()
+                        .fold(0.0f64, |b, &j| b.max(m.on_g[j].abs())),
+                )
+            });
+            if largest <= 1e-8 * held {
+                return None;
+            }
+            let capacity: f64 = frictional
+                .iter()
+                .zip(&change)
+                .filter_map(|(&j, dg)| {
+                    let (p, f) = (&points[j], points[j].friction.as_ref()?);
+                    Some(p.weight * f.law.bound(-p.pressure(eval.s[j])) * dg.abs())
+                })
+                .sum();
+            let work: f64 = w.iter().zip(modes).map(|(c, m)| c * m.work).sum();
+            (work.abs() > WORK_TOL * total && work.abs() > capacity).then(|| {
+                format!(
+                    "no equilibrium: body '{}' slides: its loads push it along {} harder than \
+                     friction can hold it (their work {:.3e} against at most {:.3e})",
+                    model.bodies[moves_most(modes, w)].name,
+                    describe_motion(model, modes, w),
+                    work.abs(),
+                    capacity
+                )
+            })
+        })
+}
+
+/// The body that moves most along the motion with mode weights `w`.
+fn moves_most(modes: &[Mode], w: &[f64]) -> usize {
+    let mut share: Vec<f64> = Vec::new();
+    for (m, c) in modes.iter().zip(w) {
+        if share.len() <= m.body {
+            share.resize(m.body + 1, 0.0);
+        }
+        share[m.body] += c * c;
+    }
+    (0..share.len())
+        .max_by(|&a, &b| share[a].total_cmp(&share[b]))
+        .unwrap_or(0)
+}
+
+/// Frictional points closed in `chi` but open in `status` stick: J treats them as touching, and
+/// a body that just touches does not slide (J then resists its tangential motions too).
+pub(super) fn stick_where_closed(system: &ReducedSystem, chi: &[bool], status: &mut [Status]) {
+    let points = &system.interface.points;
+    for (j, st) in status.iter_mut().enumerate() {
+        if chi[j] && *st == Status::Open && points[j].friction.is_some() {
+            *st = Status::Stick;
+        }
+    }
+}
+
+/// The frictional points that can close whose tangential displacement the rigid motion with
+/// mode weights `w` changes: sticking, they would resist it.
+pub(super) fn resisting_tangentially(
+    system: &ReducedSystem,
+    modes: &[Mode],
+    w: &[f64],
+) -> Vec<usize> {
+    if !system.friction {
+        return Vec::new();
+    }
+    let points = &system.interface.points;
+    let change: Vec<(usize, f64)> = (0..points.len())
+        .filter(|&j| points[j].has_partner() && points[j].friction.is_some())
+        .map(|j| (j, w.iter().zip(modes).map(|(c, m)| c * m.on_g[j]).sum()))
+        .collect();
+    let largest = change.iter().fold(0.0f64, |a, &(_, c)| a.max(c.abs()));
+    change
+        .into_iter()
+        .filter(|&(_, c)| largest > 0.0 && c.abs() > 1e-8 * largest)
+        .map(|(j, _)| j)
+        .collect()
+}
