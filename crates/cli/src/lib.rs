@@ -47,6 +47,7 @@ mod plot;
 mod plot_contact;
 mod plot_data;
 mod plot_draw;
+mod plot_friction;
 mod plot_history;
 mod plot_mesh;
 mod plot_steps;

@@ -1,5 +1,5 @@
-//! `contactdd plot`: figures from a result folder (contact pressure, gap and status, convergence
-//! history, load steps, the deformed bodies coloured by von Mises stress) or from the CSV of a
+//! `contactdd plot`: figures from a result folder (contact pressure, gap and status, friction,
+//! convergence history, load steps, the deformed bodies coloured by von Mises stress) or from the CSV of a
 //! sweep (iterations against γ), as SVG and PNG. Only the files that `summary.json` lists are
 //! read, each a plain name in the folder and a regular file; figures are written only into the
 //! output folder, each atomically, never over anything but a regular file.
@@ -11,7 +11,9 @@ use anyhow::{Context, Result};
 use crate::args::PlotArgs;
 use crate::plot_data::{listed_file, monitor_name, Summary, Table, Units};
 use crate::plot_history::History;
-use crate::{load, plot_contact, plot_history, plot_mesh, plot_steps, plot_sweep, Exit};
+use crate::{
+    load, plot_contact, plot_friction, plot_history, plot_mesh, plot_steps, plot_sweep, Exit,
+};
 
 /// `contactdd plot`.
 pub fn plot(args: PlotArgs) -> Result<Exit> {
@@ -80,6 +82,10 @@ fn folder(args: &PlotArgs, dir: &Path) -> Result<(Vec<PathBuf>, PathBuf)> {
     if summary.has("contact.csv") {
         let table = table("contact.csv")?;
         written.extend(plot_contact::figures(&table, &units, &out, &args.format)?);
+        let laws = &summary.friction;
+        let file = dir.join("summary.json");
+        let fig = plot_friction::figures(&table, laws, &file, &units, &out, &args.format)?;
+        written.extend(fig);
     }
     if summary.has("history.csv") {
         let history = History {

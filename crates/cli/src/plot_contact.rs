@@ -1,5 +1,7 @@
 //! The contact figures of `contactdd plot`, one pair at a time from `contact.csv`: the contact
-//! pressure along the contact line (both sides), and the gap with each point's status.
+//! pressure along the contact line (both sides), and the gap with each point's status. The
+//! grouping of the points by pair and side, the coordinate along the line and the window shown
+//! also serve the friction figure (`plot_friction`).
 
 use std::ops::Range;
 use std::path::{Path, PathBuf};
@@ -18,30 +20,39 @@ use crate::plot_draw::{
 
 /// One contact point of `contact.csv`.
 #[derive(Clone, Debug)]
-struct Point {
-    x: f64,
-    y: f64,
+pub struct Point {
+    /// Undeformed x.
+    pub x: f64,
+    /// Undeformed y.
+    pub y: f64,
     gap: f64,
-    pressure: f64,
+    /// The contact pressure p ≥ 0.
+    pub pressure: f64,
     status: String,
+    /// Its row of the table (0 for the first row after the header).
+    pub row: usize,
 }
 
 /// One side of a pair: the body and its points.
-struct Side {
-    body: String,
-    points: Vec<Point>,
+pub struct Side {
+    /// The side's body.
+    pub body: String,
+    /// Its points, in the order of the file.
+    pub points: Vec<Point>,
 }
 
 /// A pair: its name and sides, in the order of `contact.csv`.
-struct Pair {
-    name: String,
-    sides: Vec<Side>,
+pub struct Pair {
+    /// The pair's name.
+    pub name: String,
+    /// Its sides, in the order of the file.
+    pub sides: Vec<Side>,
 }
 
 impl Pair {
     /// The coordinate along the contact line: x when the points spread more along x, else y.
     /// Returns the axis name and the coordinate of a point.
-    fn along(&self) -> (&'static str, fn(&Point) -> f64) {
+    pub fn along(&self) -> (&'static str, fn(&Point) -> f64) {
         let all = || self.sides.iter().flat_map(|s| s.points.iter());
         let extent = |f: fn(&Point) -> f64| {
             let r = span(all().map(f), 0.0, 0.0..0.0);
@@ -79,7 +90,7 @@ pub fn figures(
 }
 
 /// Groups the rows by pair and side, keeping the order of the file.
-fn pairs(table: &Table) -> Result<Vec<Pair>> {
+pub fn pairs(table: &Table) -> Result<Vec<Pair>> {
     let [pc, bc, xc, yc, gc, prc, sc] =
         ["pair", "body", "x", "y", "gap", "pressure", "status"].map(|n| table.column(n));
     let (pc, bc, sc) = (pc?, bc?, sc?);
@@ -92,6 +103,7 @@ fn pairs(table: &Table) -> Result<Vec<Pair>> {
             gap: table.number(r, gc)?,
             pressure: table.number(r, prc)?,
             status: row[sc].clone(),
+            row: r,
         };
         let pair = match pairs.iter_mut().position(|p| p.name == row[pc]) {
             Some(i) => &mut pairs[i],
@@ -120,7 +132,7 @@ fn pairs(table: &Table) -> Result<Vec<Pair>> {
 
 /// The look of side `s`: solid line and filled circles for the first, dashed line and crosses
 /// for the second, so that coinciding curves both stay visible.
-fn side_look(s: usize) -> Look {
+pub fn side_look(s: usize) -> Look {
     let color = COLORS[s % COLORS.len()];
     match s {
         0 => Look::new(color, Line::Solid, Marker::Circle),
@@ -148,7 +160,7 @@ fn curve(
 
 /// The stretch of the contact line to show: the pressed zone and as much again around it (a
 /// Hertz contact is a small part of its boundary), within the points' own extent.
-fn window(pair: &Pair, along: fn(&Point) -> f64) -> Range<f64> {
+pub fn window(pair: &Pair, along: fn(&Point) -> f64) -> Range<f64> {
     let all = || pair.sides.iter().flat_map(|s| s.points.iter());
     let whole = span(all().map(along), 0.02, 0.0..1.0);
     let pressed = span(
@@ -160,7 +172,7 @@ fn window(pair: &Pair, along: fn(&Point) -> f64) -> Range<f64> {
 }
 
 /// The chart frame of a contact figure: the caption names the pair, the axes carry units.
-fn frame(
+pub fn frame(
     what: &str,
     pair: &Pair,
     axis: &str,

@@ -1,5 +1,5 @@
 //! Reading a result folder back for `contactdd plot`: `summary.json` (tolerance, units, the file
-//! list), `contact.csv`, `history.csv`, `steps.csv` and the CSV of a sweep (formats in
+//! list, the pairs' friction laws), `contact.csv`, `history.csv`, `steps.csv` and the CSV of a sweep (formats in
 //! docs/outputs.md). The folder is user input: every malformed file gives an error naming it.
 
 use std::path::{Path, PathBuf};
@@ -101,6 +101,9 @@ pub struct Summary {
     pub steps: usize,
     /// The monitored boundary as "top of upper", when the summary records it.
     pub monitor: Option<String>,
+    /// The friction law of each frictional pair: its name and its `contact[].friction` object
+    /// as written (read by the friction figure, which checks it).
+    pub friction: Vec<(String, Value)>,
 }
 
 impl Summary {
@@ -133,6 +136,12 @@ impl Summary {
             (Some(body), Some(boundary)) => Some(monitor_name(body, boundary)),
             _ => None,
         };
+        let friction = json["contact"].as_array().map(|pairs| {
+            pairs
+                .iter()
+                .filter_map(|p| Some((p["name"].as_str()?.to_string(), p.get("friction")?.clone())))
+                .collect()
+        });
         Ok(Summary {
             tol: json["tol"].as_f64(),
             stop_measure: json["stop_measure"].as_str().map(String::from),
@@ -141,6 +150,7 @@ impl Summary {
             bodies: bodies.unwrap_or_default(),
             steps: json["steps"].as_array().map_or(0, Vec::len),
             monitor,
+            friction: friction.unwrap_or_default(),
         })
     }
 

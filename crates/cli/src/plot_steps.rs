@@ -1,7 +1,8 @@
 //! The load-step figures of `contactdd plot`, from `steps.csv`: the load–displacement curve (the
 //! monitored displacement against each pair's resultant contact force) and the force against the
-//! load factor. Every curve starts at the unloaded state (0, 0); steps that did not converge are
-//! marked apart.
+//! load factor; with friction (`<pair>_tangential_force` columns), each frictional pair's
+//! resultant tangential force against the load factor. Every curve starts at the unloaded state
+//! (0, 0); steps that did not converge are marked apart.
 
 use std::path::{Path, PathBuf};
 
@@ -12,7 +13,7 @@ use plotters::prelude::*;
 use crate::args::Format;
 use crate::plot_data::{Table, Units};
 use crate::plot_draw::{
-    linear, render, series, span, Figure, Frame, Legend, Line, Look, Marker, COLORS,
+    linear, ok, render, series, span, Figure, Frame, Legend, Line, Look, Marker, COLORS,
 };
 
 /// The columns of `steps.csv` that the figures use.
@@ -23,10 +24,12 @@ struct Steps {
     monitor: Option<(&'static str, Vec<f64>)>,
     /// Per pair, its name and |F| per step (the resultant on its first body).
     forces: Vec<(String, Vec<f64>)>,
+    /// Per frictional pair, its name and the resultant tangential force Σ w σ_t per step.
+    tangential: Vec<(String, Vec<f64>)>,
 }
 
-/// `load-displacement` (with a monitor) and `steps-force`; `monitor` names the monitored
-/// boundary ("top of upper") when known.
+/// `load-displacement` (with a monitor), `steps-force`, and `steps-tangential-force` (with
+/// friction); `monitor` names the monitored boundary ("top of upper") when known.
 pub fn figures(
     table: &Table,
     units: &Units,
@@ -52,6 +55,13 @@ pub fn figures(
         against_factor: true,
     };
     written.extend(render(&fig, out, "steps-force", formats)?);
+    if !steps.tangential.is_empty() {
+        let fig = Tangential {
+            steps: &steps,
+            units,
+        };
+        written.extend(render(&fig, out, "steps-tangential-force", formats)?);
+    }
     Ok(written)
 }
 
@@ -94,15 +104,39 @@ fn read(table: &Table) -> Result<Steps> {
             forces.push((pair.to_string(), norm));
         }
     }
+    let mut tangential = Vec::new();
+    for name in &table.header {
+        if let Some(pair) = name.strip_suffix("_tangential_force") {
+            tangential.push((pair.to_string(), table.numbers(name)?));
+        }
+    }
     Ok(Steps {
         factor: table.numbers("factor")?,
         converged,
         monitor,
         forces,
+        tangential,
     })
 }
 
 /// Force against the monitored displacement, or against the load factor.
+const MARKERS: [Marker; 4] = [
+    Marker::Circle,
+    Marker::Square,
+    Marker::Triangle,
+    Marker::Diamond,
+];
+
+/// The look of pair `p`'s curve.
+fn pair_look(p: usize) -> Look {
+    Look::new(COLORS[p % COLORS.len()], Line::Solid, MARKERS[p % 4])
+}
+
+/// The mark of a step that did not converge.
+fn failed_look() -> Look {
+    Look::new(RGBColor(200, 0, 0), Line::None, Marker::Cross).hollow(7)
+}
+
 struct StepFigure<'a> {
     steps: &'a Steps,
     units: &'a Units,
@@ -147,20 +181,12 @@ impl Figure for StepFigure<'_> {
             x_label,
             y_label: Units::label("resultant contact force |F|", self.units.force().as_deref()),
         };
-        let markers = [
-            Marker::Circle,
-            Marker::Square,
-            Marker::Triangle,
-            Marker::Diamond,
-        ];
-        let pair_look = |p: usize| Look::new(COLORS[p % COLORS.len()], Line::Solid, markers[p % 4]);
-        let failed_look = Look::new(RGBColor(200, 0, 0), Line::None, Marker::Cross).hollow(7);
         let mut legend = Legend::default();
         for (p, (pair, _)) in self.steps.forces.iter().enumerate() {
             legend.add(format!("pair {pair}"), pair_look(p));
         }
         if self.steps.converged.contains(&false) {
-            legend.add("step not converged", failed_look);
+            legend.add("step not converged", failed_look());
         }
         let (left, right) = legend.split(root);
         let mut chart = linear(&left, &frame, x, y)?;
@@ -178,7 +204,55 @@ impl Figure for StepFigure<'_> {
             .filter(|(_, &ok)| !ok)
             .map(|((&x, &f), _)| (x, f))
             .collect();
-        series(&mut chart, &failed, failed_look)?;
+        series(&mut chart, &failed, failed_look())?;
+        legend.draw(&right)
+    }
+}
+
+/// Each frictional pair's resultant tangential force Σ w σ_t (signed, along the tangents of its
+/// reference side) against the load factor.
+struct Tangential<'a> {
+    steps: &'a Steps,
+    units: &'a Units,
+}
+
+impl Figure for Tangential<'_> {
+    fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Result<()> {
+        let (xs, curves) = (&self.steps.factor, &self.steps.tangential);
+        let all_f = || curves.iter().flat_map(|(_, f)| f.iter().copied());
+        let x = span(xs.iter().copied().chain([0.0]), 0.05, 0.0..1.0);
+        let y = span(all_f().chain([0.0]), 0.08, -1.0..1.0);
+        let frame = Frame {
+            caption: "tangential contact force per load step".into(),
+            x_label: "load factor".into(),
+            y_label: Units::label(
+                "resultant tangential force F_t",
+                self.units.force().as_deref(),
+            ),
+        };
+        let mut legend = Legend::default();
+        for (p, (pair, _)) in curves.iter().enumerate() {
+            legend.add(format!("pair {pair}"), pair_look(p));
+        }
+        if self.steps.converged.contains(&false) {
+            legend.add("step not converged", failed_look());
+        }
+        let (left, right) = legend.split(root);
+        let mut chart = linear(&left, &frame, x.clone(), y)?;
+        let zero = LineSeries::new([(x.start, 0.0), (x.end, 0.0)], BLACK.mix(0.5));
+        ok(chart.draw_series(zero))?;
+        for (p, (_, f)) in curves.iter().enumerate() {
+            let steps = xs.iter().copied().zip(f.iter().copied());
+            let pts: Vec<(f64, f64)> = std::iter::once((0.0, 0.0)).chain(steps).collect();
+            series(&mut chart, &pts, pair_look(p))?;
+        }
+        let failed: Vec<(f64, f64)> = curves
+            .iter()
+            .flat_map(|(_, f)| xs.iter().zip(f).zip(&self.steps.converged))
+            .filter(|(_, &ok)| !ok)
+            .map(|((&x, &f), _)| (x, f))
+            .collect();
+        series(&mut chart, &failed, failed_look())?;
         legend.draw(&right)
     }
 }
