@@ -155,6 +155,12 @@ pub fn solve(
 /// Refuses a problem whose load steps are more than the single factor 1: `solve` would skip
 /// them.
 fn refuse_load_steps(problem: &Problem) -> PyResult<()> {
+    if !problem.spec.steps.is_empty() {
+        return Err(setup_error(SetupError::Solver(format!(
+            "steps: problem '{}' has a load history ([[steps]]), and contactdd.solve runs one              solve; run the history with contactdd.solve_steps(problem), which returns one              Result per increment",
+            problem.name
+        ))));
+    }
     let Some(spec) = problem.load_steps() else {
         return Ok(());
     };
@@ -185,7 +191,7 @@ fn monitored(
 }
 
 /// Writes result files with the GIL released; an error names the folder.
-fn written(
+pub(crate) fn written(
     py: Python<'_>,
     dir: &Path,
     write: impl FnOnce() -> std::io::Result<Vec<PathBuf>> + Send,
@@ -202,7 +208,7 @@ fn written(
 /// Runs `work` with the GIL released in a pool of `threads` workers, Ctrl-C and `progress`
 /// (called after every iteration) wired to its hooks. An exception of `progress` stops the
 /// solve and is raised; so is Ctrl-C's `KeyboardInterrupt`.
-fn run_reporting<T, F>(
+pub(crate) fn run_reporting<T, F>(
     py: Python<'_>,
     threads: Option<usize>,
     progress: Option<&Py<PyAny>>,
@@ -262,8 +268,10 @@ fn call_progress(py: Python<'_>, callback: &Py<PyAny>, r: &Record) -> PyResult<(
 /// Args:
 ///     problem: the :class:`Problem`.
 ///     load_steps: a number N of equal steps (load factors 1/N, …, 1), or the list of load
-///         factors (each > 0); default: the problem's (``[solver] load-steps`` or
-///         :meth:`Problem.solver`); a :class:`ContactddError` if it has none.
+///         factors (each > 0); default: the problem's load history (``[[steps]]``: one solve
+///         per increment, each result's ``load_factor`` the time of ``steps.csv``, the step's
+///         number from 0 plus the fraction done), else its ``[solver] load-steps`` (or
+///         :meth:`Problem.solver`); a :class:`ContactddError` if it has neither.
 ///     tol, max_iter, threads, accelerator, enforcement, gap_tol, method, gamma, coarse, u0,
 ///         u_prev, equilibrium_tol, max_updates, condensation, progress: as for :func:`solve`.
 ///     check: raise :class:`ConvergenceError` if a step does not converge (default); the steps
@@ -320,11 +328,30 @@ pub fn solve_steps<'py>(
         enforcement,
     };
     let p = problem.borrow();
-    let factors = step_factors(&p, load_steps)?;
     let (model, settings, threads) = p.configured(&options)?;
+    let history = match load_steps {
+        Some(_) => None,
+        None => steps::history(&p, &model)?,
+    };
+    let factors = match history {
+        Some(_) => Vec::new(),
+        None => step_factors(&p, load_steps)?,
+    };
     let monitor = monitored(&p, monitor, &model)?;
     let units = p.units().map(str::to_string);
     drop(p);
+    if let Some(history) = history {
+        let run = steps::HistoryRun {
+            model,
+            settings,
+            threads,
+            monitor,
+            units,
+            out,
+            check,
+        };
+        return steps::solve_history(py, run, &history, progress.as_ref());
+    }
     let model = Arc::new(model);
     let m = model.clone();
     let steps = run_reporting(py, threads, progress.as_ref(), |hooks| {
@@ -356,7 +383,7 @@ fn step_factors(problem: &Problem, arg: Option<&Bound<'_, PyAny>>) -> PyResult<V
 
 /// The steps as a list of results; a `ConvergenceError` holding the last one if it did not
 /// converge and `check` is set.
-fn step_results<'py>(
+pub(crate) fn step_results<'py>(
     py: Python<'py>,
     model: &Arc<Model>,
     steps: Vec<(f64, contactdd_ddm::Solution)>,
