@@ -10,9 +10,10 @@ use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList};
 
 use contactdd_ddm::contact::check as contact_check;
+use contactdd_ddm::history::{Increment, LoadHistory};
 use contactdd_ddm::{Hooks, Model, Record, SetupError};
 use contactdd_io::setup::Monitor;
-use contactdd_io::steps::monitored_displacement;
+use contactdd_io::steps::{monitored_displacement, HistoryLabels};
 
 use crate::error::{convergence_error, input_error, setup_error};
 use crate::options::{GammaArg, SolverOptions};
@@ -191,7 +192,7 @@ fn monitored(
 }
 
 /// Writes result files with the GIL released; an error names the folder.
-pub(crate) fn written(
+fn written(
     py: Python<'_>,
     dir: &Path,
     write: impl FnOnce() -> std::io::Result<Vec<PathBuf>> + Send,
@@ -208,7 +209,7 @@ pub(crate) fn written(
 /// Runs `work` with the GIL released in a pool of `threads` workers, Ctrl-C and `progress`
 /// (called after every iteration) wired to its hooks. An exception of `progress` stops the
 /// solve and is raised; so is Ctrl-C's `KeyboardInterrupt`.
-pub(crate) fn run_reporting<T, F>(
+fn run_reporting<T, F>(
     py: Python<'_>,
     threads: Option<usize>,
     progress: Option<&Py<PyAny>>,
@@ -331,7 +332,7 @@ pub fn solve_steps<'py>(
     let (model, settings, threads) = p.configured(&options)?;
     let history = match load_steps {
         Some(_) => None,
-        None => steps::history(&p, &model)?,
+        None => history(&p, &model)?,
     };
     let factors = match history {
         Some(_) => Vec::new(),
@@ -341,7 +342,7 @@ pub fn solve_steps<'py>(
     let units = p.units().map(str::to_string);
     drop(p);
     if let Some(history) = history {
-        let run = steps::HistoryRun {
+        let run = HistoryRun {
             model,
             settings,
             threads,
@@ -350,7 +351,7 @@ pub fn solve_steps<'py>(
             out,
             check,
         };
-        return steps::solve_history(py, run, &history, progress.as_ref());
+        return solve_history(py, run, &history, progress.as_ref());
     }
     let model = Arc::new(model);
     let m = model.clone();
@@ -383,7 +384,7 @@ fn step_factors(problem: &Problem, arg: Option<&Bound<'_, PyAny>>) -> PyResult<V
 
 /// The steps as a list of results; a `ConvergenceError` holding the last one if it did not
 /// converge and `check` is set.
-pub(crate) fn step_results<'py>(
+fn step_results<'py>(
     py: Python<'py>,
     model: &Arc<Model>,
     steps: Vec<(f64, contactdd_ddm::Solution)>,
@@ -414,4 +415,81 @@ pub(crate) fn step_results<'py>(
         return Err(convergence_error(py, &message, last.unbind()));
     }
     Ok(list)
+}
+
+/// The problem's load history (`[[steps]]` of its file, with the loads' groups), checked on
+/// `model` as a file's is; `None` without one.
+fn history(problem: &Problem, model: &contactdd_ddm::Model) -> PyResult<Option<LoadHistory>> {
+    contactdd_io::history::history(&problem.spec, model).map_err(setup_error)
+}
+
+/// What a load history's run needs besides the history.
+struct HistoryRun {
+    /// The model.
+    model: contactdd_ddm::Model,
+    /// Iteration settings.
+    settings: contactdd_ddm::Settings,
+    /// Worker threads.
+    threads: Option<usize>,
+    /// The monitored boundary.
+    monitor: Option<Monitor>,
+    /// The problem's units note.
+    units: Option<String>,
+    /// The folder to write the results into.
+    out: Option<std::path::PathBuf>,
+    /// Raise if the last increment does not converge.
+    check: bool,
+}
+
+/// Solves every increment of `history`: one result per increment (its `load_factor` the
+/// increment's time, [`HistoryLabels::times`]), the folder written as `contactdd solve` writes it.
+fn solve_history<'py>(
+    py: Python<'py>,
+    run: HistoryRun,
+    history: &LoadHistory,
+    progress: Option<&Py<PyAny>>,
+) -> PyResult<Bound<'py, PyList>> {
+    let HistoryRun {
+        model,
+        settings,
+        threads,
+        monitor,
+        units,
+        out,
+        check,
+    } = run;
+    let done = run_reporting(py, threads, progress, |hooks| {
+        let mut prepared = contactdd_ddm::prepare_with(&model, &settings)?;
+        let mut each = |_: &Increment, _: &contactdd_ddm::Solution| ();
+        contactdd_ddm::history::solve_history(
+            &model,
+            &mut prepared,
+            &settings,
+            history,
+            hooks,
+            &mut each,
+        )
+    })?;
+    let increments: Vec<Increment> = done.iter().map(|(i, _)| i.clone()).collect();
+    let times = HistoryLabels::times(history, &increments);
+    let mut steps: Vec<(f64, contactdd_ddm::Solution)> = times
+        .into_iter()
+        .zip(done.into_iter().map(|(_, s)| s))
+        .collect();
+    let last = increments.last().map_or(vec![1.0], |i| i.factors.clone());
+    // The results describe the model at the last increment's combination.
+    let model = Arc::new(history.model_at(&model, &last));
+    if let Some((_, sol)) = steps.last_mut() {
+        sol.load_factor = 1.0;
+    }
+    if let Some(dir) = out {
+        let labels = HistoryLabels::new(history, &increments);
+        let (units, monitor) = (units.as_deref(), monitor.as_ref());
+        written(py, &dir, || {
+            contactdd_io::output::write_history_results(
+                &dir, &model, &steps, monitor, units, &labels,
+            )
+        })?;
+    }
+    step_results(py, &model, steps, monitor.as_ref(), check)
 }

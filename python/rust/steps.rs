@@ -1,19 +1,14 @@
 //! The `load_steps` and `monitor` options (the `load-steps` and `monitor` keys of a `[solver]`
-//! table) from Python values, checked as a problem file's are, and the run of a problem's
-//! `[[steps]]` load history.
+//! table) from Python values, checked as a problem file's are.
 
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList, PyString, PyTuple};
 
-use std::sync::Arc;
-
 use contactdd_core::ElasticBody;
-use contactdd_ddm::history::{Increment, LoadHistory};
 use contactdd_ddm::steps::{check_factors, equal_steps};
 use contactdd_ddm::SetupError;
 use contactdd_io::problem::{LoadStepsSpec, MonitorSpec};
 use contactdd_io::setup::{Monitor, MAX_LOAD_STEPS};
-use contactdd_io::steps::HistoryLabels;
 
 use crate::error::setup_error;
 use crate::schema::parse;
@@ -113,84 +108,4 @@ pub fn monitor(bodies: &[ElasticBody], spec: &MonitorSpec) -> PyResult<Monitor> 
         body,
         boundary: spec.boundary.clone(),
     })
-}
-
-/// The problem's load history (`[[steps]]` of its file, with the loads' groups), checked on
-/// `model` as a file's is; `None` without one.
-pub fn history(
-    problem: &crate::problem::Problem,
-    model: &contactdd_ddm::Model,
-) -> PyResult<Option<LoadHistory>> {
-    contactdd_io::history::history(&problem.spec, model).map_err(setup_error)
-}
-
-/// What a load history's run needs besides the history.
-pub struct HistoryRun {
-    /// The model.
-    pub model: contactdd_ddm::Model,
-    /// Iteration settings.
-    pub settings: contactdd_ddm::Settings,
-    /// Worker threads.
-    pub threads: Option<usize>,
-    /// The monitored boundary.
-    pub monitor: Option<Monitor>,
-    /// The problem's units note.
-    pub units: Option<String>,
-    /// The folder to write the results into.
-    pub out: Option<std::path::PathBuf>,
-    /// Raise if the last increment does not converge.
-    pub check: bool,
-}
-
-/// Solves every increment of `history`: one result per increment (its `load_factor` the
-/// increment's time, [`HistoryLabels::times`]), the folder written as `contactdd solve` writes it.
-pub fn solve_history<'py>(
-    py: Python<'py>,
-    run: HistoryRun,
-    history: &LoadHistory,
-    progress: Option<&Py<PyAny>>,
-) -> PyResult<Bound<'py, PyList>> {
-    let HistoryRun {
-        model,
-        settings,
-        threads,
-        monitor,
-        units,
-        out,
-        check,
-    } = run;
-    let done = crate::solve::run_reporting(py, threads, progress, |hooks| {
-        let mut prepared = contactdd_ddm::prepare_with(&model, &settings)?;
-        let mut each = |_: &Increment, _: &contactdd_ddm::Solution| ();
-        contactdd_ddm::history::solve_history(
-            &model,
-            &mut prepared,
-            &settings,
-            history,
-            hooks,
-            &mut each,
-        )
-    })?;
-    let increments: Vec<Increment> = done.iter().map(|(i, _)| i.clone()).collect();
-    let times = HistoryLabels::times(history, &increments);
-    let mut steps: Vec<(f64, contactdd_ddm::Solution)> = times
-        .into_iter()
-        .zip(done.into_iter().map(|(_, s)| s))
-        .collect();
-    let last = increments.last().map_or(vec![1.0], |i| i.factors.clone());
-    // The results describe the model at the last increment's combination.
-    let model = Arc::new(history.model_at(&model, &last));
-    if let Some((_, sol)) = steps.last_mut() {
-        sol.load_factor = 1.0;
-    }
-    if let Some(dir) = out {
-        let labels = HistoryLabels::new(history, &increments);
-        let (units, monitor) = (units.as_deref(), monitor.as_ref());
-        crate::solve::written(py, &dir, || {
-            contactdd_io::output::write_history_results(
-                &dir, &model, &steps, monitor, units, &labels,
-            )
-        })?;
-    }
-    crate::solve::step_results(py, &model, steps, monitor.as_ref(), check)
 }

@@ -184,30 +184,20 @@ pub fn solve(args: SolveArgs) -> Result<Exit> {
 
     with_threads(threads, || {
         let mut prepared = prepare_shown(&args.file, model, &settings, &ranks, quiet)?;
+        let run = StepRun {
+            model,
+            settings: &settings,
+            factors: loaded.steps.as_deref().unwrap_or_default(),
+            monitor: loaded.monitor.as_ref(),
+            units: loaded.problem.units.as_deref(),
+            out: &out,
+            quiet,
+            ranks: &ranks,
+        };
         if let Some(history) = &loaded.history {
-            let run = StepRun {
-                model,
-                settings: &settings,
-                factors: &[],
-                monitor: loaded.monitor.as_ref(),
-                units: loaded.problem.units.as_deref(),
-                out: &out,
-                quiet,
-                ranks: &ranks,
-            };
             return run_history(run, history, &mut prepared);
         }
-        if let Some(factors) = &loaded.steps {
-            let run = StepRun {
-                model,
-                settings: &settings,
-                factors,
-                monitor: loaded.monitor.as_ref(),
-                units: loaded.problem.units.as_deref(),
-                out: &out,
-                quiet,
-                ranks: &ranks,
-            };
+        if loaded.steps.is_some() {
             return run_steps(run, &mut prepared);
         }
         let mut sol = iterate_shown(model, &prepared, &settings, quiet)?;
