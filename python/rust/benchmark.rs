@@ -42,7 +42,8 @@ fn block(notch: &Notch, name: &str, y0: f64, mirror: bool, loaded: &str) -> Body
         loads: vec![Load::Pressure {
             boundary: loaded.into(),
             value: notch.pressure(),
-        }],
+        }
+        .into()],
     }
 }
 
@@ -99,5 +100,6 @@ pub fn notch_spec(nx: usize, ny: usize, order: Order) -> Problem {
             u_prev: Some(2e-4),
             ..SolverSpec::default()
         },
+        steps: Vec::new(),
     }
 }

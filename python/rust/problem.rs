@@ -176,6 +176,7 @@ impl Problem {
                 bodies: Vec::new(),
                 contact: Vec::new(),
                 solver: SolverSpec::default(),
+                steps: Vec::new(),
             },
         })
     }

@@ -10,9 +10,10 @@ use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList};
 
 use contactdd_ddm::contact::check as contact_check;
+use contactdd_ddm::history::{Increment, LoadHistory};
 use contactdd_ddm::{Hooks, Model, Record, SetupError};
 use contactdd_io::setup::Monitor;
-use contactdd_io::steps::monitored_displacement;
+use contactdd_io::steps::{monitored_displacement, HistoryLabels};
 
 use crate::error::{convergence_error, input_error, setup_error};
 use crate::options::{GammaArg, SolverOptions};
@@ -155,6 +156,12 @@ pub fn solve(
 /// Refuses a problem whose load steps are more than the single factor 1: `solve` would skip
 /// them.
 fn refuse_load_steps(problem: &Problem) -> PyResult<()> {
+    if !problem.spec.steps.is_empty() {
+        return Err(setup_error(SetupError::Solver(format!(
+            "steps: problem '{}' has a load history ([[steps]]), and contactdd.solve runs one              solve; run the history with contactdd.solve_steps(problem), which returns one              Result per increment",
+            problem.name
+        ))));
+    }
     let Some(spec) = problem.load_steps() else {
         return Ok(());
     };
@@ -262,8 +269,10 @@ fn call_progress(py: Python<'_>, callback: &Py<PyAny>, r: &Record) -> PyResult<(
 /// Args:
 ///     problem: the :class:`Problem`.
 ///     load_steps: a number N of equal steps (load factors 1/N, …, 1), or the list of load
-///         factors (each > 0); default: the problem's (``[solver] load-steps`` or
-///         :meth:`Problem.solver`); a :class:`ContactddError` if it has none.
+///         factors (each > 0); default: the problem's load history (``[[steps]]``: one solve
+///         per increment, each result's ``load_factor`` the time of ``steps.csv``, the step's
+///         number from 0 plus the fraction done), else its ``[solver] load-steps`` (or
+///         :meth:`Problem.solver`); a :class:`ContactddError` if it has neither.
 ///     tol, max_iter, threads, accelerator, enforcement, gap_tol, method, gamma, coarse, u0,
 ///         u_prev, equilibrium_tol, max_updates, condensation, progress: as for :func:`solve`.
 ///     check: raise :class:`ConvergenceError` if a step does not converge (default); the steps
@@ -320,11 +329,30 @@ pub fn solve_steps<'py>(
         enforcement,
     };
     let p = problem.borrow();
-    let factors = step_factors(&p, load_steps)?;
     let (model, settings, threads) = p.configured(&options)?;
+    let history = match load_steps {
+        Some(_) => None,
+        None => history(&p, &model)?,
+    };
+    let factors = match history {
+        Some(_) => Vec::new(),
+        None => step_factors(&p, load_steps)?,
+    };
     let monitor = monitored(&p, monitor, &model)?;
     let units = p.units().map(str::to_string);
     drop(p);
+    if let Some(history) = history {
+        let run = HistoryRun {
+            model,
+            settings,
+            threads,
+            monitor,
+            units,
+            out,
+            check,
+        };
+        return solve_history(py, run, &history, progress.as_ref());
+    }
     let model = Arc::new(model);
     let m = model.clone();
     let steps = run_reporting(py, threads, progress.as_ref(), |hooks| {
@@ -387,4 +415,81 @@ fn step_results<'py>(
         return Err(convergence_error(py, &message, last.unbind()));
     }
     Ok(list)
+}
+
+/// The problem's load history (`[[steps]]` of its file, with the loads' groups), checked on
+/// `model` as a file's is; `None` without one.
+fn history(problem: &Problem, model: &contactdd_ddm::Model) -> PyResult<Option<LoadHistory>> {
+    contactdd_io::history::history(&problem.spec, model).map_err(setup_error)
+}
+
+/// What a load history's run needs besides the history.
+struct HistoryRun {
+    /// The model.
+    model: contactdd_ddm::Model,
+    /// Iteration settings.
+    settings: contactdd_ddm::Settings,
+    /// Worker threads.
+    threads: Option<usize>,
+    /// The monitored boundary.
+    monitor: Option<Monitor>,
+    /// The problem's units note.
+    units: Option<String>,
+    /// The folder to write the results into.
+    out: Option<std::path::PathBuf>,
+    /// Raise if the last increment does not converge.
+    check: bool,
+}
+
+/// Solves every increment of `history`: one result per increment (its `load_factor` the
+/// increment's time, [`HistoryLabels::times`]), the folder written as `contactdd solve` writes it.
+fn solve_history<'py>(
+    py: Python<'py>,
+    run: HistoryRun,
+    history: &LoadHistory,
+    progress: Option<&Py<PyAny>>,
+) -> PyResult<Bound<'py, PyList>> {
+    let HistoryRun {
+        model,
+        settings,
+        threads,
+        monitor,
+        units,
+        out,
+        check,
+    } = run;
+    let done = run_reporting(py, threads, progress, |hooks| {
+        let mut prepared = contactdd_ddm::prepare_with(&model, &settings)?;
+        let mut each = |_: &Increment, _: &contactdd_ddm::Solution| ();
+        contactdd_ddm::history::solve_history(
+            &model,
+            &mut prepared,
+            &settings,
+            history,
+            hooks,
+            &mut each,
+        )
+    })?;
+    let increments: Vec<Increment> = done.iter().map(|(i, _)| i.clone()).collect();
+    let times = HistoryLabels::times(history, &increments);
+    let mut steps: Vec<(f64, contactdd_ddm::Solution)> = times
+        .into_iter()
+        .zip(done.into_iter().map(|(_, s)| s))
+        .collect();
+    let last = increments.last().map_or(vec![1.0], |i| i.factors.clone());
+    // The results describe the model at the last increment's combination.
+    let model = Arc::new(history.model_at(&model, &last));
+    if let Some((_, sol)) = steps.last_mut() {
+        sol.load_factor = 1.0;
+    }
+    if let Some(dir) = out {
+        let labels = HistoryLabels::new(history, &increments);
+        let (units, monitor) = (units.as_deref(), monitor.as_ref());
+        written(py, &dir, || {
+            contactdd_io::output::write_history_results(
+                &dir, &model, &steps, monitor, units, &labels,
+            )
+        })?;
+    }
+    step_results(py, &model, steps, monitor.as_ref(), check)
 }

@@ -91,7 +91,7 @@ fn body_text(body: &ElasticBody, spec: &BodySpec) -> String {
         out += &format!("  support: {comp} = {} on {}\n", sig(s.value), s.boundary);
     }
     for l in &spec.loads {
-        out += &match l {
+        out += &match &l.load {
             Load::Pressure { boundary, value } => {
                 format!("  load: pressure {} on {boundary}\n", sig(*value))
             }
@@ -100,8 +100,30 @@ fn body_text(body: &ElasticBody, spec: &BodySpec) -> String {
             }
             Load::BodyForce { value } => format!("  load: body force {}\n", vec2(*value)),
         };
+        if let Some(group) = &l.group {
+            out.insert_str(out.len() - 1, &format!(" (group {group})"));
+        }
     }
     out
+}
+
+/// `  load history: press (2 increments: press 1), shear (…)`.
+fn history_text(history: &contactdd_ddm::history::LoadHistory) -> String {
+    let names = history.group_names();
+    let steps: Vec<String> = (history.steps.iter())
+        .map(|s| {
+            let factors: Vec<String> = (s.factors.iter())
+                .map(|&(g, f)| format!("{} {}", names[g], sig(f)))
+                .collect();
+            format!(
+                "{} ({} increments: {})",
+                s.name,
+                s.increments,
+                factors.join(", ")
+            )
+        })
+        .collect();
+    format!("  load history: {}\n", steps.join(", "))
 }
 
 /// Contact pair `p`: its bodies, boundaries and θ, then the contact points of each side.
@@ -197,6 +219,9 @@ fn solver_text(loaded: &Loaded) -> String {
             );
         }
         text += "\n";
+    }
+    if let Some(history) = &loaded.history {
+        text += &history_text(history);
     }
     let augmented: Vec<&str> = loaded
         .model

@@ -12,6 +12,7 @@ use contactdd_io::distributed_results::{
 };
 use contactdd_io::reactions::BodyReactions;
 use contactdd_io::setup::Monitor;
+use contactdd_io::steps::HistoryLabels;
 use contactdd_io::Loaded;
 
 use crate::rank_use::peak_mib;
@@ -110,16 +111,17 @@ impl Ranks {
         write_results_shared(dir, model, sol, reactions, units, &self.part())
     }
 
-    /// [`write_results`](Ranks::write_results) for the steps of a load-step run.
+    /// [`write_results`](Ranks::write_results) for the steps of a load-step run, or the
+    /// increments of a load history (`labels`).
     pub fn write_step_results(
         &self,
         dir: &Path,
         model: &Model,
         steps: &[(f64, Solution)],
-        monitor: Option<&Monitor>,
-        units: Option<&str>,
+        (monitor, units): (Option<&Monitor>, Option<&str>),
+        labels: Option<&HistoryLabels>,
     ) -> std::io::Result<Vec<PathBuf>> {
-        write_step_results_shared(dir, model, steps, monitor, units, &self.part())
+        write_step_results_shared(dir, model, steps, monitor, units, labels, &self.part())
     }
 
     /// This process's part in writing a shared result folder.

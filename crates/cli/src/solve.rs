@@ -26,7 +26,7 @@ use crate::ranks::Ranks;
 use crate::report::{
     applied_loads, pair_report, progress, reaction_report, sig, status_text, timing, IterationTable,
 };
-use crate::steps::{run_steps, StepRun};
+use crate::steps::{run_history, run_steps, StepRun};
 use crate::{load, with_threads, Exit};
 
 /// Applies `--tol`, `--max-iter` and `--threads` to the file's settings; returns the thread count.
@@ -184,17 +184,20 @@ pub fn solve(args: SolveArgs) -> Result<Exit> {
 
     with_threads(threads, || {
         let mut prepared = prepare_shown(&args.file, model, &settings, &ranks, quiet)?;
-        if let Some(factors) = &loaded.steps {
-            let run = StepRun {
-                model,
-                settings: &settings,
-                factors,
-                monitor: loaded.monitor.as_ref(),
-                units: loaded.problem.units.as_deref(),
-                out: &out,
-                quiet,
-                ranks: &ranks,
-            };
+        let run = StepRun {
+            model,
+            settings: &settings,
+            factors: loaded.steps.as_deref().unwrap_or_default(),
+            monitor: loaded.monitor.as_ref(),
+            units: loaded.problem.units.as_deref(),
+            out: &out,
+            quiet,
+            ranks: &ranks,
+        };
+        if let Some(history) = &loaded.history {
+            return run_history(run, history, &mut prepared);
+        }
+        if loaded.steps.is_some() {
             return run_steps(run, &mut prepared);
         }
         let mut sol = iterate_shown(model, &prepared, &settings, quiet)?;

@@ -83,10 +83,27 @@ impl Coarse {
         }
     }
 
-    /// Scales the bodies' loads by `factor` (a load step).
+    /// Scales the bodies' loads by `factor` (a load step); the other load groups' factors
+    /// become 0.
     pub fn set_load_factor(&mut self, factor: f64) {
         self.chains.set_load_factor(factor);
         self.all.set_load_factor(factor);
+    }
+
+    /// Sets the other load groups of a load history ([`crate::history`]): `work[b][g]` is the
+    /// work of group g's load on body b along each of the body's free rigid modes (its facts'
+    /// `free`, in order; empty: none). Each group starts at factor 0.
+    pub fn set_load_groups(&mut self, work: &[Vec<Vec<f64>>]) {
+        self.chains.set_load_groups(work);
+        self.all.set_load_groups(work);
+    }
+
+    /// Sets the load combination of a load history: `factor` on the bodies' own loads,
+    /// `group_factors[g]` on group g of [`Coarse::set_load_groups`]. Without other groups this is
+    /// [`Coarse::set_load_factor`], to the bit.
+    pub fn set_load_combination(&mut self, factor: f64, group_factors: &[f64]) {
+        self.chains.set_load_combination(factor, group_factors);
+        self.all.set_load_combination(factor, group_factors);
     }
 
     /// Number of coarse unknowns in `mode`.
@@ -153,6 +170,8 @@ struct FloatingModes {
     load: Vec<f64>,
     /// R_qᵀ f at load factor 1.
     load_full: Vec<f64>,
+    /// R_qᵀ L_g of every other load group g of a load history.
+    groups: Vec<Vec<f64>>,
     /// Per body, the coarse unknowns its points' balance and Jacobian entries involve (its own
     /// and its points' partners' bodies'), in increasing order.
     near: Vec<Vec<usize>>,
@@ -214,12 +233,39 @@ impl FloatingModes {
             rho,
             load_full: load.clone(),
             load,
+            groups: Vec::new(),
             near,
         }
     }
 
     fn set_load_factor(&mut self, factor: f64) {
         self.load = self.load_full.iter().map(|v| factor * v).collect();
+    }
+
+    fn set_load_groups(&mut self, work: &[Vec<Vec<f64>>]) {
+        let count = work.iter().map(Vec::len).max().unwrap_or(0);
+        self.groups = (0..count)
+            .map(|g| {
+                let mut load = vec![0.0; self.load_full.len()];
+                for (range, w) in self.range.iter().zip(work) {
+                    let w = w.get(g).map_or(&[][..], Vec::as_slice);
+                    load[range.clone()]
+                        .iter_mut()
+                        .zip(w)
+                        .for_each(|(l, v)| *l = *v);
+                }
+                load
+            })
+            .collect();
+    }
+
+    fn set_load_combination(&mut self, factor: f64, group_factors: &[f64]) {
+        self.set_load_factor(factor);
+        for (g, &c) in self.groups.iter().zip(group_factors) {
+            if c != 0.0 {
+                self.load.iter_mut().zip(g).for_each(|(l, v)| *l += c * v);
+            }
+        }
     }
 
     fn len(&self) -> usize {

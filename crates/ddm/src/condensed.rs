@@ -102,6 +102,23 @@ pub struct CondensedBody {
     load: Vec<f64>,
     /// The factor on the loads and prescribed displacements (1: the problem as given).
     factor: f64,
+    /// The other load groups of a load history ([`crate::history`]), and their factors.
+    groups: Vec<GroupLoad>,
+    /// The reduced right-hand side of the other groups at their factors (sparse path; empty
+    /// while every group's factor is 0).
+    group_rhs: Vec<f64>,
+}
+
+/// One load group of a body other than its own load ([`crate::history::LoadGroup`]).
+struct GroupLoad {
+    /// The group's load vector.
+    load: Vec<f64>,
+    /// Nᵀ(K₀⁻¹L − K₀⁻¹0): the normal displacements under the group's load alone.
+    f0: Vec<f64>,
+    /// The reduced right-hand side of the load alone (sparse path; empty on the dense one).
+    rhs: Vec<f64>,
+    /// The group's factor.
+    factor: f64,
 }
 
 /// The cached factorisation of the reduced Robin matrix for one φ.
@@ -297,6 +314,8 @@ impl<'a> Analysed<'a> {
             f0,
             load: body.load.clone(),
             factor: 1.0,
+            groups: Vec::new(),
+            group_rhs: Vec::new(),
         };
         Ok((condensed, times))
     }
@@ -441,9 +460,87 @@ impl CondensedBody {
 
     /// Scales the loads and prescribed displacements by `factor` (a load step): f₀ is linear
     /// in both.
+    /// The other load groups' factors become 0.
     pub fn set_load_factor(&mut self, factor: f64) {
         self.factor = factor;
         self.f0 = self.f0_full.iter().map(|v| factor * v).collect();
+        self.groups.iter_mut().for_each(|g| g.factor = 0.0);
+        self.group_rhs.clear();
+    }
+
+    /// Sets the body's other load groups (a load history, [`crate::history`]): per group its
+    /// load vector (empty: the group does not load this body), each at factor 0. The body's own
+    /// load and prescribed displacements stay the default group. One solve per group with the
+    /// kept factor: the group's response is Nᵀ(K₀⁻¹L − K₀⁻¹0), without the prescribed values.
+    /// `body` names the body in errors (a load of the wrong length or not finite).
+    pub fn set_load_groups(&mut self, body: &str, loads: &[Vec<f64>]) -> Result<(), BodyError> {
+        if loads.is_empty() {
+            self.groups.clear();
+            self.set_load_factor(self.factor);
+            return Ok(());
+        }
+        let zero = vec![0.0; self.load.len()];
+        let free = self.op.solve(&zero)?;
+        let sparse = matches!(self.reduction, Reduction::Sparse(_));
+        let free_rhs = match sparse {
+            true => self.op.reduced_load(&zero),
+            false => Vec::new(),
+        };
+        let mut groups = Vec::with_capacity(loads.len());
+        for load in loads {
+            let load = match load.is_empty() {
+                true => zero.clone(),
+                false => load.clone(),
+            };
+            if load.len() != zero.len() || load.iter().any(|v| !v.is_finite()) {
+                return Err(BodyError::NonFinite {
+                    body: body.to_string(),
+                    what: format!(
+                        "a load group's load vector ({} entries for {} DOFs)",
+                        load.len(),
+                        zero.len()
+                    ),
+                });
+            }
+            let x = self.op.solve(&load)?;
+            let f0 = (self.nodes.iter().zip(&self.normals))
+                .map(|(&v, n)| dot(*n, node_vector(&x, v)) - dot(*n, node_vector(&free, v)))
+                .collect();
+            let rhs = match sparse {
+                true => (self.op.reduced_load(&load).iter().zip(&free_rhs))
+                    .map(|(a, b)| a - b)
+                    .collect(),
+                false => Vec::new(),
+            };
+            groups.push(GroupLoad {
+                load,
+                f0,
+                rhs,
+                factor: 0.0,
+            });
+        }
+        self.groups = groups;
+        self.set_load_factor(self.factor);
+        Ok(())
+    }
+
+    /// Sets the load combination of a load history: `factor` on the body's own load and
+    /// prescribed displacements (the default group), `group_factors[g]` on the load of group g
+    /// of [`set_load_groups`](CondensedBody::set_load_groups). Without other groups this is
+    /// [`set_load_factor`](CondensedBody::set_load_factor), to the bit.
+    pub fn set_load_combination(&mut self, factor: f64, group_factors: &[f64]) {
+        self.set_load_factor(factor);
+        for (g, &c) in self.groups.iter_mut().zip(group_factors) {
+            g.factor = c;
+            if c == 0.0 {
+                continue;
+            }
+            self.f0.iter_mut().zip(&g.f0).for_each(|(f, v)| *f += c * v);
+            if !g.rhs.is_empty() {
+                self.group_rhs.resize(g.rhs.len(), 0.0);
+                (self.group_rhs.iter_mut().zip(&g.rhs)).for_each(|(f, v)| *f += c * v);
+            }
+        }
     }
 
     /// The factorised operator.
@@ -500,7 +597,7 @@ impl CondensedBody {
                 return s.robin_solve(
                     &self.op,
                     point,
-                    self.factor,
+                    (self.factor, &self.group_rhs),
                     phi,
                     r,
                     &mut cache.sparse,
@@ -556,10 +653,15 @@ impl CondensedBody {
         Ok(())
     }
 
-    /// The full displacement K₀⁻¹(λf + N T) for interface load `t_load`, with the prescribed
-    /// displacements times λ (the load factor).
+    /// The full displacement K₀⁻¹(λf + Σ c_g L_g + N T) for interface load `t_load`, with the
+    /// prescribed displacements times λ (the load factor; c_g, L_g: the other load groups').
     pub fn recover(&self, t_load: &[f64]) -> Result<Vec<f64>, BodyError> {
         let mut f: Vec<f64> = self.load.iter().map(|v| self.factor * v).collect();
+        for g in self.groups.iter().filter(|g| g.factor != 0.0) {
+            f.iter_mut()
+                .zip(&g.load)
+                .for_each(|(f, v)| *f += g.factor * v);
+        }
         for ((&v, n), &t) in self.nodes.iter().zip(&self.normals).zip(t_load) {
             for c in 0..DIM {
                 f[dof(v, c)] += n[c] * t;

@@ -23,6 +23,7 @@ pub mod error;
 pub mod exchange;
 pub mod facts;
 pub mod gamma_study;
+pub mod history;
 pub mod iteration;
 mod measures;
 pub mod method;

@@ -34,15 +34,21 @@ pub struct Prepared {
     pub coarse: Coarse,
     /// Setup wall times, seconds.
     pub timing: Vec<(String, f64)>,
-    /// The factor of every load and prescribed displacement ([`Prepared::set_load_factor`]).
+    /// The factor of every load and prescribed displacement ([`Prepared::set_load_factor`]);
+    /// under a load history, of the default group's ([`crate::history`]).
     pub load_factor: f64,
+    /// The factors of a load history's other groups ([`Prepared::set_load_groups`]; empty
+    /// without a history).
+    pub group_factors: Vec<f64>,
 }
 
 impl Prepared {
     /// Scales every body's loads and prescribed displacements by `factor` (1: the problem as
-    /// given): the load steps of [`crate::steps`] reuse one factorisation.
+    /// given): the load steps of [`crate::steps`] reuse one factorisation. A load history's other
+    /// groups ([`Prepared::set_load_groups`]) go to factor 0.
     pub fn set_load_factor(&mut self, factor: f64) {
         self.load_factor = factor;
+        self.group_factors.iter_mut().for_each(|c| *c = 0.0);
         for body in self.bodies.iter_mut().flatten() {
             body.set_load_factor(factor);
         }
@@ -191,6 +197,7 @@ pub fn prepare_on(
             ("condensation".into(), sum(|t| t.condensation)),
         ],
         load_factor: 1.0,
+        group_factors: Vec::new(),
     })
 }
 

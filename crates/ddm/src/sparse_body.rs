@@ -120,14 +120,14 @@ impl SparseContact {
         Ok(self.gather(&u))
     }
 
-    /// Solves the Robin problem (K + N D Nᵀ) ũ = λf + N r, D = diag(φ_j D₀_j), at load factor
-    /// `factor`; writes ũ_n to `un` and t = r + (1 − φ) D₀ ũ_n to `t` (as the dense path).
+    /// Solves the Robin problem (K + N D Nᵀ) ũ = λf + g + N r, D = diag(φ_j D₀_j), at load factor
+    /// λ = `factor` with `extra` the reduced load g of the other load groups (empty: none); writes ũ_n to `un` and t = r + (1 − φ) D₀ ũ_n to `t` (as the dense path).
     #[allow(clippy::too_many_arguments)]
     pub fn robin_solve(
         &self,
         op: &FactoredBody,
         (nodes, normals, d0): (&[usize], &[Vector], &[f64]),
-        factor: f64,
+        (factor, extra): (f64, &[f64]),
         phi: &[f64],
         r: &[f64],
         cache: &mut RobinFactor,
@@ -149,6 +149,9 @@ impl SparseContact {
             return Err(Singular);
         }
         let mut u: Vec<f64> = self.rhs0.iter().map(|v| factor * v).collect();
+        if !extra.is_empty() {
+            u.iter_mut().zip(extra).for_each(|(u, g)| *u += g);
+        }
         self.spread(r, &mut u);
         op.solve_reduced_with(&cache.values, &mut u)
             .map_err(|_| Singular)?;

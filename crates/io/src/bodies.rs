@@ -6,7 +6,9 @@ use contactdd_ddm::{Model, SetupError};
 
 use crate::error::{body_error, mesh_error};
 use crate::number::format_f64 as num;
-use crate::problem::SupportSpec;
+use contactdd_ddm::history::DEFAULT_GROUP;
+
+use crate::problem::{LoadSpec, SupportSpec};
 
 /// A `[materials.NAME]` table → a validated material (errors name the material and the key).
 pub fn material(name: &str, young: f64, poisson: f64) -> Result<Material, SetupError> {
@@ -78,14 +80,16 @@ pub fn check_floating(model: &Model) -> Result<(), SetupError> {
 }
 
 /// Body `name` on a built mesh: supports applied in order ([`Constraints::fix`]), loads checked
-/// (finite values, known boundaries) and summed into one load vector.
+/// (finite values, known boundaries, group names) and those of the group `default` (the loads
+/// without a group) summed into one load vector; the other groups' loads are a `[[steps]]`
+/// history's ([`crate::history`]).
 pub fn body_on_mesh(
     name: &str,
     mesh: Mesh,
     material: Material,
     plane: Plane,
     supports: &[SupportSpec],
-    loads: &[Load],
+    loads: &[LoadSpec],
 ) -> Result<ElasticBody, SetupError> {
     let mut constraints = Constraints::new(mesh.num_nodes());
     for (i, s) in supports.iter().enumerate() {
@@ -97,8 +101,16 @@ pub fn body_on_mesh(
                 source,
             })?;
     }
-    for (i, l) in loads.iter().enumerate() {
+    for (i, spec) in loads.iter().enumerate() {
         let key = format!("loads[{i}]");
+        if spec.group.as_ref().is_some_and(|g| g.trim().is_empty()) {
+            return Err(body_error(
+                name,
+                &format!("{key}.group"),
+                "must not be empty",
+            ));
+        }
+        let l = &spec.load;
         let values: &[f64] = match l {
             Load::Pressure { value, .. } => std::slice::from_ref(value),
             Load::Traction { value, .. } | Load::BodyForce { value } => value,
@@ -115,8 +127,7 @@ pub fn body_on_mesh(
                 .map_err(|e| mesh_error(name, &format!("{key}.boundary"), e))?;
         }
     }
-    let load = contactdd_core::loads::load_vector(&mesh, loads)
-        .map_err(|e| mesh_error(name, "loads", e))?;
+    let load = group_load(name, &mesh, loads, DEFAULT_GROUP)?;
     Ok(ElasticBody {
         name: name.to_string(),
         mesh,
@@ -125,4 +136,18 @@ pub fn body_on_mesh(
         constraints,
         load,
     })
+}
+
+/// The load vector of body `name`'s loads of group `group` (zeros if it has none).
+pub fn group_load(
+    name: &str,
+    mesh: &Mesh,
+    loads: &[LoadSpec],
+    group: &str,
+) -> Result<Vec<f64>, SetupError> {
+    let of_group: Vec<Load> = (loads.iter())
+        .filter(|l| l.group_name() == group)
+        .map(|l| l.load.clone())
+        .collect();
+    contactdd_core::loads::load_vector(mesh, &of_group).map_err(|e| mesh_error(name, "loads", e))
 }

@@ -22,7 +22,7 @@ use crate::load_steps::Monitor;
 use crate::packed::{pack_reactions, unpack_reactions};
 use crate::reactions::{body_reactions, BodyReactions};
 use crate::result_set::ResultSet;
-use crate::steps::{monitored_displacement, pvd, steps_csv, steps_json};
+use crate::steps::{monitored_displacement, pvd, steps_csv, steps_json, HistoryLabels};
 use crate::summary::summary_json_with;
 
 /// How this process takes part in writing a shared result folder.
@@ -110,13 +110,15 @@ pub fn write_results_shared(
 }
 
 /// [`write_results_shared`] for a load-step run: the folder of
-/// [`crate::output::write_step_results`], file for file.
+/// [`crate::output::write_step_results`], file for file; `labels` those of a load history's
+/// increments.
 pub fn write_step_results_shared(
     dir: &Path,
     model: &Model,
     steps: &[(f64, Solution)],
     monitor: Option<&Monitor>,
     units: Option<&str>,
+    labels: Option<&HistoryLabels>,
     part: &Part<'_>,
 ) -> std::io::Result<Vec<PathBuf>> {
     let Some((_, last)) = steps.last() else {
@@ -130,12 +132,12 @@ pub fn write_step_results_shared(
     });
     let monitored = monitored.as_deref();
     let mut summary = summary_json_with(model, last, &reactions);
-    summary["steps"] = steps_json(steps, monitored);
+    summary["steps"] = steps_json(steps, monitored, labels);
     let contents = Contents {
         files: vec![
             ("contact.csv", contact_csv(last)),
             ("history.csv", history_csv(last)),
-            ("steps.csv", steps_csv(model, steps, monitored)),
+            ("steps.csv", steps_csv(model, steps, monitored, labels)),
         ],
         vtus: steps
             .iter()

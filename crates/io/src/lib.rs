@@ -6,7 +6,7 @@
 //! Data flow: a TOML problem file → [`problem`] (plain serde types, the file's schema) →
 //! [`setup`] (one resolve step: validated `Model` and `Settings`, built by a
 //! [`model_builder::ModelBuilder`] from [`meshes`], [`bodies`] and [`pairs`], with
-//! [`solver_settings`] and [`load_steps`] for the `[solver]` table) → the solver of
+//! [`solver_settings`] and [`load_steps`] for the `[solver]` table, [`history`] for `[[steps]]`) → the solver of
 //! `contactdd-ddm` → [`output`] (`summary.json` from [`summary`], `contact.csv`, `history.csv`
 //! and the sweep CSV from [`csv_tables`], the load-step tables of [`steps`]) and [`vtu`] (one
 //! `.vtu` per body, written by [`body_vtus`], with the derived [`fields`] and the support
@@ -28,6 +28,7 @@ pub mod distributed_results;
 pub mod distributed_setup;
 pub mod error;
 pub mod fields;
+pub mod history;
 pub mod load_steps;
 pub mod meshes;
 pub mod model_builder;

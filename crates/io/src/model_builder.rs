@@ -5,14 +5,14 @@
 use std::collections::BTreeMap;
 use std::path::Path;
 
-use contactdd_core::{ElasticBody, Load, Material, Mesh, Plane};
+use contactdd_core::{ElasticBody, Material, Mesh, Plane};
 use contactdd_ddm::{ContactPair, Model, Remote, SetupError};
 
 use crate::bodies::{body_on_mesh, check_body_name, check_floating, material};
 use crate::error::{body_error, no_bodies, LoadError};
 use crate::meshes::mesh;
 use crate::pairs::pair;
-use crate::problem::{BodySpec, ContactSpec, MaterialSpec, SupportSpec};
+use crate::problem::{BodySpec, ContactSpec, LoadSpec, MaterialSpec, SupportSpec};
 
 /// Builds a [`Model`] entry by entry, checking each entry as it is added: the one resolve step of
 /// a problem file ([`crate::setup::resolve`]) and of a problem built in code (the Python module).
@@ -128,7 +128,7 @@ impl ModelBuilder {
         material: &str,
         mesh: Mesh,
         supports: &[SupportSpec],
-        loads: &[Load],
+        loads: &[LoadSpec],
     ) -> Result<(), SetupError> {
         self.check_body_name(name)?;
         let material = self.material_of(name, material)?;

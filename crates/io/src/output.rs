@@ -25,6 +25,7 @@ use crate::distributed_results::{write_results_shared, write_step_results_shared
 use crate::load_steps::Monitor;
 use crate::reactions::reactions;
 use crate::result_set::write_set;
+use crate::steps::HistoryLabels;
 
 pub use crate::atomic::write_atomic;
 pub use crate::body_vtus::{
@@ -85,5 +86,26 @@ pub fn write_step_results(
     monitor: Option<&Monitor>,
     units: Option<&str>,
 ) -> std::io::Result<Vec<PathBuf>> {
-    write_step_results_shared(dir, model, steps, monitor, units, &Part::alone())
+    write_step_results_shared(dir, model, steps, monitor, units, None, &Part::alone())
+}
+
+/// [`write_step_results`] for a load history: `steps` are the increments (with their
+/// [`HistoryLabels::times`]), labelled by `labels`.
+pub fn write_history_results(
+    dir: &Path,
+    model: &Model,
+    steps: &[(f64, Solution)],
+    monitor: Option<&Monitor>,
+    units: Option<&str>,
+    labels: &HistoryLabels,
+) -> std::io::Result<Vec<PathBuf>> {
+    write_step_results_shared(
+        dir,
+        model,
+        steps,
+        monitor,
+        units,
+        Some(labels),
+        &Part::alone(),
+    )
 }

@@ -70,6 +70,64 @@ pub struct Problem {
     /// Solver settings (`[solver]`); every key is optional.
     #[serde(default)]
     pub solver: SolverSpec,
+    /// A load history (`[[steps]]`): the load groups' factors, step by step.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub steps: Vec<StepSpec>,
+}
+
+/// One step of a load history (`[[steps]]`): every group it names is ramped linearly, in
+/// `increments` equal increments, from its factor at the end of the step before (0 at the start)
+/// to the factor given; groups it does not name keep theirs.
+#[derive(Clone, Debug, PartialEq, Deserialize, Serialize)]
+#[serde(deny_unknown_fields, rename_all = "kebab-case")]
+pub struct StepSpec {
+    /// The step's name (default `step<k>`, k from 1).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub name: Option<String>,
+    /// The target factor of each group it ramps, by group name (`default`: the loads without a
+    /// group and the prescribed displacements).
+    #[serde(default)]
+    pub factors: BTreeMap<String, f64>,
+    /// Equal increments (≥ 1, default 1); each is one solve. Signed so that a negative count gets
+    /// a message naming the step.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub increments: Option<i64>,
+}
+
+impl StepSpec {
+    /// The step's name: `name`, or `step<k>` for the step at `index` (from 0).
+    pub fn step_name(&self, index: usize) -> String {
+        self.name
+            .clone()
+            .unwrap_or_else(|| format!("step{}", index + 1))
+    }
+}
+
+/// One load of a body: a [`Load`] (selected by `kind`) and the load group it belongs to.
+#[derive(Clone, Debug, PartialEq, Deserialize, Serialize)]
+pub struct LoadSpec {
+    /// The load.
+    #[serde(flatten)]
+    pub load: Load,
+    /// The load group, whose factor a `[[steps]]` history sets (default: the group `default`,
+    /// which is all loads of a problem without a history).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub group: Option<String>,
+}
+
+impl LoadSpec {
+    /// The group's name (`default` when none is given).
+    pub fn group_name(&self) -> &str {
+        self.group
+            .as_deref()
+            .unwrap_or(contactdd_ddm::history::DEFAULT_GROUP)
+    }
+}
+
+impl From<Load> for LoadSpec {
+    fn from(load: Load) -> Self {
+        LoadSpec { load, group: None }
+    }
 }
 
 /// An isotropic linear elastic material.
@@ -95,9 +153,9 @@ pub struct BodySpec {
     /// Prescribed displacements.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub supports: Vec<SupportSpec>,
-    /// Applied loads, each selected by `kind`.
+    /// Applied loads, each selected by `kind`, with an optional load `group`.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
-    pub loads: Vec<Load>,
+    pub loads: Vec<LoadSpec>,
 }
 
 /// A body's mesh, selected by `kind`.

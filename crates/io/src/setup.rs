@@ -22,7 +22,8 @@
 //! - a penalty `{ c, h }` is the rod model θ = c·h·(1/E*₁ + 1/E*₂), `{ theta }` is θ itself
 //!   ([`crate::pairs`]);
 //! - absent `[solver]` keys take the values of [`Settings::default`] ([`crate::solver_settings`]);
-//!   `load-steps` and `monitor` are read by [`crate::load_steps`].
+//!   `load-steps` and `monitor` are read by [`crate::load_steps`], the `[[steps]]` history and
+//!   the loads' groups by [`crate::history`].
 //!
 //! [`resolve`] builds the model one entry at a time with a [`ModelBuilder`]; a problem built in
 //! code (the Python module) uses the same builder, so it gets the same validation and the same
@@ -34,10 +35,12 @@
 use std::path::{Path, PathBuf};
 
 use contactdd_ddm::exchange::Exchange;
+use contactdd_ddm::history::LoadHistory;
 use contactdd_ddm::{Model, Settings};
 
 use crate::distributed_setup::{add_bodies, agreed};
 use crate::error::{no_bodies, LoadError};
+use crate::history::history;
 use crate::load_steps::{load_steps, monitor};
 use crate::problem::Problem;
 use crate::solver_settings::starting_values;
@@ -64,6 +67,8 @@ pub struct Loaded {
     pub steps: Option<Vec<f64>>,
     /// The boundary whose mean displacement the load steps report.
     pub monitor: Option<Monitor>,
+    /// The load history of `[[steps]]` (`None` without one; never with `steps`).
+    pub history: Option<LoadHistory>,
 }
 
 /// Reads, parses and resolves a TOML problem file. Relative mesh paths resolve against the file's
@@ -205,6 +210,7 @@ fn finish(
         .as_ref()
         .map(load_steps)
         .transpose()?;
+    let history = history(&problem, &model)?;
     let monitor = problem
         .solver
         .monitor
@@ -217,6 +223,7 @@ fn finish(
         threads: problem.solver.threads,
         steps,
         monitor,
+        history,
         problem,
     })
 }
