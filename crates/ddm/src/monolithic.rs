@@ -29,7 +29,7 @@ use std::time::Instant;
 
 use rayon::prelude::*;
 
-use crate::augmented::{augmented_points, default_gap_tol, uzawa_update};
+use crate::augmented::{augmented_points, default_gap_tol, friction_update, uzawa_update};
 use crate::contact::formulation::InnerPenalty;
 use crate::contact::{Interface, Status};
 use crate::error::SetupError;
@@ -200,7 +200,9 @@ pub fn solve_monolithic_with(
             }
             // Its contact points keep their pairs' θ, so only the violation decides.
             let update = uzawa_update(&interface, &un, &augmented);
-            let (lambda, violation) = (update.multipliers, update.violation);
+            // The frictional points' tangential multipliers too (the exact Coulomb law).
+            let slip = friction_update(&interface, &un, &augmented);
+            let (lambda, violation) = (update.multipliers, update.violation.max(slip.violation));
             let enforced = !model.is_augmented() || violation <= gap_tol;
             if run.stop.is_some() || enforced || updates >= settings.max_updates {
                 let unenforced = (!enforced).then(|| {
@@ -217,8 +219,10 @@ pub fn solve_monolithic_with(
                 };
                 return finish(model, &system, &bodies, &modes, settings, end, start);
             }
-            lambda
+            (lambda, slip)
         };
+        let (next, slip) = next;
+        slip.apply(&mut interface);
         // Uzawa's update: the multipliers become the pressures just found.
         for (j, p) in interface.points.iter_mut().enumerate() {
             if augmented[j].is_some() {

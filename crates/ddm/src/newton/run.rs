@@ -117,7 +117,7 @@ impl<'s, 'a> Run<'s, 'a> {
                 return (Stop::Interrupted, k - 1);
             }
             if let Some(b) = self.system.unresisted(&self.state.free) {
-                return (diverged(b, k, Breakdown::LostContact), k);
+                return (self.lost(b, k), k);
             }
             let (chi, status) = self.system.jacobian_set(&self.state);
             let found;
@@ -201,7 +201,7 @@ impl<'s, 'a> Run<'s, 'a> {
             .filter(|&b| full.as_ref().is_some_and(|next| next.stranded == Some(b)));
         if let Some(body) = pulled {
             if checkpoint.merit.is_infinite() {
-                return Err(diverged(body, k, Breakdown::LostContact));
+                return Err(self.lost(body, k));
             }
             self.pulled = Some(body);
             full = None;
@@ -316,6 +316,15 @@ impl<'s, 'a> Run<'s, 'a> {
     /// The body that nothing holds in the current state, if any.
     fn stranded(&self) -> Option<usize> {
         self.state.stranded
+    }
+
+    /// The stop when nothing holds body `b` at step `k`: with friction, a body that slides is
+    /// named as such.
+    fn lost(&self, b: usize, k: usize) -> Stop {
+        match self.system.sliding(&self.state) {
+            Some(s) => diverged(s, k, Breakdown::Slides),
+            None => diverged(b, k, Breakdown::LostContact),
+        }
     }
 
     /// The stop when the steps make no progress or J is singular: a body that lost its hold (now,
