@@ -17,7 +17,10 @@ use crate::{load, Exit};
 
 /// `contactdd check`.
 pub fn check(args: CheckArgs) -> Result<Exit> {
-    let loaded = load(&args.file)?;
+    let mut loaded = load(&args.file)?;
+    if let Some(f) = args.friction {
+        loaded.model.pairs.iter_mut().for_each(|p| p.friction = f);
+    }
     let interface = Interface::new(&loaded.model).map_err(|e| anyhow::anyhow!("{e}"))?;
     let findings = contact_check::check(&loaded.model, &interface);
     let file = args.file.display();
@@ -113,7 +116,7 @@ fn pair_text(model: &Model, p: usize, interface: &Interface) -> String {
         Penalty::RodModel { c, h } => format!("rod model c = {c}, h = {h}"),
     };
     let mut out = format!(
-        "contact pair {}: {}.{} with {}.{}, θ = {} ({penalty}){}\n",
+        "contact pair {}: {}.{} with {}.{}, θ = {} ({penalty}){}; {}\n",
         pair.name,
         a.name,
         pair.boundaries[0],
@@ -124,6 +127,11 @@ fn pair_text(model: &Model, p: usize, interface: &Interface) -> String {
             ", with a gap profile"
         } else {
             ""
+        },
+        if pair.friction.is_active() {
+            format!("friction: {}", pair.friction)
+        } else {
+            "frictionless".to_string()
         }
     );
     for (side, body) in [a, b].into_iter().enumerate() {

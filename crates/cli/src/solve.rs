@@ -174,6 +174,9 @@ pub fn solve(args: SolveArgs) -> Result<Exit> {
     if let Some(e) = args.enforcement {
         model.pairs.iter_mut().for_each(|p| p.enforcement = e);
     }
+    if let Some(f) = args.friction {
+        model.pairs.iter_mut().for_each(|p| p.friction = f);
+    }
     let model = &model;
     let out = args
         .out
@@ -314,7 +317,7 @@ fn print_summary(
     phases: &[(&str, f64)],
     usage: Option<&[RankUse]>,
 ) {
-    for line in pair_report(&sol.contact, &sol.theta) {
+    for line in pair_report(model, &sol.contact, &sol.theta) {
         say!("{line}");
     }
     say!("{}", applied_loads(model, sol.load_factor));
@@ -381,6 +384,9 @@ pub fn monolithic(args: MonolithicArgs) -> Result<Exit> {
     let mut model = loaded.model;
     if let Some(e) = args.enforcement {
         model.pairs.iter_mut().for_each(|p| p.enforcement = e);
+    }
+    if let Some(f) = args.friction {
+        model.pairs.iter_mut().for_each(|p| p.friction = f);
     }
     let model = &model;
     let out = args
@@ -499,7 +505,7 @@ fn report_monolithic(model: &Model, sol: &MonolithicSolution) {
     }
     let worst = sol.equilibrium.iter().fold(0.0f64, |a, &b| a.max(b));
     say!("equilibrium: largest residual {worst:.1e} of the forces");
-    for line in pair_report(&sol.contact, &model.thetas()) {
+    for line in pair_report(model, &sol.contact, &model.thetas()) {
         say!("{line}");
     }
     say!("{}", applied_loads(model, 1.0));
