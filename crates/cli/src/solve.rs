@@ -388,6 +388,15 @@ pub fn monolithic(args: MonolithicArgs) -> Result<Exit> {
     if let Some(f) = args.friction {
         model.pairs.iter_mut().for_each(|p| p.friction = f);
     }
+    if let Some(p) = model.pairs.iter().find(|p| p.friction.is_active()) {
+        anyhow::bail!(
+            "{}: the monolithic reference treats frictionless contact only, and pair '{}' has \
+             friction ({}); --friction none solves the problem without it",
+            args.file.display(),
+            p.name,
+            p.friction
+        );
+    }
     let model = &model;
     let out = args
         .out

@@ -180,23 +180,23 @@ pub fn friction_law(spec: &FrictionSpec) -> Result<Friction, (String, String)> {
         )),
     };
     let unused = |key: &str, v: Option<f64>, what: &str| match v {
-        Some(_) => Err(err(key, format!("{what} takes no {key}"))),
+        Some(_) => Err(err(key, what.replace("KEY", key))),
         None => Ok(()),
     };
     Ok(match spec.law {
         FrictionLaw::None => {
-            unused("mu", spec.mu, "law = \"none\"")?;
-            unused("bound", spec.bound, "law = \"none\"")?;
+            unused("mu", spec.mu, "law = \"none\" takes no KEY")?;
+            unused("bound", spec.bound, "law = \"none\" takes no KEY")?;
             Friction::None
         }
         FrictionLaw::Coulomb => {
-            unused("bound", spec.bound, "Coulomb friction (give mu)")?;
+            unused("bound", spec.bound, "Coulomb friction takes mu, not KEY")?;
             Friction::Coulomb {
                 mu: value("mu", spec.mu, "Coulomb")?,
             }
         }
         FrictionLaw::Tresca => {
-            unused("mu", spec.mu, "Tresca friction (give bound)")?;
+            unused("mu", spec.mu, "Tresca friction takes bound, not KEY")?;
             Friction::Tresca {
                 bound: value("bound", spec.bound, "Tresca")?,
             }

@@ -241,7 +241,11 @@ pub struct ContactSpec {
 /// [`PenaltySpec`]) so that a missing or misplaced parameter gets a precise message from
 /// [`crate::setup`].
 #[derive(Clone, Copy, Debug, PartialEq, Deserialize, Serialize)]
-#[serde(deny_unknown_fields, rename_all = "kebab-case")]
+#[serde(
+    deny_unknown_fields,
+    rename_all = "kebab-case",
+    expecting = "a friction table: { law = \"coulomb\", mu = μ }, { law = \"tresca\", bound = b } or { law = \"none\" }"
+)]
 pub struct FrictionSpec {
     /// `"none"`, `"coulomb"` or `"tresca"`.
     pub law: FrictionLaw,

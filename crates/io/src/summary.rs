@@ -24,7 +24,7 @@
 //! | `accelerator`, `coarse` | the accelerator and coarse mode used                           |
 //! | `history`   | per iteration `{k, gamma, measure, rel_change, active, normal_force}`; `gamma` is the Newton method's step length |
 //! | `bodies`    | per body `{name, nodes, elements, dofs, order, applied_load, condensation}` |
-//! | `contact`   | per pair `{name, bodies, body, node, x, y, gap, pressure, nodal_traction, status, weight, normal, force}`: `pressure` is p ≥ 0, `nodal_traction` as in `contact.csv`; a pair with friction also `{friction, tangential_force, stick_length, slip_length}` |
+//! | `contact`   | per pair `{name, bodies, body, node, x, y, gap, pressure, nodal_traction, status, weight, normal, force}`: `pressure` is p ≥ 0, `nodal_traction` as in `contact.csv`; a pair with friction also `{friction, tangential_force, stick_length, slip_length}` and per point `{tangential_traction, slip, total_slip, friction_status}` |
 //! | `reactions` | per body `{body, supports: [{boundary, force}], total}` ([`reactions_json`]) |
 //! | `timing_s`  | wall time per phase, seconds                                               |
 //! | `version`   | contactdd version                                                          |
@@ -45,7 +45,7 @@ use contactdd_core::{num_dofs, Order};
 use contactdd_ddm::solution::{BodyResult, PairResult, Solution};
 use contactdd_ddm::{Condensation, Friction, Gamma, Model, MonolithicSolution, Stop};
 
-use crate::fields::contact_pressures;
+use crate::fields::{contact_pressures, friction_point, FrictionPoint};
 use crate::reactions::{reactions, BodyReactions};
 
 /// A JSON number, or `null` for NaN and ±infinity (which JSON cannot represent).
@@ -247,9 +247,19 @@ pub fn friction_json(friction: Friction) -> Value {
 }
 
 /// Adds the friction keys of pair `pair` (of model pair `friction`) to its entry: the law, the
-/// resultant tangential force and the stick and slip lengths.
+/// resultant tangential force, the stick and slip lengths, and per point the columns of
+/// `contact.csv` (`tangential_traction`, `slip`, `total_slip`, `friction_status`).
 fn add_friction(entry: &mut Value, pair: &PairResult, friction: Friction) {
     let (stick, slip) = pair.stick_slip_lengths();
+    let points: Vec<FrictionPoint> = (0..pair.gap.len())
+        .map(|i| friction_point(pair, i))
+        .collect();
+    let column =
+        |f: fn(&FrictionPoint) -> f64| json_numbers(&points.iter().map(f).collect::<Vec<_>>());
+    entry["tangential_traction"] = column(|f| f.tangential);
+    entry["slip"] = column(|f| f.slip);
+    entry["total_slip"] = column(|f| f.total_slip);
+    entry["friction_status"] = points.iter().map(|f| f.status.name()).collect();
     entry["friction"] = friction_json(friction);
     entry["tangential_force"] = json_number(pair.tangential_force());
     entry["stick_length"] = json_number(stick);
@@ -257,7 +267,8 @@ fn add_friction(entry: &mut Value, pair: &PairResult, friction: Friction) {
 }
 
 /// The `contact` of `summary.json`; a pair with friction also has `friction`,
-/// `tangential_force`, `stick_length` and `slip_length`.
+/// `tangential_force`, `stick_length` and `slip_length`, and per point `tangential_traction`,
+/// `slip`, `total_slip` and `friction_status`.
 fn contact_json(model: &Model, pairs: &[PairResult], bodies: &[BodyResult]) -> Value {
     let pressures = contact_pressures(pairs, bodies);
     pairs

@@ -232,15 +232,16 @@ fn every_example_resolves_and_converges_with_balanced_forces() {
         assert!(sol.converged, "{name}: {:?}", sol.message);
         check_balance(&name, &loaded.model, &sol);
         check_physics(&name, &loaded, &sol);
-        check_contact_csv(&name, &sol);
+        check_contact_csv(&name, &loaded.model, &sol);
         check_reactions(&name, &loaded.model, &sol);
     }
 }
 
 /// `contact.csv`: the pressure p ≥ 0 at every point, p = −σ_n where the point's own pressure
-/// acts, and the nodal traction column is the solution's σ_n / traction, read back exactly.
-fn check_contact_csv(name: &str, sol: &Solution) {
-    let text = output::contact_csv(sol);
+/// acts, and the nodal traction column is the solution's σ_n / traction, read back exactly; the
+/// friction columns follow exactly when the problem has friction.
+fn check_contact_csv(name: &str, model: &Model, sol: &Solution) {
+    let text = output::contact_csv(model, sol);
     let mut reader = csv::Reader::from_reader(text.as_bytes());
     let header: Vec<String> = reader
         .headers()
@@ -248,20 +249,20 @@ fn check_contact_csv(name: &str, sol: &Solution) {
         .iter()
         .map(String::from)
         .collect();
-    assert_eq!(
-        header,
-        [
-            "pair",
-            "body",
-            "x",
-            "y",
-            "gap",
-            "pressure",
-            "nodal_traction",
-            "status"
-        ],
-        "{name}"
-    );
+    let mut expected = vec![
+        "pair",
+        "body",
+        "x",
+        "y",
+        "gap",
+        "pressure",
+        "nodal_traction",
+        "status",
+    ];
+    if fields::has_friction(model) {
+        expected.extend(["tangential_traction", "slip", "total_slip", "friction"]);
+    }
+    assert_eq!(header, expected, "{name}");
     let rows: Vec<csv::StringRecord> = reader.records().map(|r| r.expect("a row")).collect();
     let points: Vec<(&contactdd_ddm::solution::PairResult, usize)> = sol
         .contact
