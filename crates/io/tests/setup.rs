@@ -21,6 +21,9 @@ use two_blocks::{Text, TwoBlocks};
 /// bodies; both take well under two seconds in release mode.)
 const SLOW_IN_DEBUG: &[&str] = &["hertz.toml", "stack.toml"];
 
+/// Examples of a flat punch (a block on a wider foundation): see [`check_contact_csv`].
+const PUNCHES: &[&str] = &["friction_block.toml"];
+
 fn examples_dir() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples")
 }
@@ -271,7 +274,10 @@ fn check_contact_csv(name: &str, model: &Model, sol: &Solution) {
         .collect();
     assert_eq!(rows.len(), points.len(), "{name}");
     // A balanced pair's following side reads its pressure from the reference side: the two
-    // sides' Σ w p, computed from different points and weights, carry the same load.
+    // sides' Σ w p, computed from different points and weights, carry the same load (to 1 %; to
+    // 3 % for a flat punch, whose pressure peaks at the punch's corners, where the following
+    // side's coarser points read it by linear interpolation between reference points).
+    let tol = if PUNCHES.contains(&name) { 0.03 } else { 0.01 };
     let pressures = fields::contact_pressures(&sol.contact, &sol.bodies);
     for (pair, p) in sol.contact.iter().zip(&pressures) {
         let load = |enforced: bool| -> f64 {
@@ -283,7 +289,7 @@ fn check_contact_csv(name: &str, model: &Model, sol: &Solution) {
         let (reference, following) = (load(true), load(false));
         if pair.enforced.iter().any(|&e| !e) {
             assert!(
-                (following - reference).abs() <= 0.01 * reference,
+                (following - reference).abs() <= tol * reference,
                 "{name}: pair {}: Σ w p {following} on the following side, {reference} on the reference side",
                 pair.name
             );
