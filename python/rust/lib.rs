@@ -193,6 +193,7 @@ fn default_gammas() -> Vec<Gamma> {
 ///     A :class:`MonolithicResult`.
 #[pyfunction]
 #[pyo3(signature = (problem, threads = None, max_steps = None, enforcement = None, friction = None, gap_tol = None, out = None))]
+#[allow(clippy::too_many_arguments)]
 fn monolithic(
     py: Python<'_>,
     problem: &Bound<'_, Problem>,

@@ -376,12 +376,9 @@ fn exit(converged: bool, out: &Path) -> Exit {
     }
 }
 
-/// `contactdd monolithic`.
-pub fn monolithic(args: MonolithicArgs) -> Result<Exit> {
-    let start = Instant::now();
-    let loaded = load(&args.file)?;
-    let (settings, threads) = monolithic_settings(&args, &loaded);
-    let mut model = loaded.model;
+/// The model of `contactdd monolithic`: the command line's enforcement and friction on every
+/// pair; a pair with friction is refused (the monolithic reference is frictionless).
+fn monolithic_model(args: &MonolithicArgs, mut model: Model) -> Result<Model> {
     if let Some(e) = args.enforcement {
         model.pairs.iter_mut().for_each(|p| p.enforcement = e);
     }
@@ -397,7 +394,15 @@ pub fn monolithic(args: MonolithicArgs) -> Result<Exit> {
             p.friction
         );
     }
-    let model = &model;
+    Ok(model)
+}
+
+/// `contactdd monolithic`.
+pub fn monolithic(args: MonolithicArgs) -> Result<Exit> {
+    let start = Instant::now();
+    let loaded = load(&args.file)?;
+    let (settings, threads) = monolithic_settings(&args, &loaded);
+    let model = &monolithic_model(&args, loaded.model)?;
     let out = args
         .out
         .clone()
