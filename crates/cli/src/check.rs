@@ -7,6 +7,7 @@ use contactdd_core::{num_dofs, Component, ElasticBody, Load, Order};
 use contactdd_ddm::contact::check as contact_check;
 use contactdd_ddm::contact::{Interface, Role};
 use contactdd_ddm::{Enforcement, Model, Penalty};
+use contactdd_io::fields::has_friction;
 use contactdd_io::problem::{BodySpec, MeshSpec};
 use contactdd_io::Loaded;
 
@@ -107,16 +108,25 @@ fn body_text(body: &ElasticBody, spec: &BodySpec) -> String {
     out
 }
 
-/// Contact pair `p`: its bodies, boundaries and θ, then the contact points of each side.
+/// Contact pair `p`: its bodies, boundaries and θ, its friction when some pair of the model has
+/// friction (a frictionless problem is described as it always was), then the contact points of
+/// each side.
 fn pair_text(model: &Model, p: usize, interface: &Interface) -> String {
     let pair = &model.pairs[p];
+    let friction = if !has_friction(model) {
+        String::new()
+    } else if pair.friction.is_active() {
+        format!("; friction: {}", pair.friction)
+    } else {
+        "; frictionless".to_string()
+    };
     let (a, b) = (&model.bodies[pair.bodies[0]], &model.bodies[pair.bodies[1]]);
     let penalty = match pair.penalty {
         Penalty::Theta(_) => "given".to_string(),
         Penalty::RodModel { c, h } => format!("rod model c = {c}, h = {h}"),
     };
     let mut out = format!(
-        "contact pair {}: {}.{} with {}.{}, θ = {} ({penalty}){}; {}\n",
+        "contact pair {}: {}.{} with {}.{}, θ = {} ({penalty}){}{friction}\n",
         pair.name,
         a.name,
         pair.boundaries[0],
@@ -127,11 +137,6 @@ fn pair_text(model: &Model, p: usize, interface: &Interface) -> String {
             ", with a gap profile"
         } else {
             ""
-        },
-        if pair.friction.is_active() {
-            format!("friction: {}", pair.friction)
-        } else {
-            "frictionless".to_string()
         }
     );
     for (side, body) in [a, b].into_iter().enumerate() {
