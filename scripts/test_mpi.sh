@@ -105,6 +105,10 @@ same stack-u0 "$work/stack_u0.toml"
 # Gmsh meshes (their sizes estimated from the file's header) and a curved, non-matching
 # balanced pair, whose ranks pair from each other's contact skins.
 same hertz examples/hertz.toml
+# Coulomb friction: the block held sideways by friction alone, and the column with friction on
+# every pair (exact Coulomb by the augmented Lagrangian).
+same friction-block examples/friction_block.toml
+same stack-friction examples/stack.toml --friction coulomb:0.3 --enforcement augmented
 # The sparse condensation: forced on the notch and the column, and chosen by the cost model for
 # a long contact zone (1000 × 16 cells per body, 1001 contact points).
 sparse() { sed "s/^\[solver\]/[solver]\ncondensation = \"$2\"/" "$1"; }

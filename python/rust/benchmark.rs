@@ -89,6 +89,7 @@ pub fn notch_spec(nx: usize, ny: usize, order: Order) -> Problem {
                 along: Along::X,
             }),
             enforcement: None,
+            friction: None,
             forces: None,
         }],
         solver: SolverSpec {

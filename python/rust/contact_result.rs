@@ -5,14 +5,14 @@ use pyo3::types::{PyDict, PyList, PyTuple, PyType};
 
 use contactdd_core::DIM;
 use contactdd_ddm::solution::{BodyResult, PairResult};
-use contactdd_io::fields::contact_pressures;
+use contactdd_io::fields::{contact_pressures, friction_point};
 use contactdd_io::output::point_status;
 
 use crate::convert::{array1, array2};
 use crate::state::{attributes, get, reduce};
 
 /// The attributes of a [`Contact`], in its state dict.
-const CONTACT_STATE: [&str; 17] = [
+const CONTACT_STATE: [&str; 24] = [
     "name",
     "bodies",
     "side",
@@ -30,6 +30,13 @@ const CONTACT_STATE: [&str; 17] = [
     "forces",
     "max_penetration",
     "complementarity",
+    "tangential",
+    "slip",
+    "total_slip",
+    "friction_status",
+    "tangential_force",
+    "stick_length",
+    "slip_length",
 ];
 
 /// The contact quantities of one contact pair: one entry per contact point of either side
@@ -95,6 +102,31 @@ pub struct Contact {
     /// Signorini conditions (a length; 0 for exact contact).
     #[pyo3(get)]
     complementarity: f64,
+    /// Tangential traction σ_t of each point along t = n turned by +90° (the reference side's
+    /// points of a pair with friction; 0 elsewhere and without friction; ``contact.csv``'s
+    /// ``tangential_traction``).
+    #[pyo3(get)]
+    tangential: Py<PyAny>,
+    /// Slip of this solve (load step): g − g₀, the change of the tangential relative
+    /// displacement g = (u_own − u_partner)·t since the last step (0 without friction).
+    #[pyo3(get)]
+    slip: Py<PyAny>,
+    /// The accumulated tangential relative displacement g since the unloaded state.
+    #[pyo3(get)]
+    total_slip: Py<PyAny>,
+    /// Where each point is on its friction disc: ``"open"``, ``"stick"`` or ``"slip"``
+    /// (``"open"`` without friction).
+    #[pyo3(get)]
+    friction_status: Vec<String>,
+    /// The resultant tangential force Σ w σ_t (a force per unit thickness; 0 without friction).
+    #[pyo3(get)]
+    tangential_force: f64,
+    /// The length Σ w of the points that stick.
+    #[pyo3(get)]
+    stick_length: f64,
+    /// The length Σ w of the points that slip.
+    #[pyo3(get)]
+    slip_length: f64,
 }
 
 #[pymethods]
@@ -125,6 +157,13 @@ impl Contact {
             forces: get(state, "forces")?.extract()?,
             max_penetration: get(state, "max_penetration")?.extract()?,
             complementarity: get(state, "complementarity")?.extract()?,
+            tangential: get(state, "tangential")?.unbind(),
+            slip: get(state, "slip")?.unbind(),
+            total_slip: get(state, "total_slip")?.unbind(),
+            friction_status: get(state, "friction_status")?.extract()?,
+            tangential_force: get(state, "tangential_force")?.extract()?,
+            stick_length: get(state, "stick_length")?.extract()?,
+            slip_length: get(state, "slip_length")?.extract()?,
         })
     }
 
@@ -148,6 +187,11 @@ impl Contact {
             let f = p.force_on(s);
             (f[0], f[1])
         };
+        let friction: Vec<_> = (0..p.x.len()).map(|i| friction_point(p, i)).collect();
+        let column = |f: fn(&contactdd_io::fields::FrictionPoint) -> f64| {
+            array1(py, friction.iter().map(f).collect()).unbind()
+        };
+        let (stick, slip) = p.stick_slip_lengths();
         Ok(Contact {
             name: p.name.clone(),
             bodies: (b0, b1),
@@ -168,6 +212,16 @@ impl Contact {
             forces: (force(0), force(1)),
             max_penetration: p.max_penetration(),
             complementarity: p.complementarity(),
+            tangential: column(|f| f.tangential),
+            slip: column(|f| f.slip),
+            total_slip: column(|f| f.total_slip),
+            friction_status: friction
+                .iter()
+                .map(|f| f.status.name().to_string())
+                .collect(),
+            tangential_force: p.tangential_force(),
+            stick_length: stick,
+            slip_length: slip,
         })
     }
 }

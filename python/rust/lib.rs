@@ -182,6 +182,8 @@ fn default_gammas() -> Vec<Gamma> {
 ///     enforcement: ``"penalty"`` or ``"augmented"`` for every contact pair (default: each
 ///         pair's own); ``"augmented"`` runs Uzawa updates of the multipliers around the Newton
 ///         solves.
+///     friction: the friction of every pair (default: each pair's own), as for :func:`solve`
+///         and ``contactdd monolithic --friction``.
 ///     gap_tol: augmented pairs: the largest violation of the Signorini conditions, a length.
 ///     out: a folder to write the result files into (summary.json, contact.csv, one VTU file
 ///         per body), as ``contactdd monolithic --out`` does.
@@ -189,13 +191,15 @@ fn default_gammas() -> Vec<Gamma> {
 /// Returns:
 ///     A :class:`MonolithicResult`.
 #[pyfunction]
-#[pyo3(signature = (problem, threads = None, max_steps = None, enforcement = None, gap_tol = None, out = None))]
+#[pyo3(signature = (problem, threads = None, max_steps = None, enforcement = None, friction = None, gap_tol = None, out = None))]
+#[allow(clippy::too_many_arguments)]
 fn monolithic(
     py: Python<'_>,
     problem: &Bound<'_, Problem>,
     threads: Option<usize>,
     max_steps: Option<usize>,
     enforcement: Option<String>,
+    friction: Option<&Bound<'_, PyAny>>,
     gap_tol: Option<f64>,
     out: Option<PathBuf>,
 ) -> PyResult<Py<MonolithicResult>> {
@@ -203,6 +207,7 @@ fn monolithic(
         threads,
         gap_tol,
         enforcement,
+        friction: options::friction_arg(friction)?,
         ..SolverOptions::default()
     };
     // The checks of a `[solver]` table for threads and gap_tol.

@@ -4,12 +4,18 @@
 
 use pyo3::prelude::*;
 
-use contactdd_ddm::{Condensation, Enforcement, Gamma, Method, Model, Settings, SetupError};
-use contactdd_io::problem::{AcceleratorSpec, CoarseSpec, EnforcementSpec, GammaSpec, SolverSpec};
+use contactdd_ddm::{
+    Condensation, Enforcement, Friction, Gamma, Method, Model, Settings, SetupError,
+};
+use contactdd_io::pairs::{friction_law, parse_friction};
+use contactdd_io::problem::{
+    AcceleratorSpec, CoarseSpec, EnforcementSpec, FrictionSpec, GammaSpec, SolverSpec,
+};
 use contactdd_io::setup;
 
 use crate::convert::from_name;
 use crate::error::setup_error;
+use crate::schema::parse;
 
 /// A relaxation parameter as given from Python: a number or `"auto"`.
 #[derive(FromPyObject, Clone, Debug)]
@@ -54,6 +60,8 @@ pub struct SolverOptions {
     /// `enforcement`: `"penalty"` or `"augmented"` for every pair (a model option, not a
     /// setting).
     pub enforcement: Option<String>,
+    /// `friction`: the tangential law of every pair (a model option, like `enforcement`).
+    pub friction: Option<Friction>,
 }
 
 fn solver_error(key: &str, message: impl std::fmt::Display) -> PyErr {
@@ -119,8 +127,30 @@ impl SolverOptions {
             let e: Enforcement = e.into();
             model.pairs.iter_mut().for_each(|p| p.enforcement = e);
         }
+        if let Some(f) = self.friction {
+            model.pairs.iter_mut().for_each(|p| p.friction = f);
+        }
         Ok(model)
     }
+}
+
+/// The `friction=` keyword of `solve`, `solve_steps` and `monolithic`: the text of
+/// `--friction` (``"coulomb:0.3"``, ``"tresca:5"``, ``"none"``) or a dict as in
+/// `Problem.add_contact` (``{"law": "coulomb", "mu": 0.3}``); `None` keeps each pair's.
+pub fn friction_arg(obj: Option<&Bound<'_, PyAny>>) -> PyResult<Option<Friction>> {
+    let Some(obj) = obj.filter(|o| !o.is_none()) else {
+        return Ok(None);
+    };
+    if let Ok(text) = obj.extract::<String>() {
+        return parse_friction(&text)
+            .map(Some)
+            .map_err(|e| solver_error("friction", e));
+    }
+    let spec: FrictionSpec =
+        parse(obj, "friction")?.map_err(|e| setup_error(SetupError::Solver(e)))?;
+    friction_law(&spec)
+        .map(Some)
+        .map_err(|(key, message)| solver_error(&key, message))
 }
 
 /// A γ argument as the `gamma` value of a `[solver]` table: a name is read by the schema's

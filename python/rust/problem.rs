@@ -450,7 +450,10 @@ impl Problem {
     ///         (augmented Lagrangian: the exact unilateral contact for any penalty).
     ///     forces: ``"balanced"`` (the default: the two sides receive equal and opposite forces)
     ///         or ``"own-side"`` (the paper's formulation: each side loaded by its own points).
-    #[pyo3(signature = (bodies, boundaries, c = None, h = None, theta = None, gap = None, name = None, enforcement = None, forces = None))]
+    ///     friction: the tangential law: ``None`` (frictionless, the default),
+    ///         ``{"law": "coulomb", "mu": float}`` (|σ_t| ≤ μ p), ``{"law": "tresca", "bound":
+    ///         float}`` (|σ_t| ≤ bound) or ``{"law": "none"}``; friction needs balanced forces.
+    #[pyo3(signature = (bodies, boundaries, c = None, h = None, theta = None, gap = None, name = None, enforcement = None, forces = None, friction = None))]
     #[allow(clippy::too_many_arguments)]
     fn add_contact(
         &mut self,
@@ -463,6 +466,7 @@ impl Problem {
         name: Option<String>,
         enforcement: Option<&Bound<'_, PyAny>>,
         forces: Option<&Bound<'_, PyAny>>,
+        friction: Option<&Bound<'_, PyAny>>,
     ) -> PyResult<()> {
         let mut spec = ContactSpec {
             name,
@@ -472,8 +476,10 @@ impl Problem {
             gap: None,
             enforcement: None,
             forces: None,
+            friction: None,
         };
         let pair = spec.pair_name();
+        spec.friction = pair_option(friction, "friction", &pair)?;
         spec.forces = pair_option(forces, "forces", &pair)?;
         spec.enforcement = pair_option(enforcement, "enforcement", &pair)?;
         spec.gap = pair_option(gap, "gap", &pair)?;
@@ -551,6 +557,7 @@ impl Problem {
             max_updates,
             condensation,
             enforcement: None,
+            friction: None,
         };
         let settings = options.apply(&self.settings)?;
         // Every value is checked before any is kept.

@@ -16,7 +16,7 @@ use contactdd_io::setup::Monitor;
 use contactdd_io::steps::{monitored_displacement, HistoryLabels};
 
 use crate::error::{convergence_error, input_error, setup_error};
-use crate::options::{GammaArg, SolverOptions};
+use crate::options::{friction_arg, GammaArg, SolverOptions};
 use crate::problem::Problem;
 use crate::results::SolveResult;
 use crate::run::{run_interruptible, warn_contact, with_threads};
@@ -26,7 +26,7 @@ use crate::steps::{self, load_steps_spec, monitor_spec};
 ///
 /// Every keyword is a key of the problem file's ``[solver]`` table (in snake_case:
 /// ``max-iter`` is ``max_iter``) or an option of ``contactdd solve`` (``--enforcement``,
-/// ``--out``); settings left at ``None`` take the problem's (its ``[solver]`` table, or
+/// ``--friction``, ``--out``); settings left at ``None`` take the problem's (its ``[solver]`` table, or
 /// :meth:`Problem.solver`). The solve releases the GIL and can be interrupted with Ctrl-C
 /// (``KeyboardInterrupt``).
 ///
@@ -55,6 +55,10 @@ use crate::steps::{self, load_steps_spec, monitor_spec};
 ///     enforcement: ``"penalty"`` or ``"augmented"`` for every contact pair (default: each
 ///         pair's own, see :meth:`Problem.add_contact`); ``"augmented"`` converges to the exact
 ///         unilateral contact for any penalty.
+///     friction: the friction of every contact pair (default: each pair's own, see
+///         :meth:`Problem.add_contact`), as ``contactdd solve --friction``: ``"coulomb:0.3"``,
+///         ``"tresca:5"`` or ``"none"``, or a dict ``{"law": "coulomb", "mu": 0.3}`` /
+///         ``{"law": "tresca", "bound": 5.0}`` / ``{"law": "none"}``.
 ///     gap_tol: augmented pairs: the largest violation of the Signorini conditions of a
 ///         converged result, a length (default: 1e-6 times the largest normal displacement of
 ///         the contact points).
@@ -78,7 +82,7 @@ use crate::steps::{self, load_steps_spec, monitor_spec};
 ///         partial result.
 ///     KeyboardInterrupt: interrupted.
 #[pyfunction]
-#[pyo3(signature = (problem, method = None, gamma = None, tol = None, max_iter = None, u0 = None, u_prev = None, threads = None, check = true, accelerator = None, coarse = None, enforcement = None, gap_tol = None, progress = None, equilibrium_tol = None, max_updates = None, condensation = None, monitor = None, out = None))]
+#[pyo3(signature = (problem, method = None, gamma = None, tol = None, max_iter = None, u0 = None, u_prev = None, threads = None, check = true, accelerator = None, coarse = None, enforcement = None, friction = None, gap_tol = None, progress = None, equilibrium_tol = None, max_updates = None, condensation = None, monitor = None, out = None))]
 #[allow(clippy::too_many_arguments)]
 pub fn solve(
     py: Python<'_>,
@@ -94,6 +98,7 @@ pub fn solve(
     accelerator: Option<String>,
     coarse: Option<String>,
     enforcement: Option<String>,
+    friction: Option<&Bound<'_, PyAny>>,
     gap_tol: Option<f64>,
     progress: Option<Py<PyAny>>,
     equilibrium_tol: Option<f64>,
@@ -117,6 +122,7 @@ pub fn solve(
         max_updates,
         condensation,
         enforcement,
+        friction: friction_arg(friction)?,
     };
     let p = problem.borrow();
     refuse_load_steps(&p)?;
@@ -273,8 +279,9 @@ fn call_progress(py: Python<'_>, callback: &Py<PyAny>, r: &Record) -> PyResult<(
 ///         per increment, each result's ``load_factor`` the time of ``steps.csv``, the step's
 ///         number from 0 plus the fraction done), else its ``[solver] load-steps`` (or
 ///         :meth:`Problem.solver`); a :class:`ContactddError` if it has neither.
-///     tol, max_iter, threads, accelerator, enforcement, gap_tol, method, gamma, coarse, u0,
-///         u_prev, equilibrium_tol, max_updates, condensation, progress: as for :func:`solve`.
+///     tol, max_iter, threads, accelerator, enforcement, friction, gap_tol, method, gamma,
+///         coarse, u0, u_prev, equilibrium_tol, max_updates, condensation, progress: as for
+///         :func:`solve`.
 ///     check: raise :class:`ConvergenceError` if a step does not converge (default); the steps
 ///         stop at the first such step either way.
 ///     monitor: the boundary whose mean displacement each step reports as ``Result.monitor``
@@ -287,7 +294,7 @@ fn call_progress(py: Python<'_>, callback: &Py<PyAny>, r: &Record) -> PyResult<(
 /// Returns:
 ///     One :class:`Result` per step solved, each with its ``load_factor``.
 #[pyfunction]
-#[pyo3(signature = (problem, load_steps = None, tol = None, max_iter = None, threads = None, check = true, accelerator = None, enforcement = None, gap_tol = None, method = None, gamma = None, coarse = None, u0 = None, u_prev = None, equilibrium_tol = None, max_updates = None, condensation = None, monitor = None, out = None, progress = None))]
+#[pyo3(signature = (problem, load_steps = None, tol = None, max_iter = None, threads = None, check = true, accelerator = None, enforcement = None, friction = None, gap_tol = None, method = None, gamma = None, coarse = None, u0 = None, u_prev = None, equilibrium_tol = None, max_updates = None, condensation = None, monitor = None, out = None, progress = None))]
 #[allow(clippy::too_many_arguments)]
 pub fn solve_steps<'py>(
     py: Python<'py>,
@@ -299,6 +306,7 @@ pub fn solve_steps<'py>(
     check: bool,
     accelerator: Option<String>,
     enforcement: Option<String>,
+    friction: Option<&Bound<'_, PyAny>>,
     gap_tol: Option<f64>,
     method: Option<String>,
     gamma: Option<GammaArg>,
@@ -327,6 +335,7 @@ pub fn solve_steps<'py>(
         max_updates,
         condensation,
         enforcement,
+        friction: friction_arg(friction)?,
     };
     let p = problem.borrow();
     let (model, settings, threads) = p.configured(&options)?;

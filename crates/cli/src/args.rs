@@ -6,7 +6,7 @@ use std::path::PathBuf;
 use clap::{Args, Parser, Subcommand};
 
 use contactdd_ddm::settings::ANDERSON_DEPTH;
-use contactdd_ddm::{Accelerator, CoarseMode, Enforcement, Gamma, Method};
+use contactdd_ddm::{Accelerator, CoarseMode, Enforcement, Friction, Gamma, Method};
 use contactdd_io::setup::MAX_THREADS;
 
 const EXIT_CODES: &str = "\
@@ -16,7 +16,8 @@ Exit codes:
   2  the solve ran but did not converge or diverged; the results of the last iterate
      are still written and summary.json says \"converged\": false with the reason";
 
-/// Frictionless contact of elastic bodies by penalty Robin domain decomposition.
+/// Contact of elastic bodies, frictionless or with Coulomb or Tresca friction, by penalty Robin
+/// domain decomposition.
 #[derive(Debug, Parser)]
 #[command(name = "contactdd", version, after_help = EXIT_CODES)]
 pub struct Cli {
@@ -85,6 +86,10 @@ pub struct SolveArgs {
     /// augmented (augmented Lagrangian: the exact unilateral contact for any θ).
     #[arg(long, value_name = "E", value_parser = parse_enforcement)]
     pub enforcement: Option<Enforcement>,
+    /// Friction of every pair (overrides each pair's `friction`): coulomb:MU (|σ_t| ≤ MU·p),
+    /// tresca:BOUND (|σ_t| ≤ BOUND) or none.
+    #[arg(long, value_name = "F", value_parser = parse_friction)]
+    pub friction: Option<Friction>,
     /// Augmented Lagrangian: the largest violation of the Signorini conditions, a length
     /// (overrides solver.gap-tol).
     #[arg(long, value_name = "L", value_parser = parse_positive)]
@@ -131,6 +136,10 @@ pub struct SweepArgs {
 pub struct CheckArgs {
     /// Problem file (TOML).
     pub file: PathBuf,
+    /// Friction of every pair (overrides each pair's `friction`): coulomb:MU (|σ_t| ≤ MU·p),
+    /// tresca:BOUND (|σ_t| ≤ BOUND) or none.
+    #[arg(long, value_name = "F", value_parser = parse_friction)]
+    pub friction: Option<Friction>,
 }
 
 /// `contactdd monolithic`.
@@ -151,6 +160,10 @@ pub struct MonolithicArgs {
     /// augmented (Uzawa updates of the multipliers around the Newton solves).
     #[arg(long, value_name = "E", value_parser = parse_enforcement)]
     pub enforcement: Option<Enforcement>,
+    /// Friction of every pair (overrides each pair's `friction`): coulomb:MU (|σ_t| ≤ MU·p),
+    /// tresca:BOUND (|σ_t| ≤ BOUND) or none.
+    #[arg(long, value_name = "F", value_parser = parse_friction)]
+    pub friction: Option<Friction>,
     /// Augmented Lagrangian: the largest violation of the Signorini conditions, a length
     /// (overrides solver.gap-tol).
     #[arg(long, value_name = "L", value_parser = parse_positive)]
@@ -257,6 +270,10 @@ fn parse_enforcement(s: &str) -> Result<Enforcement, String> {
             "unknown enforcement '{s}' (expected penalty or augmented)"
         )),
     }
+}
+
+fn parse_friction(s: &str) -> Result<Friction, String> {
+    contactdd_io::pairs::parse_friction(s)
 }
 
 fn parse_gamma(s: &str) -> Result<Gamma, String> {
@@ -367,6 +384,31 @@ mod tests {
             "nan",
         ] {
             assert!(parse_gamma_list(bad).is_err(), "{bad}");
+        }
+    }
+
+    #[test]
+    fn friction_values() {
+        assert_eq!(
+            parse_friction("coulomb:0.3"),
+            Ok(Friction::Coulomb { mu: 0.3 })
+        );
+        assert_eq!(
+            parse_friction("tresca:5"),
+            Ok(Friction::Tresca { bound: 5.0 })
+        );
+        assert_eq!(parse_friction("none"), Ok(Friction::None));
+        for (bad, says) in [
+            ("coulomb", "coulomb:VALUE"),
+            ("coulomb:x", "must be a number"),
+            ("coulomb:-0.1", "at least 0"),
+            ("coulomb:nan", "finite"),
+            ("tresca:-1", "at least 0"),
+            ("none:1", "takes no value"),
+            ("stick", "unknown friction"),
+        ] {
+            let err = parse_friction(bad).unwrap_err();
+            assert!(err.contains(says), "{bad}: {err}");
         }
     }
 

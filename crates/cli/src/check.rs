@@ -7,6 +7,7 @@ use contactdd_core::{num_dofs, Component, ElasticBody, Load, Order};
 use contactdd_ddm::contact::check as contact_check;
 use contactdd_ddm::contact::{Interface, Role};
 use contactdd_ddm::{Enforcement, Model, Penalty};
+use contactdd_io::fields::has_friction;
 use contactdd_io::problem::{BodySpec, MeshSpec};
 use contactdd_io::Loaded;
 
@@ -17,7 +18,10 @@ use crate::{load, Exit};
 
 /// `contactdd check`.
 pub fn check(args: CheckArgs) -> Result<Exit> {
-    let loaded = load(&args.file)?;
+    let mut loaded = load(&args.file)?;
+    if let Some(f) = args.friction {
+        loaded.model.pairs.iter_mut().for_each(|p| p.friction = f);
+    }
     let interface = Interface::new(&loaded.model).map_err(|e| anyhow::anyhow!("{e}"))?;
     let findings = contact_check::check(&loaded.model, &interface);
     let file = args.file.display();
@@ -126,16 +130,25 @@ fn history_text(history: &contactdd_ddm::history::LoadHistory) -> String {
     format!("  load history: {}\n", steps.join(", "))
 }
 
-/// Contact pair `p`: its bodies, boundaries and θ, then the contact points of each side.
+/// Contact pair `p`: its bodies, boundaries and θ, its friction when some pair of the model has
+/// friction (a frictionless problem is described as it always was), then the contact points of
+/// each side.
 fn pair_text(model: &Model, p: usize, interface: &Interface) -> String {
     let pair = &model.pairs[p];
+    let friction = if !has_friction(model) {
+        String::new()
+    } else if pair.friction.is_active() {
+        format!("; friction: {}", pair.friction)
+    } else {
+        "; frictionless".to_string()
+    };
     let (a, b) = (&model.bodies[pair.bodies[0]], &model.bodies[pair.bodies[1]]);
     let penalty = match pair.penalty {
         Penalty::Theta(_) => "given".to_string(),
         Penalty::RodModel { c, h } => format!("rod model c = {c}, h = {h}"),
     };
     let mut out = format!(
-        "contact pair {}: {}.{} with {}.{}, θ = {} ({penalty}){}\n",
+        "contact pair {}: {}.{} with {}.{}, θ = {} ({penalty}){}{friction}\n",
         pair.name,
         a.name,
         pair.boundaries[0],

@@ -5,7 +5,7 @@ use std::io::IsTerminal;
 
 use contactdd_core::Vector;
 use contactdd_ddm::solution::PairResult;
-use contactdd_ddm::{Accelerator, Model, Record, Settings};
+use contactdd_ddm::{Accelerator, Friction, Model, Record, Settings};
 use contactdd_io::reactions::BodyReactions;
 
 /// A number with 4 significant digits: fixed notation for moderate magnitudes, else exponent.
@@ -123,8 +123,9 @@ impl IterationTable {
 }
 
 /// Lines describing each pair's result: closed points, largest pressure, contact forces on both
-/// sides and their balance.
-pub fn pair_report(pairs: &[PairResult], theta: &[f64]) -> Vec<String> {
+/// sides and their balance; for a pair of `model` with friction, its law, the resultant
+/// tangential force and the stick and slip lengths.
+pub fn pair_report(model: &Model, pairs: &[PairResult], theta: &[f64]) -> Vec<String> {
     let mut lines = Vec::new();
     for (p, pair) in pairs.iter().enumerate() {
         let theta = theta
@@ -178,8 +179,24 @@ pub fn pair_report(pairs: &[PairResult], theta: &[f64]) -> Vec<String> {
             sig(pair.max_penetration()),
             sig(pair.complementarity())
         ));
+        match model.pairs.get(p).map(|m| m.friction) {
+            Some(f) if f.is_active() => lines.push(friction_line(pair, f)),
+            _ => {}
+        }
     }
     lines
+}
+
+/// The friction line of a pair: its law, the resultant tangential force Σ w σ_t and the lengths
+/// that stick and slip.
+fn friction_line(pair: &PairResult, friction: Friction) -> String {
+    let (stick, slip) = pair.stick_slip_lengths();
+    format!(
+        "  friction ({friction}): tangential force Σ w σ_t = {}, stick length {}, slip length {}",
+        sig(pair.tangential_force()),
+        sig(stick),
+        sig(slip)
+    )
 }
 
 /// One line per body: `reactions on lower: bottom (0, 8400), total (0, 8400)`, the force each

@@ -174,6 +174,9 @@ pub fn solve(args: SolveArgs) -> Result<Exit> {
     if let Some(e) = args.enforcement {
         model.pairs.iter_mut().for_each(|p| p.enforcement = e);
     }
+    if let Some(f) = args.friction {
+        model.pairs.iter_mut().for_each(|p| p.friction = f);
+    }
     let model = &model;
     let out = args
         .out
@@ -317,7 +320,7 @@ fn print_summary(
     phases: &[(&str, f64)],
     usage: Option<&[RankUse]>,
 ) {
-    for line in pair_report(&sol.contact, &sol.theta) {
+    for line in pair_report(model, &sol.contact, &sol.theta) {
         say!("{line}");
     }
     say!("{}", applied_loads(model, sol.load_factor));
@@ -376,16 +379,24 @@ fn exit(converged: bool, out: &Path) -> Exit {
     }
 }
 
+/// The model of `contactdd monolithic`: the command line's enforcement and friction on every
+/// pair.
+fn monolithic_model(args: &MonolithicArgs, mut model: Model) -> Result<Model> {
+    if let Some(e) = args.enforcement {
+        model.pairs.iter_mut().for_each(|p| p.enforcement = e);
+    }
+    if let Some(f) = args.friction {
+        model.pairs.iter_mut().for_each(|p| p.friction = f);
+    }
+    Ok(model)
+}
+
 /// `contactdd monolithic`.
 pub fn monolithic(args: MonolithicArgs) -> Result<Exit> {
     let start = Instant::now();
     let loaded = load(&args.file)?;
     let (settings, threads) = monolithic_settings(&args, &loaded);
-    let mut model = loaded.model;
-    if let Some(e) = args.enforcement {
-        model.pairs.iter_mut().for_each(|p| p.enforcement = e);
-    }
-    let model = &model;
+    let model = &monolithic_model(&args, loaded.model)?;
     let out = args
         .out
         .clone()
@@ -502,7 +513,7 @@ fn report_monolithic(model: &Model, sol: &MonolithicSolution) {
     }
     let worst = sol.equilibrium.iter().fold(0.0f64, |a, &b| a.max(b));
     say!("equilibrium: largest residual {worst:.1e} of the forces");
-    for line in pair_report(&sol.contact, &model.thetas()) {
+    for line in pair_report(model, &sol.contact, &model.thetas()) {
         say!("{line}");
     }
     say!("{}", applied_loads(model, 1.0));

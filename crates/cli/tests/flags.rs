@@ -41,3 +41,118 @@ fn short_out_and_quiet_flags_work_on_solve_sweep_and_monolithic() {
     }
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+fn example(name: &str) -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../../examples")
+        .join(name)
+}
+
+fn summary(dir: &Path) -> serde_json::Value {
+    let text = std::fs::read_to_string(dir.join("summary.json")).expect("a summary");
+    serde_json::from_str(&text).expect("json")
+}
+
+fn header(dir: &Path) -> String {
+    let text = std::fs::read_to_string(dir.join("contact.csv")).expect("a contact.csv");
+    text.lines().next().expect("a header").to_string()
+}
+
+/// `--friction` overrides every pair's friction on solve and check; the monolithic reference
+/// refuses friction with a message that says how to go without; a frictionless solve's contact.csv
+/// has no friction column.
+#[test]
+fn friction_flag_overrides_every_pair() {
+    let dir = std::env::temp_dir().join(format!("contactdd-friction-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    let block = example("friction_block.toml");
+    let os = |s: &str| std::ffi::OsString::from(s);
+    let out = dir.join("tresca");
+    let run = contactdd(&[
+        &os("solve"),
+        block.as_os_str(),
+        &os("--friction"),
+        &os("tresca:3"),
+        &os("-q"),
+        &os("-o"),
+        out.as_os_str(),
+    ]);
+    assert!(run.status.success(), "{run:?}");
+    let s = summary(&out);
+    let pair = &s["contact"][0];
+    assert_eq!(
+        pair["friction"],
+        serde_json::json!({ "law": "tresca", "bound": 3.0 })
+    );
+    // Tresca's bound 3 over the 2 long zone holds up to 6 > 4: the block is held, and its
+    // friction force is the push.
+    assert!(
+        (pair["tangential_force"].as_f64().unwrap() + 4.0).abs() < 1e-8,
+        "{pair}"
+    );
+    assert!(header(&out).ends_with(",tangential_traction,slip,total_slip,friction"));
+
+    // A frictionless problem made frictional, and the check's description of its pairs.
+    let stack = example("stack.toml");
+    let run = contactdd(&[
+        &os("check"),
+        stack.as_os_str(),
+        &os("--friction"),
+        &os("coulomb:0.2"),
+    ]);
+    assert!(run.status.success(), "{run:?}");
+    let text = String::from_utf8_lossy(&run.stdout);
+    assert_eq!(
+        text.matches("; friction: Coulomb, mu = 0.2").count(),
+        7,
+        "{text}"
+    );
+    let run = contactdd(&[&os("check"), block.as_os_str()]);
+    assert!(String::from_utf8_lossy(&run.stdout).contains("; friction: Coulomb, mu = 0.3"));
+    let notch = notch();
+    let run = contactdd(&[&os("check"), notch.as_os_str()]);
+    // A frictionless problem is described as it always was.
+    let text = String::from_utf8_lossy(&run.stdout).into_owned();
+    assert!(
+        text.contains("with a gap profile\n") && !text.contains("friction"),
+        "{text}"
+    );
+
+    let out = dir.join("notch");
+    let run = contactdd(&[
+        &os("solve"),
+        notch.as_os_str(),
+        &os("-q"),
+        &os("-o"),
+        out.as_os_str(),
+    ]);
+    assert!(run.status.success(), "{run:?}");
+    assert_eq!(
+        header(&out),
+        "pair,body,x,y,gap,pressure,nodal_traction,status"
+    );
+    assert!(summary(&out)["contact"][0].get("friction").is_none());
+
+    let out = dir.join("mono");
+    let run = contactdd(&[
+        &os("monolithic"),
+        block.as_os_str(),
+        &os("-o"),
+        out.as_os_str(),
+    ]);
+    // The monolithic reference solves the frictional problem too.
+    assert_eq!(
+        run.status.code(),
+        Some(0),
+        "{}",
+        String::from_utf8_lossy(&run.stderr)
+    );
+
+    for (bad, says) in [("coulomb:-1", "at least 0"), ("stick", "unknown friction")] {
+        let run = contactdd(&[&os("solve"), block.as_os_str(), &os("--friction"), &os(bad)]);
+        assert_eq!(run.status.code(), Some(1));
+        let err = String::from_utf8_lossy(&run.stderr);
+        assert!(err.contains("--friction") && err.contains(says), "{err}");
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}

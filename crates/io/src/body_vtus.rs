@@ -10,8 +10,8 @@ use contactdd_ddm::solution::{BodyResult, PairResult};
 use contactdd_ddm::Model;
 
 use crate::fields::{
-    contact_point_data, contact_pressures, element_von_mises, nodal_contact_pressure, principal,
-    tensor, ContactPointData,
+    contact_point_data, contact_pressures, element_von_mises, friction_point_data, has_friction,
+    nodal_contact_pressure, principal, tensor, ContactPointData,
 };
 use crate::result_set::ResultSet;
 use crate::vtu::{write_vtu, Field, VtuData};
@@ -38,7 +38,10 @@ pub fn write_body_vtus(dir: &Path, bodies: &[BodyResult]) -> std::io::Result<Vec
 
 /// [`write_body_vtus`] into a result set, plus, from the model and the pairs' results, the point
 /// data `contact_pressure` (p ≥ 0 of [`nodal_contact_pressure`], 0 off the contact points), `gap`
-/// and `contact_status` (1 closed, 0 open, −1 no partner; both NaN off the contact points) and the cell data `element_von_mises` (at each element's centroid). `bodies` are in the
+/// and `contact_status` (1 closed, 0 open, −1 no partner; both NaN off the contact points), when
+/// some pair has friction `contact_tangential` (σ_t) and `friction_status` (0 open, 1 stick,
+/// 2 slip; both 0 off the contact points), and the cell data `element_von_mises` (at each
+/// element's centroid). `bodies` are in the
 /// order of `model.bodies`. Each file joins the set as soon as it is written, so that a failure
 /// part way removes it with the set ([`ResultSet::abandon`]).
 pub fn write_solution_vtus(
@@ -87,6 +90,7 @@ pub(crate) fn write_solution_vtus_of(
     written: &mut Vec<PathBuf>,
 ) -> std::io::Result<()> {
     let pressures = contact_pressures(contact, bodies);
+    let friction = has_friction(model);
     write_vtus(
         dir,
         suffix,
@@ -112,6 +116,8 @@ pub(crate) fn write_solution_vtus_of(
                     contact,
                 )),
                 element_von_mises: Some(element_von_mises(elastic, &body.displacement)),
+                friction: friction
+                    .then(|| friction_point_data(&body.name, body.mesh.num_nodes(), contact)),
             })
         },
         written,
@@ -124,6 +130,8 @@ struct Extra {
     pressure: Option<Vec<f64>>,
     contact: Option<ContactPointData>,
     element_von_mises: Option<Vec<f64>>,
+    /// σ_t and the friction status code per node.
+    friction: Option<(Vec<f64>, Vec<f64>)>,
 }
 
 /// The `.vtu` path of each body: `<name><suffix>.vtu`, or `<name>-<b><suffix>.vtu` when an
@@ -189,6 +197,10 @@ fn write_vtus(
         if let Some(c) = &extra.contact {
             points.push(field("gap", 1, &c.gap));
             points.push(field("contact_status", 1, &c.status));
+        }
+        if let Some((tangential, status)) = &extra.friction {
+            points.push(field("contact_tangential", 1, tangential));
+            points.push(field("friction_status", 1, status));
         }
         let cells: Vec<Field<'_>> = extra
             .element_von_mises

@@ -4,14 +4,16 @@
 
 use contactdd_ddm::gamma_study::SweepRun;
 use contactdd_ddm::solution::{BodyResult, PairResult, Solution};
+use contactdd_ddm::Model;
 
-use crate::fields::contact_pressures;
+use crate::fields::{contact_pressures, friction_point, has_friction};
 use crate::number::format_f64 as num;
 use crate::summary::point_status;
 
-/// `contact.csv` of a solve: one row per contact point.
-pub fn contact_csv(sol: &Solution) -> String {
-    pairs_csv(&sol.contact, &sol.bodies)
+/// `contact.csv` of a solve of `model`: one row per contact point, with the friction columns when
+/// some pair of the model has friction ([`pairs_csv`]).
+pub fn contact_csv(model: &Model, sol: &Solution) -> String {
+    pairs_csv(&sol.contact, &sol.bodies, has_friction(model))
 }
 
 /// The contact CSV of any list of pair results (`bodies`: the bodies they name, for their
@@ -19,9 +21,11 @@ pub fn contact_csv(sol: &Solution) -> String {
 /// contact pressure p ≥ 0 of [`contact_pressures`], `nodal_traction` the normal traction of the
 /// point's nodal contact force, [`PairResult::pressure`] (σ_n = −p where the point's own pressure
 /// acts; on the following side of a balanced pair the reference side's forces on the node over its
-/// weight).
-pub fn pairs_csv(pairs: &[PairResult], bodies: &[BodyResult]) -> String {
-    let header = [
+/// weight). With `friction`, four columns follow: `tangential_traction` (σ_t along t = n turned
+/// by +90°, [`PairResult::tangential`]), `slip` (g − g₀ of this solve), `total_slip` (g) and
+/// `friction` (`open`, `stick` or `slip`).
+pub fn pairs_csv(pairs: &[PairResult], bodies: &[BodyResult], friction: bool) -> String {
+    let mut header = vec![
         "pair",
         "body",
         "x",
@@ -31,10 +35,13 @@ pub fn pairs_csv(pairs: &[PairResult], bodies: &[BodyResult]) -> String {
         "nodal_traction",
         "status",
     ];
+    if friction {
+        header.extend(["tangential_traction", "slip", "total_slip", "friction"]);
+    }
     let pressures = contact_pressures(pairs, bodies);
     let rows = pairs.iter().zip(pressures).flat_map(|(p, pressure)| {
         (0..p.gap.len()).map(move |i| {
-            vec![
+            let mut row = vec![
                 p.name.clone(),
                 p.bodies[p.side[i]].clone(),
                 num(p.x[i]),
@@ -43,10 +50,16 @@ pub fn pairs_csv(pairs: &[PairResult], bodies: &[BodyResult]) -> String {
                 num(pressure[i]),
                 num(p.pressure[i]),
                 point_status(p, i).to_string(),
-            ]
+            ];
+            if friction {
+                let f = friction_point(p, i);
+                row.extend([num(f.tangential), num(f.slip), num(f.total_slip)]);
+                row.push(f.status.name().to_string());
+            }
+            row
         })
     });
-    csv_text(header.map(String::from), rows)
+    csv_text(header.into_iter().map(String::from), rows)
 }
 
 /// `history.csv`: one row per iteration, header

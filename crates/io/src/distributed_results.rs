@@ -100,7 +100,7 @@ pub fn write_results_shared(
 ) -> std::io::Result<Vec<PathBuf>> {
     let contents = Contents {
         files: vec![
-            ("contact.csv", contact_csv(sol)),
+            ("contact.csv", contact_csv(model, sol)),
             ("history.csv", history_csv(sol)),
         ],
         vtus: vec![(1.0, String::new(), sol)],
@@ -135,7 +135,7 @@ pub fn write_step_results_shared(
     summary["steps"] = steps_json(steps, monitored, labels);
     let contents = Contents {
         files: vec![
-            ("contact.csv", contact_csv(last)),
+            ("contact.csv", contact_csv(model, last)),
             ("history.csv", history_csv(last)),
             ("steps.csv", steps_csv(model, steps, monitored, labels)),
         ],

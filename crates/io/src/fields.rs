@@ -9,6 +9,7 @@ use contactdd_core::material::von_mises;
 use contactdd_core::post::{stresses, Stress};
 use contactdd_core::ElasticBody;
 use contactdd_ddm::solution::{BodyResult, PairResult};
+use contactdd_ddm::{FrictionStatus, Model};
 
 use crate::nearest_segment::{Segment, Segments};
 
@@ -65,6 +66,64 @@ pub fn contact_point_data(name: &str, num_nodes: usize, pairs: &[PairResult]) ->
         }
     }
     data
+}
+
+/// True when some pair of `model` has friction: the outputs then hold the friction columns,
+/// fields and keys (and a frictionless problem's outputs none of them).
+pub fn has_friction(model: &Model) -> bool {
+    model.pairs.iter().any(|p| p.friction.is_active())
+}
+
+/// The friction results of one contact point (0 and open where a result holds none).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct FrictionPoint {
+    /// Tangential traction σ_t along t = n turned by +90°.
+    pub tangential: f64,
+    /// Slip g − g₀ of this solve.
+    pub slip: f64,
+    /// Accumulated tangential relative displacement g.
+    pub total_slip: f64,
+    /// Open, stick or slip.
+    pub status: FrictionStatus,
+}
+
+/// The friction results of point `i` of `pair`.
+pub fn friction_point(pair: &PairResult, i: usize) -> FrictionPoint {
+    let at = |v: &[f64]| v.get(i).copied().unwrap_or(0.0);
+    FrictionPoint {
+        tangential: at(&pair.tangential),
+        slip: at(&pair.slip),
+        total_slip: at(&pair.total_slip),
+        status: pair.status.get(i).copied().unwrap_or(FrictionStatus::Open),
+    }
+}
+
+/// Per node of body `name` with `num_nodes` nodes, the tangential traction σ_t and the friction
+/// status code (0 open, 1 stick, 2 slip) of its contact points, 0 at the other nodes. A node in
+/// several pairs gets the point with the largest |σ_t|.
+pub fn friction_point_data(
+    name: &str,
+    num_nodes: usize,
+    pairs: &[PairResult],
+) -> (Vec<f64>, Vec<f64>) {
+    let (mut tangential, mut status) = (vec![0.0f64; num_nodes], vec![0.0f64; num_nodes]);
+    for p in pairs.iter().filter(|p| p.bodies.iter().any(|b| b == name)) {
+        for i in (0..p.side.len()).filter(|&i| p.bodies[p.side[i]] == name) {
+            let (v, f) = (p.node[i], friction_point(p, i));
+            let code = match f.status {
+                FrictionStatus::Open => 0.0,
+                FrictionStatus::Stick => 1.0,
+                FrictionStatus::Slip => 2.0,
+            };
+            if let Some(t) = tangential.get_mut(v) {
+                if f.tangential.abs() > t.abs() || (status[v] == 0.0 && code > 0.0) {
+                    *t = f.tangential;
+                    status[v] = code;
+                }
+            }
+        }
+    }
+    (tangential, status)
 }
 
 /// The contact pressure p ≥ 0 of every point of every pair (one `Vec` per pair, in the points'

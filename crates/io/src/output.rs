@@ -58,7 +58,8 @@ pub fn write_results_noted(
     write_results_shared(dir, model, sol, &reactions, units, &Part::alone())
 }
 
-/// Writes a monolithic solve's result folder as a set, like [`write_results`]: `contact.csv` and
+/// Writes a monolithic solve's result folder as a set, like [`write_results`]: `contact.csv`
+/// (frictionless: the monolithic reference refuses friction) and
 /// `<body>.vtu` per body, then `summary.json` ([`monolithic_summary_json`] with the reactions and
 /// the manifest) last. Returns the paths written, `summary.json` last.
 pub fn write_monolithic_results(
@@ -71,7 +72,7 @@ pub fn write_monolithic_results(
     write_set(dir, summary, |set| {
         set.write(
             "contact.csv",
-            pairs_csv(&sol.contact, &sol.bodies).as_bytes(),
+            pairs_csv(&sol.contact, &sol.bodies, false).as_bytes(),
         )?;
         write_solution_vtus(set, model, &sol.bodies, &sol.contact)
     })

@@ -2,11 +2,11 @@
 //! model θ = c·h·(1/E*₁ + 1/E*₂) for `{ c, h }`, θ itself for `{ theta }`) and its gap profile.
 
 use contactdd_core::ElasticBody;
-use contactdd_ddm::{ContactPair, GapProfile, Penalty, SetupError};
+use contactdd_ddm::{ContactPair, Forces, Friction, GapProfile, Penalty, SetupError};
 
 use crate::error::pair_error;
 use crate::number::format_f64 as num;
-use crate::problem::{ContactSpec, GapSpec, PenaltySpec};
+use crate::problem::{ContactSpec, FrictionLaw, FrictionSpec, GapSpec, PenaltySpec};
 
 /// One `[[contact]]` entry → a contact pair between two of `bodies`, whose name must differ from
 /// those of the `earlier` pairs (this one is `contact[earlier.len()]`).
@@ -36,6 +36,12 @@ pub fn pair(
         .as_ref()
         .map(|g| gap_profile(&name, g))
         .transpose()?;
+    let forces: Forces = spec.forces.map(Into::into).unwrap_or_default();
+    let friction = spec
+        .friction
+        .map(|f| friction(&name, &f, forces))
+        .transpose()?
+        .unwrap_or_default();
     if let Some(j) = earlier.iter().position(|p| p.name == name) {
         return Err(pair_error(
             &name,
@@ -54,8 +60,8 @@ pub fn pair(
         penalty,
         profile,
         enforcement: spec.enforcement.map(Into::into).unwrap_or_default(),
-        forces: spec.forces.map(Into::into).unwrap_or_default(),
-        friction: Default::default(),
+        forces,
+        friction,
     })
 }
 
@@ -144,6 +150,91 @@ fn penalty(pair: &str, spec: &PenaltySpec) -> Result<Penalty, SetupError> {
             "penalty",
             "the rod model needs both c and h",
         )),
+    }
+}
+
+/// The tangential law of pair `pair` (whose forces are `forces`): [`friction_law`], and friction
+/// needs balanced forces.
+fn friction(pair: &str, spec: &FrictionSpec, forces: Forces) -> Result<Friction, SetupError> {
+    let law = friction_law(spec).map_err(|(key, message)| pair_error(pair, &key, message))?;
+    if law.is_active() && forces == Forces::OwnSide {
+        return Err(pair_error(
+            pair,
+            "friction",
+            "friction needs forces = \"balanced\" (own-side pairs carry no tangential forces)",
+        ));
+    }
+    Ok(law)
+}
+
+/// The tangential law of a `friction` table: the law's own parameter and no other, finite and at
+/// least 0. An error is the key (`friction.mu`, `friction.bound`) and the message.
+pub fn friction_law(spec: &FrictionSpec) -> Result<Friction, (String, String)> {
+    let err = |key: &str, message: String| (format!("friction.{key}"), message);
+    let value = |key: &str, v: Option<f64>, what: &str| match v {
+        None => Err(err(key, format!("{what} friction needs {key}"))),
+        Some(v) if v.is_finite() && v >= 0.0 => Ok(v),
+        Some(v) => Err(err(
+            key,
+            format!("must be a finite number at least 0, got {}", num(v)),
+        )),
+    };
+    let unused = |key: &str, v: Option<f64>, what: &str| match v {
+        Some(_) => Err(err(key, what.replace("KEY", key))),
+        None => Ok(()),
+    };
+    Ok(match spec.law {
+        FrictionLaw::None => {
+            unused("mu", spec.mu, "law = \"none\" takes no KEY")?;
+            unused("bound", spec.bound, "law = \"none\" takes no KEY")?;
+            Friction::None
+        }
+        FrictionLaw::Coulomb => {
+            unused("bound", spec.bound, "Coulomb friction takes mu, not KEY")?;
+            Friction::Coulomb {
+                mu: value("mu", spec.mu, "Coulomb")?,
+            }
+        }
+        FrictionLaw::Tresca => {
+            unused("mu", spec.mu, "Tresca friction takes bound, not KEY")?;
+            Friction::Tresca {
+                bound: value("bound", spec.bound, "Tresca")?,
+            }
+        }
+    })
+}
+
+/// The friction of the command line's `--friction` (and Python's `friction=` string):
+/// `coulomb:MU`, `tresca:BOUND` or `none`, the parameter finite and at least 0.
+pub fn parse_friction(s: &str) -> Result<Friction, String> {
+    let s = s.trim();
+    let (law, value) = match s.split_once(':') {
+        Some((law, value)) => (law.trim(), Some(value.trim())),
+        None => (s, None),
+    };
+    let number = |what: &str| match value.map(str::parse::<f64>) {
+        Some(Ok(v)) => Ok(v),
+        Some(Err(_)) => Err(format!("'{s}': the {what} after '{law}:' must be a number")),
+        None => Err(format!("'{s}': give the {what} as {law}:VALUE")),
+    };
+    let friction = match law {
+        "none" if value.is_none() => Friction::None,
+        "none" => return Err(format!("'{s}': none takes no value")),
+        "coulomb" => Friction::Coulomb {
+            mu: number("friction coefficient")?,
+        },
+        "tresca" => Friction::Tresca {
+            bound: number("bound")?,
+        },
+        _ => {
+            return Err(format!(
+                "unknown friction '{s}' (expected coulomb:MU, tresca:BOUND or none)"
+            ))
+        }
+    };
+    match friction.problem() {
+        Some(problem) => Err(format!("'{s}': {problem}")),
+        None => Ok(friction),
     }
 }
 

@@ -289,6 +289,54 @@ pub struct ContactSpec {
     /// (the paper's formulation: each side loaded by its own points along its own normal).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub forces: Option<ForcesSpec>,
+    /// The tangential law: `{ law = "coulomb", mu }`, `{ law = "tresca", bound }` or
+    /// `{ law = "none" }`; absent: frictionless.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub friction: Option<FrictionSpec>,
+}
+
+/// `friction`: a contact pair's tangential law. Kept as one table of optional keys (like
+/// [`PenaltySpec`]) so that a missing or misplaced parameter gets a precise message from
+/// [`crate::setup`].
+#[derive(Clone, Copy, Debug, PartialEq, Deserialize, Serialize)]
+#[serde(
+    deny_unknown_fields,
+    rename_all = "kebab-case",
+    expecting = "a friction table: { law = \"coulomb\", mu = μ }, { law = \"tresca\", bound = b } or { law = \"none\" }"
+)]
+pub struct FrictionSpec {
+    /// `"none"`, `"coulomb"` or `"tresca"`.
+    pub law: FrictionLaw,
+    /// Coulomb's friction coefficient μ ≥ 0.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub mu: Option<f64>,
+    /// Tresca's bound on the tangential traction (a stress ≥ 0).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub bound: Option<f64>,
+}
+
+/// `friction.law`: the name of a tangential law.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Deserialize, Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum FrictionLaw {
+    /// Frictionless.
+    None,
+    /// Coulomb's law |σ_t| ≤ μ p.
+    Coulomb,
+    /// Tresca's law |σ_t| ≤ bound.
+    Tresca,
+}
+
+impl From<contactdd_ddm::Friction> for FrictionSpec {
+    fn from(f: contactdd_ddm::Friction) -> Self {
+        use contactdd_ddm::Friction;
+        let (law, mu, bound) = match f {
+            Friction::None => (FrictionLaw::None, None, None),
+            Friction::Coulomb { mu } => (FrictionLaw::Coulomb, Some(mu), None),
+            Friction::Tresca { bound } => (FrictionLaw::Tresca, None, Some(bound)),
+        };
+        FrictionSpec { law, mu, bound }
+    }
 }
 
 /// `forces`: how a contact pair's pressure loads its two bodies.

@@ -24,7 +24,7 @@
 //! | `accelerator`, `coarse` | the accelerator and coarse mode used                           |
 //! | `history`   | per iteration `{k, gamma, measure, rel_change, active, normal_force}`; `gamma` is the Newton method's step length |
 //! | `bodies`    | per body `{name, nodes, elements, dofs, order, applied_load, condensation}` |
-//! | `contact`   | per pair `{name, bodies, body, node, x, y, gap, pressure, nodal_traction, status, weight, normal, force}`: `pressure` is p ≥ 0, `nodal_traction` as in `contact.csv` |
+//! | `contact`   | per pair `{name, bodies, body, node, x, y, gap, pressure, nodal_traction, status, weight, normal, force}`: `pressure` is p ≥ 0, `nodal_traction` as in `contact.csv`; a pair with friction also `{friction, tangential_force, stick_length, slip_length}` and per point `{tangential_traction, slip, total_slip, friction_status}` |
 //! | `reactions` | per body `{body, supports: [{boundary, force}], total}` ([`reactions_json`]) |
 //! | `timing_s`  | wall time per phase, seconds                                               |
 //! | `version`   | contactdd version                                                          |
@@ -43,9 +43,9 @@ use serde_json::{json, Value};
 
 use contactdd_core::{num_dofs, Order};
 use contactdd_ddm::solution::{BodyResult, PairResult, Solution};
-use contactdd_ddm::{Condensation, Gamma, Model, MonolithicSolution, Stop};
+use contactdd_ddm::{Condensation, Friction, Gamma, Model, MonolithicSolution, Stop};
 
-use crate::fields::contact_pressures;
+use crate::fields::{contact_pressures, friction_point, FrictionPoint};
 use crate::reactions::{reactions, BodyReactions};
 
 /// A JSON number, or `null` for NaN and ±infinity (which JSON cannot represent).
@@ -118,7 +118,7 @@ pub fn summary_json_with(model: &Model, sol: &Solution, reactions: &[BodyReactio
         "coarse": sol.coarse.to_string(),
         "history": history,
         "bodies": with_paths(bodies_json(model, sol.load_factor), &sol.condensation),
-        "contact": contact_json(&sol.contact, &sol.bodies),
+        "contact": contact_json(model, &sol.contact, &sol.bodies),
         "enforcement": model.pairs.iter().map(|p| p.enforcement.to_string()).collect::<Vec<_>>(),
         "updates": sol.updates,
         "gap_tol": sol.gap_tol.map(json_number),
@@ -159,7 +159,7 @@ pub fn monolithic_summary_json(model: &Model, sol: &MonolithicSolution) -> Value
         "equilibrium": json_numbers(&sol.equilibrium),
         "imbalance": json_numbers(&sol.imbalance),
         "bodies": bodies_json(model, 1.0),
-        "contact": contact_json(&sol.contact, &sol.bodies),
+        "contact": contact_json(model, &sol.contact, &sol.bodies),
         "timing_s": { "total": json_number(sol.seconds) },
         "version": env!("CARGO_PKG_VERSION"),
     })
@@ -237,15 +237,48 @@ fn reactions_value(reactions: &[BodyReactions]) -> Value {
         .collect()
 }
 
-fn contact_json(pairs: &[PairResult], bodies: &[BodyResult]) -> Value {
+/// The `friction` of a pair in `summary.json`: `{law, mu}` or `{law, bound}`.
+pub fn friction_json(friction: Friction) -> Value {
+    match friction {
+        Friction::None => json!({ "law": "none" }),
+        Friction::Coulomb { mu } => json!({ "law": "coulomb", "mu": json_number(mu) }),
+        Friction::Tresca { bound } => json!({ "law": "tresca", "bound": json_number(bound) }),
+    }
+}
+
+/// Adds the friction keys of pair `pair` (of model pair `friction`) to its entry: the law, the
+/// resultant tangential force, the stick and slip lengths, and per point the columns of
+/// `contact.csv` (`tangential_traction`, `slip`, `total_slip`, `friction_status`).
+fn add_friction(entry: &mut Value, pair: &PairResult, friction: Friction) {
+    let (stick, slip) = pair.stick_slip_lengths();
+    let points: Vec<FrictionPoint> = (0..pair.gap.len())
+        .map(|i| friction_point(pair, i))
+        .collect();
+    let column =
+        |f: fn(&FrictionPoint) -> f64| json_numbers(&points.iter().map(f).collect::<Vec<_>>());
+    entry["tangential_traction"] = column(|f| f.tangential);
+    entry["slip"] = column(|f| f.slip);
+    entry["total_slip"] = column(|f| f.total_slip);
+    entry["friction_status"] = points.iter().map(|f| f.status.name()).collect();
+    entry["friction"] = friction_json(friction);
+    entry["tangential_force"] = json_number(pair.tangential_force());
+    entry["stick_length"] = json_number(stick);
+    entry["slip_length"] = json_number(slip);
+}
+
+/// The `contact` of `summary.json`; a pair with friction also has `friction`,
+/// `tangential_force`, `stick_length` and `slip_length`, and per point `tangential_traction`,
+/// `slip`, `total_slip` and `friction_status`.
+fn contact_json(model: &Model, pairs: &[PairResult], bodies: &[BodyResult]) -> Value {
     let pressures = contact_pressures(pairs, bodies);
     pairs
         .iter()
         .zip(&pressures)
-        .map(|(p, pressure)| {
+        .enumerate()
+        .map(|(k, (p, pressure))| {
             let status: Vec<&str> = (0..p.gap.len()).map(|i| point_status(p, i)).collect();
             let body: Vec<&str> = p.side.iter().map(|&s| p.bodies[s].as_str()).collect();
-            json!({
+            let mut entry = json!({
                 "name": p.name,
                 "bodies": p.bodies,
                 "body": body,
@@ -262,7 +295,12 @@ fn contact_json(pairs: &[PairResult], bodies: &[BodyResult]) -> Value {
                 "force": [json_numbers(&p.force_on(0)), json_numbers(&p.force_on(1))],
                 "max_penetration": json_number(p.max_penetration()),
                 "complementarity": json_number(p.complementarity()),
-            })
+            });
+            match model.pairs.get(k).map(|m| m.friction) {
+                Some(f) if f.is_active() => add_friction(&mut entry, p, f),
+                _ => {}
+            }
+            entry
         })
         .collect()
 }

@@ -21,6 +21,9 @@ use two_blocks::{Text, TwoBlocks};
 /// bodies; both take well under two seconds in release mode.)
 const SLOW_IN_DEBUG: &[&str] = &["hertz.toml", "stack.toml"];
 
+/// Examples of a flat punch (a block on a wider foundation): see [`check_contact_csv`].
+const PUNCHES: &[&str] = &["friction_block.toml"];
+
 fn examples_dir() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples")
 }
@@ -232,15 +235,16 @@ fn every_example_resolves_and_converges_with_balanced_forces() {
         assert!(sol.converged, "{name}: {:?}", sol.message);
         check_balance(&name, &loaded.model, &sol);
         check_physics(&name, &loaded, &sol);
-        check_contact_csv(&name, &sol);
+        check_contact_csv(&name, &loaded.model, &sol);
         check_reactions(&name, &loaded.model, &sol);
     }
 }
 
 /// `contact.csv`: the pressure p ≥ 0 at every point, p = −σ_n where the point's own pressure
-/// acts, and the nodal traction column is the solution's σ_n / traction, read back exactly.
-fn check_contact_csv(name: &str, sol: &Solution) {
-    let text = output::contact_csv(sol);
+/// acts, and the nodal traction column is the solution's σ_n / traction, read back exactly; the
+/// friction columns follow exactly when the problem has friction.
+fn check_contact_csv(name: &str, model: &Model, sol: &Solution) {
+    let text = output::contact_csv(model, sol);
     let mut reader = csv::Reader::from_reader(text.as_bytes());
     let header: Vec<String> = reader
         .headers()
@@ -248,20 +252,20 @@ fn check_contact_csv(name: &str, sol: &Solution) {
         .iter()
         .map(String::from)
         .collect();
-    assert_eq!(
-        header,
-        [
-            "pair",
-            "body",
-            "x",
-            "y",
-            "gap",
-            "pressure",
-            "nodal_traction",
-            "status"
-        ],
-        "{name}"
-    );
+    let mut expected = vec![
+        "pair",
+        "body",
+        "x",
+        "y",
+        "gap",
+        "pressure",
+        "nodal_traction",
+        "status",
+    ];
+    if fields::has_friction(model) {
+        expected.extend(["tangential_traction", "slip", "total_slip", "friction"]);
+    }
+    assert_eq!(header, expected, "{name}");
     let rows: Vec<csv::StringRecord> = reader.records().map(|r| r.expect("a row")).collect();
     let points: Vec<(&contactdd_ddm::solution::PairResult, usize)> = sol
         .contact
@@ -270,7 +274,10 @@ fn check_contact_csv(name: &str, sol: &Solution) {
         .collect();
     assert_eq!(rows.len(), points.len(), "{name}");
     // A balanced pair's following side reads its pressure from the reference side: the two
-    // sides' Σ w p, computed from different points and weights, carry the same load.
+    // sides' Σ w p, computed from different points and weights, carry the same load (to 1 %; to
+    // 3 % for a flat punch, whose pressure peaks at the punch's corners, where the following
+    // side's coarser points read it by linear interpolation between reference points).
+    let tol = if PUNCHES.contains(&name) { 0.03 } else { 0.01 };
     let pressures = fields::contact_pressures(&sol.contact, &sol.bodies);
     for (pair, p) in sol.contact.iter().zip(&pressures) {
         let load = |enforced: bool| -> f64 {
@@ -282,7 +289,7 @@ fn check_contact_csv(name: &str, sol: &Solution) {
         let (reference, following) = (load(true), load(false));
         if pair.enforced.iter().any(|&e| !e) {
             assert!(
-                (following - reference).abs() <= 0.01 * reference,
+                (following - reference).abs() <= tol * reference,
                 "{name}: pair {}: Σ w p {following} on the following side, {reference} on the reference side",
                 pair.name
             );

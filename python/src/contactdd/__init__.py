@@ -1,4 +1,4 @@
-"""Frictionless contact between elastic bodies by penalty Robin domain decomposition.
+"""Contact of elastic bodies, with or without friction, by penalty Robin domain decomposition.
 
 contactdd solves two-dimensional (plane strain or plane stress) contact problems of several
 linear elastic bodies with the penalty Robin–Robin domain decomposition methods of Prokopyshyn &

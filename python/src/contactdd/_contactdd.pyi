@@ -69,6 +69,14 @@ class _GapDict(TypedDict, total=False):
     along: Literal["x", "y"]
     value: float
 
+class _FrictionDict(TypedDict, total=False):
+    law: Literal["none", "coulomb", "tresca"]
+    mu: float
+    bound: float
+
+# The friction of every pair: "coulomb:MU", "tresca:BOUND" or "none" (as --friction), or a dict.
+_Friction = Union[str, _FrictionDict]
+
 class _MonitorDict(TypedDict):
     body: str
     boundary: str
@@ -179,10 +187,12 @@ class Problem:
         name: Optional[str] = None,
         enforcement: Optional[Literal["penalty", "augmented"]] = None,
         forces: Optional[Literal["balanced", "own-side"]] = None,
+        friction: Optional[_FrictionDict] = None,
     ) -> None:
         """Adds a contact pair; penalty by the rod model (c, h) or theta directly;
         enforcement "augmented" gives the exact unilateral contact for any penalty; forces
-        "balanced" (default) loads both sides equally and oppositely, "own-side" is the paper's."""
+        "balanced" (default) loads both sides equally and oppositely, "own-side" is the paper's;
+        friction {"law": "coulomb", "mu": mu} or {"law": "tresca", "bound": b} (default none)."""
     def solver(
         self,
         method: Optional[_MethodName] = None,
@@ -293,6 +303,26 @@ class Contact:
     @property
     def complementarity(self) -> float:
         """Largest gap |d - s| where the contact presses (a length; 0 for exact contact)."""
+    @property
+    def tangential(self) -> npt.NDArray[np.float64]:
+        """Tangential traction sigma_t along t = n turned by +90 degrees (0 without friction)."""
+    @property
+    def slip(self) -> npt.NDArray[np.float64]:
+        """Slip g - g0 of this solve (load step)."""
+    @property
+    def total_slip(self) -> npt.NDArray[np.float64]:
+        """Accumulated tangential relative displacement g."""
+    @property
+    def friction_status(self) -> list[Literal["open", "stick", "slip"]]: ...
+    @property
+    def tangential_force(self) -> float:
+        """Resultant tangential force sum w sigma_t (0 without friction)."""
+    @property
+    def stick_length(self) -> float:
+        """Length sum w of the points that stick."""
+    @property
+    def slip_length(self) -> float:
+        """Length sum w of the points that slip."""
 
 @final
 class Result:
@@ -382,6 +412,7 @@ def solve(
     accelerator: Optional[_AcceleratorName] = None,
     coarse: Optional[_CoarseName] = None,
     enforcement: Optional[_EnforcementName] = None,
+    friction: Optional[_Friction] = None,
     gap_tol: Optional[float] = None,
     progress: Optional[Callable[[dict[str, Any]], object]] = None,
     equilibrium_tol: Optional[float] = None,
@@ -403,6 +434,7 @@ def solve_steps(
     check: bool = True,
     accelerator: Optional[_AcceleratorName] = None,
     enforcement: Optional[_EnforcementName] = None,
+    friction: Optional[_Friction] = None,
     gap_tol: Optional[float] = None,
     method: Optional[_MethodName] = None,
     gamma: Optional[_GammaValue] = None,
@@ -438,6 +470,7 @@ def monolithic(
     threads: Optional[int] = None,
     max_steps: Optional[int] = None,
     enforcement: Optional[_EnforcementName] = None,
+    friction: Optional[_Friction] = None,
     gap_tol: Optional[float] = None,
     out: Optional[_StrPath] = None,
 ) -> MonolithicResult:

@@ -183,6 +183,12 @@ def _contact(pair: dict[str, Any], folder: Path) -> Contact:
     # JSON has no infinity: the gap of a point without a partner is written as null.
     gap[np.array([s == "no-partner" for s in status], dtype=bool)] = np.inf
     bodies = tuple(pair["bodies"])
+    # A pair without friction has no friction keys: zeros and "open", as a solve gives.
+    n = len(status)
+
+    def friction_column(key: str) -> np.ndarray:
+        return _floats(pair[key]) if key in pair else np.zeros(n)
+
     try:
         return Contact._from_state({
             "name": pair["name"],
@@ -202,6 +208,13 @@ def _contact(pair: dict[str, Any], folder: Path) -> Contact:
             "forces": tuple(tuple(_number(c) for c in f) for f in pair["force"]),
             "max_penetration": _number(pair["max_penetration"]),
             "complementarity": _number(pair["complementarity"]),
+            "tangential": friction_column("tangential_traction"),
+            "slip": friction_column("slip"),
+            "total_slip": friction_column("total_slip"),
+            "friction_status": list(pair.get("friction_status", ["open"] * n)),
+            "tangential_force": _number(pair.get("tangential_force", 0.0)),
+            "stick_length": _number(pair.get("stick_length", 0.0)),
+            "slip_length": _number(pair.get("slip_length", 0.0)),
         })
     except (KeyError, ValueError, TypeError) as e:
         raise ContactddError(f"{folder}: summary.json: a contact pair not as contactdd writes it "
