@@ -230,3 +230,24 @@ fn a_small_sheared_wall_of_floating_blocks_is_held_by_friction() {
         sol.equilibrium
     );
 }
+
+#[test]
+fn augmented_friction_over_load_steps_keeps_the_block_in_balance() {
+    let mut model = block(10.0, 1.5, Friction::Coulomb { mu: 0.3 }, 8);
+    model.pairs[0].enforcement = Enforcement::Augmented;
+    let mut prepared = prepare(&model).expect("the block prepares");
+    let steps = contactdd::ddm::steps::solve_steps(
+        &model,
+        &mut prepared,
+        &Settings::default(),
+        &[0.5, 1.0],
+        Hooks::default(),
+        &mut |_, _, _| (),
+    )
+    .expect("the steps run");
+    for (factor, sol) in &steps {
+        println!("{factor}: {:?} {:?}", sol.stop, sol.message);
+        assert!(sol.converged, "{factor}: {:?}", sol.message);
+        balanced(sol, 10.0 * factor, 1.5 * factor);
+    }
+}

@@ -339,14 +339,7 @@ pub fn solve_steps<'py>(
     };
     let p = problem.borrow();
     let (model, settings, threads) = p.configured(&options)?;
-    let history = match load_steps {
-        Some(_) => None,
-        None => history(&p, &model)?,
-    };
-    let factors = match history {
-        Some(_) => Vec::new(),
-        None => step_factors(&p, load_steps)?,
-    };
+    let (history, factors) = plan(&p, &model, load_steps)?;
     let monitor = monitored(&p, monitor, &model)?;
     let units = p.units().map(str::to_string);
     drop(p);
@@ -376,6 +369,24 @@ pub fn solve_steps<'py>(
         })?;
     }
     step_results(py, &model, steps, monitor.as_ref(), check)
+}
+
+/// What `solve_steps` runs: the problem's load history (no `load_steps` argument), else the load
+/// factors.
+fn plan(
+    problem: &Problem,
+    model: &Model,
+    load_steps: Option<&Bound<'_, PyAny>>,
+) -> PyResult<(Option<LoadHistory>, Vec<f64>)> {
+    let history = match load_steps {
+        Some(_) => None,
+        None => history(problem, model)?,
+    };
+    let factors = match history {
+        Some(_) => Vec::new(),
+        None => step_factors(problem, load_steps)?,
+    };
+    Ok((history, factors))
 }
 
 /// The load factors: the argument's, else the problem's.

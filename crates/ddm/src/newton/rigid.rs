@@ -215,15 +215,35 @@ impl System<'_> {
     }
 
     /// A rigid motion among `free` (the motions some closed points leave free) along which the
-    /// loads do work: no state with these closed points balances them.
-    pub(super) fn loaded_motion(&self, free: &[DVector<f64>]) -> Option<DVector<f64>> {
+    /// loads, and the frictional points' nodal forces `tractions` ((j, w_j σ_t,j), empty
+    /// without friction: a slipping point's force does not change along such a motion), do
+    /// work: no state with these closed points balances them.
+    pub(super) fn loaded_motion(
+        &self,
+        free: &[DVector<f64>],
+        tractions: &[(usize, f64)],
+    ) -> Option<DVector<f64>> {
         let total = self.mode_load_norm;
-        if total == 0.0 {
+        if total == 0.0 && tractions.is_empty() {
             return None;
         }
         free.iter()
-            .find(|v| self.work(v).abs() > WORK_TOL * total)
+            .find(|v| {
+                let (friction, size) = self.friction_work(v, tractions);
+                (self.work(v) + friction).abs() > WORK_TOL * (total + size)
+            })
             .cloned()
+    }
+
+    /// The work of the frictional forces `tractions` along the rigid motion `v`, and the sum of
+    /// its terms' sizes.
+    fn friction_work(&self, v: &DVector<f64>, tractions: &[(usize, f64)]) -> (f64, f64) {
+        tractions
+            .iter()
+            .fold((0.0, 0.0), |(work, size), &(j, force)| {
+                let change: f64 = self.slip_modes(j).iter().map(|&(m, x)| x * v[m]).sum();
+                (work + force * change, size + (force * change).abs())
+            })
     }
 
     /// The loads' work along the rigid motion `v` (weights of the free modes).
@@ -237,13 +257,19 @@ impl System<'_> {
         (0..self.bodies.len()).max_by(|&a, &b| share(a).total_cmp(&share(b)))
     }
 
-    /// The body that nothing holds in `closed` (whose free motions are `free`): one none of whose
-    /// loaders is closed, else the body that moves most along a loaded free motion.
-    pub(super) fn stranded(&self, closed: &[bool], free: &[DVector<f64>]) -> Option<usize> {
+    /// The body that nothing holds in `closed` (whose free motions are `free`, the frictional
+    /// forces `tractions`): one none of whose loaders is closed, else the body that moves most
+    /// along a loaded free motion.
+    pub(super) fn stranded(
+        &self,
+        closed: &[bool],
+        free: &[DVector<f64>],
+        tractions: &[(usize, f64)],
+    ) -> Option<usize> {
         if let Some(b) = self.unheld(closed) {
             return Some(b);
         }
-        let v = self.loaded_motion(free)?;
+        let v = self.loaded_motion(free, tractions)?;
         self.moves_most(&v)
     }
 
@@ -264,7 +290,7 @@ impl System<'_> {
     /// work ≥ 0 too, and the rigid motion's balance W + Σ (work of p) = 0 has no solution, with
     /// any penalty or with exact contact. The body is the one that moves most along it.
     pub(super) fn unresisted(&self, free: &[DVector<f64>]) -> Option<usize> {
-        let v = self.loaded_motion(free)?;
+        let v = self.loaded_motion(free, &[])?;
         let push = self.work(&v).signum();
         // Friction can push back along any motion that slides a frictional point.
         let pushed_back = self

@@ -68,6 +68,8 @@ pub(super) struct Evaluation {
     pub(super) g: Vec<f64>,
     /// Where each frictional point is on its friction disc (empty without friction).
     pub(super) status: Vec<Status>,
+    /// The closed frictional points' nodal forces (j, w_j σ_t,j) (empty without friction).
+    pub(super) tractions: Vec<(usize, f64)>,
     /// The rigid motions of floating bodies that the closed points leave free (weights of the
     /// free modes), and the body that nothing holds there, if any.
     pub(super) free: Vec<DVector<f64>>,
@@ -228,20 +230,12 @@ impl<'a> System<'a> {
                 q + self.rho[j] * (s[j] - p.penalty_gap() - q) > 0.0
             })
             .collect();
-        let (g, status) = if self.friction {
-            let g = self.interface.slip_sums(&u);
-            let status = (0..u.len())
-                .map(|j| self.interface.traction(j, &s, &g).1)
-                .collect();
-            (g, status)
-        } else {
-            (Vec::new(), Vec::new())
-        };
+        let (g, status, tractions) = self.frictional_state(&u, &s);
         // A carrier closes exactly where its overlap is negative (ρ = 1), so its linear penalty
         // force on the closed set is its penalty force.
         let r = self.residual_on(tau, &u, (&s, &g), &closed, &status);
         let free = self.free_motions(&closed, &status);
-        let stranded = self.stranded(&closed, &free);
+        let stranded = self.stranded(&closed, &free, &tractions);
         Evaluation {
             u,
             s,
@@ -249,9 +243,31 @@ impl<'a> System<'a> {
             closed,
             g,
             status,
+            tractions,
             free,
             stranded,
         }
+    }
+
+    /// The tangential displacements, the statuses and the closed frictional points' nodal
+    /// forces (j, w_j σ_t,j) at the displacements `u` and pair sums `s` (all empty without
+    /// friction).
+    fn frictional_state(&self, u: &[f64], s: &[f64]) -> (Vec<f64>, Vec<Status>, Vec<(usize, f64)>) {
+        if !self.friction {
+            return (Vec::new(), Vec::new(), Vec::new());
+        }
+        let g = self.interface.slip_sums(u);
+        let mut tractions = Vec::new();
+        let status = (0..u.len())
+            .map(|j| {
+                let (t, status) = self.interface.traction(j, s, &g);
+                if status != Status::Open {
+                    tractions.push((j, self.interface.points[j].weight * t));
+                }
+                status
+            })
+            .collect();
+        (g, status, tractions)
     }
 
     /// R at the evaluated state with the points `chi` closed: the residual whose Jacobian the
@@ -382,7 +398,7 @@ impl<'a> System<'a> {
                 found = self.free_motions(&chi, &status);
                 &found
             };
-            let Some(v) = self.loaded_motion(free) else {
+            let Some(v) = self.loaded_motion(free, &eval.tractions) else {
                 break;
             };
             let open: Vec<usize> = self
