@@ -1,6 +1,6 @@
 //! The domain decomposition: setup of the notch benchmark, one iteration, a full solve per method,
 //! the 45-run γ sweep, an 8-body stack with 1 and 2 threads, columns of floating blocks, the
-//! Hertz example at two penalties, the contact search, and the two condensation paths
+//! Hertz example at two penalties and with friction, the contact search, and the two condensation paths
 //! (`docs/sparse-path.md`: the notch on each path; with `CONTACTDD_BENCH_LARGE=1` also long strips
 //! of 1000, 2000 and 4000 contact points and a compact zone of the same DOF count).
 //!
@@ -13,8 +13,8 @@ use contactdd_ddm::benchmark::Notch;
 use contactdd_ddm::contact::Interface;
 use contactdd_ddm::solver::iterate;
 use contactdd_ddm::{
-    prepare, prepare_with, solve, sweep, CoarseMode, Condensation, ContactPair, Enforcement, Gamma,
-    Hooks, Method, Model, Penalty, Settings,
+    prepare, prepare_with, solve, sweep, CoarseMode, Condensation, ContactPair, Enforcement,
+    Friction, Gamma, Hooks, Method, Model, Penalty, Settings,
 };
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion};
 
@@ -238,6 +238,29 @@ fn stiff_penalty(c: &mut Criterion) {
     group.finish();
 }
 
+/// The Hertz example solved frictionless and with Coulomb friction μ = 0.3 on its pair
+/// (docs/friction.md: the cost of friction on one problem).
+fn friction(c: &mut Criterion) {
+    let mut group = c.benchmark_group("friction");
+    group.sample_size(10);
+    let base = contactdd::io::load_file(std::path::Path::new("examples/hertz.toml"))
+        .expect("the shipped example")
+        .model;
+    for (name, law) in [
+        ("frictionless", Friction::None),
+        ("coulomb_0.3", Friction::Coulomb { mu: 0.3 }),
+    ] {
+        let mut model = base.clone();
+        model.pairs.iter_mut().for_each(|p| p.friction = law);
+        let prepared = prepare(&model).expect("prepare");
+        let settings = Settings::default();
+        group.bench_function(BenchmarkId::new("hertz_solve", name), |b| {
+            b.iter(|| solve(&model, &prepared, &settings, Hooks::default()))
+        });
+    }
+    group.finish();
+}
+
 /// Prepare and solve (the default interface Newton method) on the path `condensation`.
 fn prepare_and_solve(model: &Model, condensation: Condensation) {
     let prepared = prepare_with(model, condensation).expect("prepare");
@@ -293,6 +316,7 @@ criterion_group!(
     threads,
     two_level,
     stiff_penalty,
+    friction,
     contact_search
 );
 criterion_main!(benches);
