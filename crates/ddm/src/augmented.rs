@@ -80,10 +80,11 @@ fn update_loop(
 ) -> Augmented {
     let mut interface = inner.prepared.interface.clone();
     let augmented = augmented_points(model, &interface);
-    let m = interface.len();
     let mut history: Vec<Record> = Vec::new();
     let mut memory = Anderson::new(ANDERSON_DEPTH);
-    let (mut lambda, mut warm) = (vec![0.0; m], warm.map(<[f64]>::to_vec));
+    // The multipliers the points start from: 0, or a load step's frictional points' last ones.
+    let mut lambda: Vec<f64> = interface.points.iter().map(|p| p.multiplier).collect();
+    let mut warm = warm.map(<[f64]>::to_vec);
     let mut gap_tol = settings.gap_tol.unwrap_or(f64::NAN);
     // The converged inner solve closest to the Signorini conditions so far: what the loop
     // returns when it cannot meet the tolerance.

@@ -56,24 +56,26 @@ impl Prepared {
     }
 
     /// Sets the friction state the next solve starts from: per frictional point j in `state`,
-    /// (j, σ_t, g) at the end of the last step ([`crate::solution::Solution::friction_state`]);
-    /// an empty `state` is the unloaded state (λ_t = 0, g₀ = 0).
-    pub fn set_friction_state(&mut self, state: &[(usize, f64, f64)]) {
+    /// (j, σ_t, g, λ) at the end of the last step ([`crate::solution::Solution::friction_state`]):
+    /// the traction and displacement the tangential law starts from, and the normal multiplier
+    /// the augmented Lagrangian starts from (the exact law's tractions need the exact
+    /// pressures). An empty `state` is the unloaded state (λ_t = 0, g₀ = 0, λ = 0).
+    pub fn set_friction_state(&mut self, state: &[(usize, f64, f64, f64)]) {
         for p in self.interface.points.iter_mut() {
             if let Some(f) = p.friction.as_mut() {
                 f.multiplier = 0.0;
                 f.reference = 0.0;
+                p.multiplier = 0.0;
             }
         }
-        for &(j, traction, g) in state {
-            if let Some(f) = self
-                .interface
-                .points
-                .get_mut(j)
-                .and_then(|p| p.friction.as_mut())
-            {
+        for &(j, traction, g, lambda) in state {
+            let Some(p) = self.interface.points.get_mut(j) else {
+                continue;
+            };
+            if let Some(f) = p.friction.as_mut() {
                 f.multiplier = traction;
                 f.reference = g;
+                p.multiplier = lambda;
             }
         }
     }

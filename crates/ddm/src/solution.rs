@@ -244,9 +244,10 @@ pub struct Solution {
     /// same prepared model: [`crate::solver::solve_from`]).
     pub interface_loads: Vec<f64>,
     /// The friction state at the end of this solve, the start of the next load step: per
-    /// frictional contact point (j, σ_t, g), its index, tangential traction and tangential
-    /// displacement ([`crate::solver::Prepared::set_friction_state`]); empty without friction.
-    pub friction_state: Vec<(usize, f64, f64)>,
+    /// frictional contact point (j, σ_t, g, λ), its index, tangential traction, tangential
+    /// displacement and normal multiplier (0 for the penalty formulation)
+    /// ([`crate::solver::Prepared::set_friction_state`]); empty without friction.
+    pub friction_state: Vec<(usize, f64, f64, f64)>,
     /// The condensation path every body took (dense or sparse; `docs/sparse-path.md`).
     pub condensation: Vec<crate::condensed::Condensation>,
     /// Wall time per phase, seconds.

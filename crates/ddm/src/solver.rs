@@ -136,8 +136,9 @@ fn check_friction(prepared: &Prepared, settings: &Settings) -> Result<(), SetupE
     Ok(())
 }
 
-/// Per frictional point of `interface`, (j, σ_t, g) at the interface displacements `un`.
-fn friction_state(interface: &Interface, un: &[f64]) -> Vec<(usize, f64, f64)> {
+/// Per frictional point of `interface`, (j, σ_t, g, λ) at the interface displacements `un`, λ
+/// its normal multiplier (0 for the penalty formulation).
+fn friction_state(interface: &Interface, un: &[f64]) -> Vec<(usize, f64, f64, f64)> {
     if !interface.has_friction() {
         return Vec::new();
     }
@@ -146,7 +147,10 @@ fn friction_state(interface: &Interface, un: &[f64]) -> Vec<(usize, f64, f64)> {
     let g = interface.slip_sums(un);
     (0..un.len())
         .filter(|&j| interface.points[j].friction.is_some())
-        .map(|j| (j, interface.traction(j, &s, &g).0, g[j]))
+        .map(|j| {
+            let p = &interface.points[j];
+            (j, interface.traction(j, &s, &g).0, g[j], p.multiplier)
+        })
         .collect()
 }
 

@@ -366,3 +366,23 @@ fn bad_histories_are_refused() {
         assert!(e.to_string().contains(message), "{e}");
     }
 }
+
+#[test]
+fn press_then_shear_with_exact_friction_balances_at_every_increment() {
+    let (mut model, history) = frictional(&[(0.9 * MU_N, 3)]);
+    model.pairs[0].enforcement = contactdd_ddm::Enforcement::Augmented;
+    let done = run(&model, &history);
+    assert_eq!(done.len(), 5);
+    for (inc, sol) in &done {
+        assert!(sol.converged, "{inc:?}: {:?}", sol.message);
+        balanced(sol, P * inc.factors[1], inc.factors[2]);
+        let pair = &sol.contact[0];
+        assert!(pair.traction_excess() <= 1e-12, "{inc:?}");
+        // Exact stick: the sticking points keep their tangential displacement.
+        assert!(
+            pair.slip_violation() <= 1e-8,
+            "{inc:?}: {}",
+            pair.slip_violation()
+        );
+    }
+}
