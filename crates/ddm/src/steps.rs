@@ -6,11 +6,12 @@
 //! a full load gradually where the contact zone changes much.
 
 use crate::error::SetupError;
+use crate::history::{solve_history, HistoryStep, Increment, LoadHistory};
 use crate::model::Model;
 use crate::outcome::Hooks;
 use crate::settings::Settings;
 use crate::solution::Solution;
-use crate::solver::{solve_from, Prepared};
+use crate::solver::Prepared;
 
 /// The load factors of `count` equal steps up to the full load: 1/count, 2/count, …, 1.
 pub fn equal_steps(count: usize) -> Vec<f64> {
@@ -35,10 +36,10 @@ pub fn check_factors(factors: &[f64]) -> Result<(), String> {
 }
 
 /// Solves the model at every load factor in turn, calling `on_step(step, factor, solution)`
-/// after each. Stops after the first step that does not converge (its solution is the last
-/// one returned). Friction is path dependent: each step starts from the friction state (the
-/// tangential tractions and displacements) that the step before ends in, the first from the
-/// unloaded state. The prepared model is left at load factor 1 and the unloaded state.
+/// after each: the load history of one step per factor on the default group
+/// ([`solve_history`], which also carries the friction state from step to step). Stops after
+/// the first step that does not converge (its solution is the last one returned). The prepared
+/// model is left at load factor 1 and the unloaded state.
 pub fn solve_steps(
     model: &Model,
     prepared: &mut Prepared,
@@ -48,28 +49,19 @@ pub fn solve_steps(
     on_step: &mut dyn FnMut(usize, f64, &Solution),
 ) -> Result<Vec<(f64, Solution)>, SetupError> {
     check_factors(factors).map_err(SetupError::Solver)?;
-    let mut steps: Vec<(f64, Solution)> = Vec::with_capacity(factors.len());
-    for (k, &factor) in factors.iter().enumerate() {
-        prepared.set_load_factor(factor);
-        let warm = steps.last().map(|(_, s)| s.interface_loads.as_slice());
-        let solution = solve_from(model, prepared, settings, hooks, warm);
-        let solution = match solution {
-            Ok(s) => s,
-            Err(e) => {
-                prepared.set_load_factor(1.0);
-                prepared.set_friction_state(&[]);
-                return Err(e);
-            }
-        };
-        on_step(k + 1, factor, &solution);
-        prepared.set_friction_state(&solution.friction_state);
-        let converged = solution.converged;
-        steps.push((factor, solution));
-        if !converged {
-            break;
-        }
-    }
-    prepared.set_load_factor(1.0);
-    prepared.set_friction_state(&[]);
-    Ok(steps)
+    let history = LoadHistory {
+        groups: Vec::new(),
+        steps: (factors.iter().enumerate())
+            .map(|(k, &f)| HistoryStep {
+                name: format!("step{}", k + 1),
+                factors: vec![(0, f)],
+                increments: 1,
+            })
+            .collect(),
+    };
+    let mut each = |increment: &Increment, solution: &Solution| {
+        on_step(increment.step + 1, increment.factors[0], solution)
+    };
+    let done = solve_history(model, prepared, settings, &history, hooks, &mut each)?;
+    Ok(done.into_iter().map(|(i, s)| (i.factors[0], s)).collect())
 }

@@ -3,69 +3,26 @@
 //! onset of sliding at the closed form μN — and on frictionless cases against the load steps
 //! (one group, to the bit) and superposition (two groups on a linear case).
 
-use contactdd_core::{
-    Component, Constraints, Diagonal, ElasticBody, Load, Material, Mesh, Order, Plane, Rectangle,
-};
-use contactdd_ddm::history::{solve_history, HistoryStep, Increment, LoadGroup, LoadHistory};
-use contactdd_ddm::steps::solve_steps;
-use contactdd_ddm::*;
+use contactdd::ddm::history::{solve_history, HistoryStep, Increment, LoadGroup, LoadHistory};
+use contactdd::ddm::steps::solve_steps;
+use contactdd::ddm::*;
+use contactdd::fem::{loads::load_vector, Component, Constraints, Load, Order};
+use contactdd::frictional::block_on_foundation;
 
-fn rect(x: [f64; 2], y: [f64; 2], nx: usize, ny: usize) -> Mesh {
-    Rectangle {
-        origin: [x[0], y[0]],
-        corner: [x[1], y[1]],
-        nx,
-        ny,
-        diagonal: Diagonal::Right,
-        mirror: false,
-        order: Order::P1,
-    }
-    .mesh()
-    .expect("a valid rectangle")
-}
-
-fn body(name: &str, mesh: Mesh, supports: &[(&str, Component)], loads: &[Load]) -> ElasticBody {
-    let mut constraints = Constraints::new(mesh.num_nodes());
-    for &(b, c) in supports {
-        constraints.fix(&mesh, b, c, 0.0).expect("a valid support");
-    }
-    let load = contactdd_core::loads::load_vector(&mesh, loads).expect("valid loads");
-    ElasticBody {
-        name: name.into(),
-        mesh,
-        material: Material::new(1000.0, 0.3).expect("a valid material"),
-        plane: Plane::Strain,
-        constraints,
-        load,
-    }
-}
-
-/// A 2 × 1 block (8 × 4 cells) on a 4 × 1 foundation clamped at its bottom, with the loads
-/// `loads` and the supports `supports` (none: friction alone holds it sideways).
+/// The block of [`block_on_foundation`] (8 × 4 P1 cells) with the loads `loads` and the
+/// supports `supports` (none: friction alone holds it sideways).
 fn block(loads: &[Load], supports: &[(&str, Component)], friction: Friction) -> Model {
-    let lower = body(
-        "foundation",
-        rect([0.0, 4.0], [0.0, 1.0], 16, 4),
-        &[("bottom", Component::X), ("bottom", Component::Y)],
-        &[],
-    );
-    let upper = body("block", rect([1.0, 3.0], [1.0, 2.0], 8, 4), supports, loads);
-    Model {
-        name: "block".into(),
-        plane: Plane::Strain,
-        bodies: vec![lower, upper],
-        pairs: vec![ContactPair {
-            name: "joint".into(),
-            bodies: [0, 1],
-            boundaries: ["top".into(), "bottom".into()],
-            penalty: Penalty::RodModel { c: 0.05, h: 1.0 },
-            profile: None,
-            enforcement: Enforcement::Penalty,
-            forces: Forces::Balanced,
-            friction,
-        }],
-        remote: Vec::new(),
+    let mut model = block_on_foundation(0.0, 0.0, friction, (8, Order::P1), 0.05);
+    let upper = &mut model.bodies[1];
+    upper.load = load_vector(&upper.mesh, loads).expect("valid loads");
+    let mut constraints = Constraints::new(upper.mesh.num_nodes());
+    for &(b, c) in supports {
+        constraints
+            .fix(&upper.mesh, b, c, 0.0)
+            .expect("a valid support");
     }
+    upper.constraints = constraints;
+    model
 }
 
 fn pressure(p: f64) -> Load {
@@ -87,10 +44,7 @@ fn group(model: &Model, name: &str, load: Load) -> LoadGroup {
     let mesh = &model.bodies[1].mesh;
     LoadGroup {
         name: name.into(),
-        loads: vec![
-            Vec::new(),
-            contactdd_core::loads::load_vector(mesh, &[load]).expect("valid loads"),
-        ],
+        loads: vec![Vec::new(), load_vector(mesh, &[load]).expect("valid loads")],
     }
 }
 
@@ -265,10 +219,7 @@ fn a_one_group_history_is_the_load_steps_to_the_bit() {
     let mesh = &bare.bodies[1].mesh;
     let all = LoadGroup {
         name: "all".into(),
-        loads: vec![
-            Vec::new(),
-            contactdd_core::loads::load_vector(mesh, &loads).expect("valid loads"),
-        ],
+        loads: vec![Vec::new(), load_vector(mesh, &loads).expect("valid loads")],
     };
     let history = LoadHistory {
         groups: vec![all],
@@ -370,7 +321,7 @@ fn bad_histories_are_refused() {
 #[test]
 fn press_then_shear_with_exact_friction_balances_at_every_increment() {
     let (mut model, history) = frictional(&[(0.9 * MU_N, 3)]);
-    model.pairs[0].enforcement = contactdd_ddm::Enforcement::Augmented;
+    model.pairs[0].enforcement = Enforcement::Augmented;
     let done = run(&model, &history);
     assert_eq!(done.len(), 5);
     for (inc, sol) in &done {

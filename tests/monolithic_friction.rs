@@ -4,83 +4,14 @@
 //! displacements, pressures, tangential tractions and stick/slip/open statuses, the same fields,
 //! the block's force balance, and a push beyond what friction holds refused as sliding.
 
-use contactdd_core::{
-    Component, Constraints, Diagonal, ElasticBody, Load, Material, Mesh, Order, Plane, Rectangle,
-};
-use contactdd_ddm::*;
+use contactdd::ddm::*;
+use contactdd::fem::Order;
+use contactdd::frictional::block_on_foundation;
 
-fn rect(x: [f64; 2], y: [f64; 2], nx: usize, ny: usize, order: Order) -> Mesh {
-    Rectangle {
-        origin: [x[0], y[0]],
-        corner: [x[1], y[1]],
-        nx,
-        ny,
-        diagonal: Diagonal::Right,
-        mirror: false,
-        order,
-    }
-    .mesh()
-    .expect("a valid rectangle")
-}
-
-fn body(name: &str, mesh: Mesh, supports: &[(&str, Component)], loads: &[Load]) -> ElasticBody {
-    let mut constraints = Constraints::new(mesh.num_nodes());
-    for &(b, c) in supports {
-        constraints.fix(&mesh, b, c, 0.0).expect("a valid support");
-    }
-    let load = contactdd_core::loads::load_vector(&mesh, loads).expect("valid loads");
-    ElasticBody {
-        name: name.into(),
-        mesh,
-        material: Material::new(1000.0, 0.3).expect("a valid material"),
-        plane: Plane::Strain,
-        constraints,
-        load,
-    }
-}
-
-/// A 2 × 1 block (`upper` cells in x, elements of `order`) on a 4 × 1 foundation clamped at its
-/// bottom, pressed by `p` on its top and pushed by the traction `q` on its left side; the block
-/// has no support, so friction alone holds it sideways (the model of tests/friction.rs).
+/// The block of [`block_on_foundation`] with `upper` cells of `order` and the paper's penalty
+/// factor (the model of tests/friction.rs).
 fn block(p: f64, q: f64, friction: Friction, upper: usize, order: Order) -> Model {
-    let lower = body(
-        "foundation",
-        rect([0.0, 4.0], [0.0, 1.0], 16, 4, order),
-        &[("bottom", Component::X), ("bottom", Component::Y)],
-        &[],
-    );
-    let loads = [
-        Load::Pressure {
-            boundary: "top".into(),
-            value: p,
-        },
-        Load::Traction {
-            boundary: "left".into(),
-            value: [q, 0.0],
-        },
-    ];
-    let upper = body(
-        "block",
-        rect([1.0, 3.0], [1.0, 2.0], upper, 4, order),
-        &[],
-        &loads,
-    );
-    Model {
-        name: "block".into(),
-        plane: Plane::Strain,
-        bodies: vec![lower, upper],
-        pairs: vec![ContactPair {
-            name: "joint".into(),
-            bodies: [0, 1],
-            boundaries: ["top".into(), "bottom".into()],
-            penalty: Penalty::RodModel { c: 0.05, h: 1.0 },
-            profile: None,
-            enforcement: Enforcement::Penalty,
-            forces: Forces::Balanced,
-            friction,
-        }],
-        remote: Vec::new(),
-    }
+    block_on_foundation(p, q, friction, (upper, order), 0.05)
 }
 
 const P: f64 = 10.0;
