@@ -4,7 +4,6 @@
 //! and flat `Vec`s into numpy arrays.
 
 use numpy::{PyArray1, PyArrayMethods};
-use pyo3::exceptions::PyTypeError;
 use pyo3::prelude::*;
 use pyo3::types::{PyBool, PyDict, PyFloat, PyInt, PyList, PyString, PyTuple};
 use serde_json::Value;
@@ -39,9 +38,9 @@ pub fn to_json(obj: &Bound<'_, PyAny>, what: &str) -> Result<Value, Bad> {
     if let Ok(d) = obj.cast::<PyDict>() {
         let mut map = serde_json::Map::new();
         for (k, v) in d.iter() {
-            let key: String = k.extract().map_err(|_| {
-                PyTypeError::new_err(format!("{what}: dictionary keys must be strings"))
-            })?;
+            let key: String = k
+                .extract()
+                .map_err(|_| Bad::Value(format!("{what}: dictionary keys must be strings")))?;
             let value = to_json(&v, &format!("{what}.{key}"))?;
             map.insert(key, value);
         }
@@ -58,22 +57,58 @@ pub fn to_json(obj: &Bound<'_, PyAny>, what: &str) -> Result<Value, Bad> {
         if let Ok(i) = obj.extract::<i64>() {
             return Ok(Value::from(i));
         }
-        return Ok(Value::from(obj.extract::<u64>()?));
+        if let Ok(u) = obj.extract::<u64>() {
+            return Ok(Value::from(u));
+        }
+        return Err(Bad::Value(format!(
+            "{what}: the integer {} is out of range",
+            shown_int(obj)
+        )));
     }
     if obj.is_instance_of::<PyFloat>() {
         let x: f64 = obj.extract()?;
         return serde_json::Number::from_f64(x)
             .map(Value::Number)
-            .ok_or_else(|| Bad::Value(format!("{what}: must be finite, got {x}")));
+            .ok_or_else(|| Bad::Value(format!("{what}: must be finite, got {}", shown(x))));
     }
     if obj.hasattr("tolist")? {
         // numpy arrays and scalars
         return to_json(&obj.call_method0("tolist")?, what);
     }
-    Err(Bad::Py(PyTypeError::new_err(format!(
+    Err(Bad::Value(format!(
         "{what}: cannot use a value of type {}",
         obj.get_type().name()?
-    ))))
+    )))
+}
+
+/// A number as messages show it: as Rust writes it when that is short (`0.25`, `1e300`, `12`),
+/// else in scientific notation with four digits (`4.612e18`), never the hundreds of digits of
+/// `{}` for a large float.
+pub fn shown(x: f64) -> String {
+    let plain = x.to_string();
+    if plain.len() <= 12 {
+        plain
+    } else {
+        format!("{x:.3e}")
+    }
+}
+
+/// A Python integer as messages show it: exact up to 20 digits, else its number of digits.
+pub fn shown_int(obj: &Bound<'_, PyAny>) -> String {
+    if let Ok(i) = obj.extract::<i64>() {
+        return i.to_string();
+    }
+    if let Ok(u) = obj.extract::<u64>() {
+        return u.to_string();
+    }
+    let bits = obj
+        .call_method0("bit_length")
+        .and_then(|b| b.extract::<u64>())
+        .unwrap_or(0);
+    // log10(2) ≈ 0.30103: the digits of a number of `bits` bits, to one.
+    let digits = (bits as f64 * std::f64::consts::LOG10_2).floor() as u64 + 1;
+    let sign = if obj.lt(0).unwrap_or(false) { "-" } else { "" };
+    format!("{sign}<{digits}-digit number>")
 }
 
 /// Parses a kebab-case name into a schema enum (e.g. `"strain"` into `Plane::Strain`); the error

@@ -6,7 +6,9 @@
 //!   `OSError` (its `errno` is the system's, when there is one);
 //! - every other [`SetupError`](contactdd_ddm::SetupError) and [`LoadError`] (a bad problem file,
 //!   bad arrays, unknown names, a body that cannot be factorised) becomes
-//!   `contactdd.ContactddError`, a `ValueError`;
+//!   `contactdd.ContactddError`, a `ValueError`; so does an argument that does not convert to
+//!   its Rust type (`contactdd/_arguments.py` translates Python's `TypeError` and
+//!   `OverflowError`);
 //! - a solve that does not converge raises `contactdd.ConvergenceError`, both a `ContactddError`
 //!   and a `RuntimeError`, whose `result` attribute holds the partial result (see
 //!   [`convergence_error`]);
@@ -30,7 +32,9 @@ create_exception!(
     PyValueError,
     "Bad input: a problem file, array, name or setting that contactdd cannot use.\n\n\
      The message is the one the command line prints, e.g.\n\
-     ``body 'lower': supports[0]: no boundary named 'rigth' (known: bottom, left, right, top)``."
+     ``body 'lower': supports[0]: no boundary named 'rigth' (known: bottom, left, right, top)``.\n\n\
+     Also raised for an argument of the wrong type or out of range, with the argument's name \
+     and its value shown compactly: ``max_iter: expected a whole number ≥ 0, got -1``."
 );
 
 const CONVERGENCE_ERROR_DOC: &str = "The domain decomposition iteration did not converge.\n\n\

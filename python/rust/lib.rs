@@ -108,13 +108,18 @@ fn sweep<'py>(
     };
     let (model, base, threads) = problem.borrow().configured(&options)?;
     // An exception of the progress callback: it stops the sweep and is raised afterwards.
-    let failed: Mutex<Option<PyErr>> = Mutex::new(None);
-    let (out, interrupt) = run_interruptible(py, |cancel| {
+    let failed: Arc<Mutex<Option<PyErr>>> = Arc::new(Mutex::new(None));
+    let slot = failed.clone();
+    let out = run_interruptible(py, move |cancel| {
         let report = |r: &SweepRun| {
+            // After Ctrl-C the caller has gone on: no more calls into Python.
+            if cancel.load(Ordering::Relaxed) {
+                return;
+            }
             if let Some(callback) = &progress {
                 let called = Python::attach(|py| callback.call1(py, (sweep_record(py, r)?,)));
                 if let Err(e) = called {
-                    if let Ok(mut slot) = failed.lock() {
+                    if let Ok(mut slot) = slot.lock() {
                         slot.get_or_insert(e);
                     }
                     cancel.store(true, Ordering::Relaxed);
@@ -133,10 +138,7 @@ fn sweep<'py>(
             ))
         })
     })?;
-    if let Some(e) = interrupt {
-        return Err(e);
-    }
-    if let Some(e) = failed.into_inner().ok().flatten() {
+    if let Some(e) = failed.lock().ok().and_then(|mut slot| slot.take()) {
         return Err(e);
     }
     let runs = out.map_err(setup_error)?;
@@ -225,14 +227,12 @@ fn monolithic(
     let findings = contact_check::check(&model, &interface);
     contact_check::refuse(&findings).map_err(setup_error)?;
     warn_contact(py, &findings)?;
-    let (out_sol, interrupt) = run_interruptible(py, |_| {
+    let m = model.clone();
+    let out_sol = run_interruptible(py, move |_| {
         with_threads(threads, || {
-            contactdd_ddm::monolithic::solve_monolithic_with(&model, &settings, None)
+            contactdd_ddm::monolithic::solve_monolithic_with(&m, &settings, None)
         })
     })?;
-    if let Some(e) = interrupt {
-        return Err(e);
-    }
     let sol = out_sol.map_err(setup_error)?;
     if let Some(dir) = out {
         py.detach(|| contactdd_io::output::write_monolithic_results(&dir, &model, &sol))

@@ -10,7 +10,7 @@
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
-use numpy::{AllowTypeChange, PyArrayLike2, PyUntypedArrayMethods};
+use numpy::PyUntypedArrayMethods;
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyTuple, PyType};
 
@@ -29,8 +29,8 @@ use crate::convert::{from_name, name_of};
 use crate::error::{input_error, setup_error};
 use crate::options::{gamma_to_py, GammaArg, SolverOptions};
 use crate::schema::{
-    absolute_mesh_paths, body_error, boundary_edges, indices, inline_spec, node_set_indices,
-    pair_option, specs,
+    absolute_mesh_paths, body_error, boundary_edges, float_array, indices, inline_spec,
+    node_set_indices, pair_option, specs, text,
 };
 use crate::steps::{self, load_steps_spec, load_steps_to_py, monitor_spec, monitor_to_py};
 
@@ -155,9 +155,13 @@ impl Problem {
     ///     name: problem name used in output files.
     ///     plane: ``"strain"`` (thick bodies) or ``"stress"`` (thin plates), for all bodies.
     #[new]
-    #[pyo3(signature = (name = "problem", plane = "strain"))]
-    fn new(name: &str, plane: &str) -> PyResult<Problem> {
-        let plane: Plane = from_name(plane).map_err(|e| {
+    #[pyo3(signature = (name = None, plane = None), text_signature = "(name='problem', plane='strain')")]
+    fn new(name: Option<&Bound<'_, PyAny>>, plane: Option<&Bound<'_, PyAny>>) -> PyResult<Problem> {
+        // Strings checked here, so that another type raises a `ContactddError` naming the
+        // argument (the methods get theirs from `contactdd._arguments`).
+        let name = &name.map_or(Ok("problem".into()), |n| text(n, "name"))?;
+        let plane = plane.map_or(Ok("strain".into()), |p| text(p, "plane"))?;
+        let plane: Plane = from_name(&plane).map_err(|e| {
             setup_error(SetupError::Invalid {
                 key: "plane".into(),
                 message: e,
@@ -267,8 +271,9 @@ impl Problem {
     ///     triangles: ``(m, 3)`` (P1) or ``(m, 6)`` (P2: vertices, then the mid-side nodes of edges
     ///         (0,1), (1,2), (2,0)) node indices; clockwise triangles are reordered
     ///         counter-clockwise, as the Gmsh reader does.
-    ///     boundaries: named boundary edge sets, ``{name: (k, 2) array of node pairs}`` (a
-    ///         third column with P2 mid-side nodes is accepted and ignored).
+    ///     boundaries: named boundary edge sets, ``{name: (k, 2) array of node pairs}``; for
+    ///         P2 triangles also ``(k, 3)`` with each edge's mid-side node, which must be the
+    ///         one the triangles give the edge (3 nodes per edge on P1 triangles are refused).
     ///     material: name of a material added with :meth:`add_material`.
     ///     supports: list of ``{"boundary": str, "component": "x"|"y"|"both"|"normal",
     ///         "value": float = 0}``.
@@ -282,18 +287,19 @@ impl Problem {
     fn add_body(
         &mut self,
         name: &str,
-        nodes: PyArrayLike2<'_, f64, AllowTypeChange>,
-        triangles: PyArrayLike2<'_, f64, AllowTypeChange>,
-        boundaries: &Bound<'_, PyDict>,
+        nodes: &Bound<'_, PyAny>,
+        triangles: &Bound<'_, PyAny>,
+        boundaries: &Bound<'_, PyAny>,
         material: &str,
         supports: Option<&Bound<'_, PyAny>>,
         loads: Option<&Bound<'_, PyAny>>,
-        node_sets: Option<&Bound<'_, PyDict>>,
+        node_sets: Option<&Bound<'_, PyAny>>,
     ) -> PyResult<()> {
         self.model.check_body_name(name).map_err(setup_error)?;
         // The checks of the arrays' shapes and signs: what numpy can get wrong and a mesh file
         // cannot; the mesh itself is checked by `setup::mesh_from_arrays`.
         let mesh_error = |message: String| setup_error(body_error(name, "mesh", message));
+        let nodes = float_array(nodes, &format!("body '{name}': mesh: nodes"))?;
         let [n, dim] = [nodes.shape()[0], nodes.shape()[1]];
         if dim != DIM {
             return Err(mesh_error(format!(
@@ -306,14 +312,13 @@ impl Problem {
             .into_iter()
             .map(|r| std::array::from_fn(|c| r[c]))
             .collect();
-        let width = triangles.shape()[1];
+        let (cells, width) = indices(triangles, &format!("body '{name}': mesh: triangles"))?;
         if width != 3 && width != 6 {
             return Err(mesh_error(format!(
                 "triangles must have 3 (P1) or 6 (P2) columns, got {width}"
             )));
         }
-        let cells = indices(&triangles, &format!("body '{name}': mesh: triangles"))?;
-        let edge_sets = boundary_edges(name, boundaries)?;
+        let edge_sets = boundary_edges(name, boundaries, &cells, width)?;
         let sets = node_set_indices(name, node_sets)?;
         // The arrays as given become an inline mesh table, resolved as a problem file's is (and
         // written back out by `to_toml`).

@@ -3,6 +3,8 @@
 //! contact geometry's warnings raised as Python warnings ([`warn_contact`]).
 
 use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::mpsc::{self, RecvTimeoutError};
+use std::sync::Arc;
 use std::time::Duration;
 
 use pyo3::exceptions::{PyRuntimeError, PyUserWarning};
@@ -17,44 +19,46 @@ use crate::error::panic_error;
 const SIGNAL_POLL: Duration = Duration::from_millis(50);
 
 /// Runs `work` on a worker thread with the GIL released. The calling thread checks for signals
-/// every [`SIGNAL_POLL`]; on the first one it sets the cancel flag passed to `work` and keeps
-/// waiting for `work` to return. Returns `work`'s value and the signal's exception, if any. A
-/// panic in `work` becomes a `RuntimeError`.
-pub fn run_interruptible<T, F>(py: Python<'_>, work: F) -> PyResult<(T, Option<PyErr>)>
+/// every [`SIGNAL_POLL`]; on the first one it sets the cancel flag passed to `work` and raises
+/// the signal's exception at once, without waiting for `work`: a setup (assembly,
+/// factorisation) that does not look at the flag goes on in the background until it ends, the
+/// iteration after it stops at its first check of the flag, and the answer is dropped. A panic
+/// in `work` becomes a `RuntimeError`.
+pub fn run_interruptible<T, F>(py: Python<'_>, work: F) -> PyResult<T>
 where
-    T: Send,
-    F: FnOnce(&AtomicBool) -> T + Send,
+    T: Send + 'static,
+    F: FnOnce(&AtomicBool) -> T + Send + 'static,
 {
-    let cancel = AtomicBool::new(false);
-    let done = AtomicBool::new(false);
-    let (out, interrupt) = py.detach(|| {
-        let caller = std::thread::current();
-        std::thread::scope(|s| {
-            let worker = s.spawn(|| {
-                let out = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| work(&cancel)));
-                done.store(true, Ordering::Release);
-                caller.unpark();
-                out
-            });
-            let mut interrupt = None;
-            while !done.load(Ordering::Acquire) {
-                std::thread::park_timeout(SIGNAL_POLL);
-                if interrupt.is_none() && !done.load(Ordering::Acquire) {
-                    if let Err(e) = Python::attach(|py| py.check_signals()) {
-                        cancel.store(true, Ordering::Relaxed);
-                        interrupt = Some(e);
-                    }
+    let cancel = Arc::new(AtomicBool::new(false));
+    let flag = cancel.clone();
+    let (send, receive) = mpsc::channel();
+    std::thread::Builder::new()
+        .name("contactdd-solve".into())
+        .spawn(move || {
+            let out = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| work(&flag)));
+            // The caller is gone after an interrupt: the answer is dropped.
+            let _ = send.send(out);
+        })
+        .map_err(|e| PyRuntimeError::new_err(format!("cannot start the solver thread: {e}")))?;
+    let out = py.detach(move || loop {
+        match receive.recv_timeout(SIGNAL_POLL) {
+            Ok(out) => return Ok(out),
+            Err(RecvTimeoutError::Disconnected) => {
+                return Err(PyRuntimeError::new_err(
+                    "internal error in contactdd (please report it): the solver thread ended \
+                     without an answer",
+                ))
+            }
+            Err(RecvTimeoutError::Timeout) => {
+                if let Err(e) = Python::attach(|py| py.check_signals()) {
+                    cancel.store(true, Ordering::Relaxed);
+                    return Err(e);
                 }
             }
-            let out = match worker.join() {
-                Ok(out) => out,
-                Err(payload) => Err(payload),
-            };
-            (out, interrupt)
-        })
+        }
     });
-    match out {
-        Ok(v) => Ok((v, interrupt)),
+    match out? {
+        Ok(v) => Ok(v),
         Err(payload) => Err(panic_error(payload)),
     }
 }

@@ -132,7 +132,7 @@ pub fn solve(
     drop(p);
     let model = Arc::new(model);
     let m = model.clone();
-    let (findings, sol) = run_reporting(py, threads, progress.as_ref(), |hooks| {
+    let (findings, sol) = run_reporting(py, threads, progress.as_ref(), move |hooks| {
         let prepared = contactdd_ddm::prepare_with(&m, &settings)?;
         let findings = contact_check::check(&m, &prepared.interface);
         Ok((
@@ -222,16 +222,22 @@ fn run_reporting<T, F>(
     work: F,
 ) -> PyResult<T>
 where
-    T: Send,
-    F: for<'h> FnOnce(Hooks<'h>) -> Result<T, SetupError> + Send,
+    T: Send + 'static,
+    F: for<'h> FnOnce(Hooks<'h>) -> Result<T, SetupError> + Send + 'static,
 {
     // An exception of the progress callback: it stops the solve and is raised afterwards.
-    let failed: Mutex<Option<PyErr>> = Mutex::new(None);
-    let (out, interrupt) = run_interruptible(py, |cancel| {
+    let failed: Arc<Mutex<Option<PyErr>>> = Arc::new(Mutex::new(None));
+    let slot = failed.clone();
+    let progress = progress.map(|p| p.clone_ref(py));
+    let out = run_interruptible(py, move |cancel| {
         let report = |r: &Record| {
-            if let Some(callback) = progress {
+            // After Ctrl-C the caller has gone on: no more calls into Python.
+            if cancel.load(Ordering::Relaxed) {
+                return;
+            }
+            if let Some(callback) = &progress {
                 if let Err(e) = Python::attach(|py| call_progress(py, callback, r)) {
-                    if let Ok(mut slot) = failed.lock() {
+                    if let Ok(mut slot) = slot.lock() {
                         slot.get_or_insert(e);
                     }
                     cancel.store(true, Ordering::Relaxed);
@@ -246,10 +252,7 @@ where
         };
         with_threads(threads, || work(hooks))
     })?;
-    if let Some(e) = interrupt {
-        return Err(e);
-    }
-    if let Some(e) = failed.into_inner().ok().flatten() {
+    if let Some(e) = failed.lock().ok().and_then(|mut slot| slot.take()) {
         return Err(e);
     }
     out.map_err(setup_error)
@@ -357,7 +360,7 @@ pub fn solve_steps<'py>(
     }
     let model = Arc::new(model);
     let m = model.clone();
-    let steps = run_reporting(py, threads, progress.as_ref(), |hooks| {
+    let steps = run_reporting(py, threads, progress.as_ref(), move |hooks| {
         let mut prepared = contactdd_ddm::prepare_with(&m, &settings)?;
         let mut each = |_: usize, _: f64, _: &contactdd_ddm::Solution| ();
         contactdd_ddm::steps::solve_steps(&m, &mut prepared, &settings, &factors, hooks, &mut each)
@@ -478,17 +481,12 @@ fn solve_history<'py>(
         out,
         check,
     } = run;
-    let done = run_reporting(py, threads, progress, |hooks| {
-        let mut prepared = contactdd_ddm::prepare_with(&model, &settings)?;
+    let model = Arc::new(model);
+    let (m, h) = (model.clone(), history.clone());
+    let done = run_reporting(py, threads, progress, move |hooks| {
+        let mut prepared = contactdd_ddm::prepare_with(&m, &settings)?;
         let mut each = |_: &Increment, _: &contactdd_ddm::Solution| ();
-        contactdd_ddm::history::solve_history(
-            &model,
-            &mut prepared,
-            &settings,
-            history,
-            hooks,
-            &mut each,
-        )
+        contactdd_ddm::history::solve_history(&m, &mut prepared, &settings, &h, hooks, &mut each)
     })?;
     let increments: Vec<Increment> = done.iter().map(|(i, _)| i.clone()).collect();
     let times = HistoryLabels::times(history, &increments);

@@ -67,7 +67,7 @@ def test_bad_dicts_and_names():
                              supports=[{"boundary": "left", "component": "x",
                                         "value": np.float64("nan")}])
     assert str(e.value) == "body 'b': supports[0].value: must be finite, got NaN"
-    with pytest.raises(TypeError, match="list of dicts"):
+    with pytest.raises(ContactddError, match="list of dicts"):
         p.add_rectangle_body("b", (0, 1), (0, 1), 2, 2, "steel",
                              supports={"boundary": "left", "component": "x"})
     p.add_rectangle_body("b", (0, 1), (0, 1), 2, 2, "steel")

@@ -79,3 +79,34 @@ def test_threads_argument(notch):
     two = contactdd.solve(notch, threads=2)
     assert one.iterations == two.iterations
     assert (one.contact[0].pressure == two.contact[0].pressure).all()
+
+
+def test_ctrl_c_during_setup_is_prompt():
+    """Ctrl-C during the assembly and factorisation (several seconds on this P2 mesh) raises
+    KeyboardInterrupt at once, not when the setup ends."""
+    script = textwrap.dedent(
+        """
+        import os, signal, threading, time
+        import contactdd
+        signal.signal(signal.SIGINT, signal.default_int_handler)
+        problem = contactdd.notch_benchmark(nx=384, ny=192, order="p2")
+        sent = {}
+        def interrupt():
+            sent["t"] = time.perf_counter()
+            os.kill(os.getpid(), signal.SIGINT)
+        threading.Timer(1.0, interrupt).start()
+        t = time.perf_counter()
+        try:
+            contactdd.solve(problem, max_iter=1, check=False)
+            print("finished", time.perf_counter() - t)
+        except KeyboardInterrupt:
+            print("interrupted", time.perf_counter() - sent["t"])
+        """
+    )
+    out = subprocess.run(
+        [sys.executable, "-c", script], capture_output=True, text=True, timeout=300
+    )
+    assert out.returncode == 0, out.stderr
+    word, seconds = out.stdout.split()
+    assert word == "interrupted", out.stdout
+    assert float(seconds) < 1.0, "KeyboardInterrupt came late"

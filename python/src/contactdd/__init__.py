@@ -20,6 +20,7 @@ The numerics run in Rust (the ``contactdd._contactdd`` extension); this package 
 that converts numpy arrays and runs the solves with the GIL released.
 """
 
+from . import _arguments
 from ._contactdd import (
     METHODS,
     Body,
@@ -40,6 +41,12 @@ from ._contactdd import (
 from .meshes import add_gmsh_body, add_meshio_body
 from .results_folder import load_results
 from . import _pickle, plot  # noqa: F401  (_pickle: ContactddIOError's pickling)
+
+# Arguments that do not convert raise ContactddError naming the argument (see _arguments).
+solve, solve_steps, sweep, monolithic, notch_benchmark = (
+    _arguments.checked(f) for f in (solve, solve_steps, sweep, monolithic, notch_benchmark)
+)
+_arguments.install_methods(Problem)
 
 __all__ = [
     "METHODS",

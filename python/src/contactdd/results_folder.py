@@ -54,11 +54,16 @@ def load_results(directory: Union[str, "os.PathLike[str]"]) -> Union[Result, Mon
         A :class:`Result` or :class:`MonolithicResult`.
 
     Raises:
-        ContactddIOError: the folder or one of its files cannot be read (an ``OSError``).
-        ContactddError: the folder holds no complete result (no ``summary.json``: the write was
+        ContactddIOError: the folder or one of its files cannot be read, or ``directory`` is a
+            file (an ``OSError``).
+        ContactddError: ``directory`` is not a path, the folder holds no complete result (no ``summary.json``: the write was
             interrupted or this is not a result folder; a file of the manifest is missing), or a
             file is not what contactdd writes.
     """
+    if not isinstance(directory, (str, os.PathLike)):
+        raise ContactddError(
+            f"directory: expected a path, got a value of type {type(directory).__name__}"
+        )
     folder = Path(directory)
     summary = _read_summary(folder)
     files = summary.pop("files")
@@ -97,6 +102,13 @@ def _read_text(path: Path) -> str:
 
 
 def _read_summary(folder: Path) -> dict[str, Any]:
+    if folder.exists() and not folder.is_dir():
+        error = ContactddIOError(
+            f"'{folder}' is not a results folder: it is a file (give the folder that "
+            "contactdd solve --out or Result.write_vtu wrote)"
+        )
+        error.errno = errno_codes.ENOTDIR
+        raise error
     if not folder.is_dir():
         e = OSError(errno_codes.ENOENT, os.strerror(errno_codes.ENOENT))
         raise _io_error(folder, e)
