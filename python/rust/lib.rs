@@ -5,8 +5,9 @@
 //! solves with the GIL released; all numerics live in the Rust crates.
 //!
 //! Solves run on a worker thread while the calling thread, detached from the interpreter, wakes
-//! every 50 ms to check for signals: Ctrl-C sets the solver's cancel flag, the iteration stops at
-//! the next iteration boundary and `KeyboardInterrupt` is raised.
+//! every 50 ms to check for signals: Ctrl-C raises `KeyboardInterrupt` at once, also during the
+//! assembly and factorisation, and sets the solver's cancel flag, so that the abandoned worker
+//! stops at its next iteration boundary (a setup under way runs to its end in the background).
 
 use std::path::{Path, PathBuf};
 use std::sync::atomic::Ordering;
