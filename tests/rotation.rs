@@ -56,8 +56,12 @@ fn notch(deg: f64, forces: Forces) -> Model {
 
 fn pressures(model: &Model) -> Vec<f64> {
     let prepared = prepare(model).unwrap();
+    // Own-side forces on non-matching meshes leave the bodies out of balance by about 1e-3 of
+    // the load (each side integrates its own pressures): accept that, to compare the pressures.
+    let own_side = model.pairs.iter().any(|p| p.forces == Forces::OwnSide);
     let settings = Settings {
         tol: 1e-10,
+        balance_tol: own_side.then_some(1e-2),
         ..Settings::default()
     };
     let sol = solve(model, &prepared, &settings, Hooks::default()).unwrap();

@@ -53,6 +53,8 @@ pub struct SolverOptions {
     pub gap_tol: Option<f64>,
     /// `equilibrium_tol`: the largest equilibrium residual of a converged result.
     pub equilibrium_tol: Option<f64>,
+    /// `balance_tol`: the largest net force and moment of a body of a converged result.
+    pub balance_tol: Option<f64>,
     /// `max_updates`: the augmented pairs' cap on multiplier updates.
     pub max_updates: Option<usize>,
     /// `condensation`: `"auto"`, `"dense"` or `"sparse"`.
@@ -106,6 +108,7 @@ impl SolverOptions {
             threads: self.threads,
             gap_tol: self.gap_tol,
             equilibrium_tol: self.equilibrium_tol,
+            balance_tol: self.balance_tol,
             max_updates: self.max_updates,
             condensation,
             ..SolverSpec::default()

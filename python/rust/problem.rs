@@ -516,6 +516,10 @@ impl Problem {
     ///     equilibrium_tol: a result counts as converged only if every body's contact forces
     ///         match its contact pressures to this fraction of the total contact force
     ///         (default 1e-2).
+    ///     balance_tol: a result counts as converged only if, on every body, the applied
+    ///         loads, contact forces and support reactions balance in force and moment to this
+    ///         fraction of the largest force total of a body (default 1e-6 under the interface
+    ///         Newton method, ``equilibrium_tol`` under the Robin sweeps).
     ///     gap_tol: augmented pairs: the largest violation of the Signorini conditions of a
     ///         converged result, a length.
     ///     max_updates: augmented pairs: the cap on multiplier updates (default 100).
@@ -527,7 +531,7 @@ impl Problem {
     ///         ``(body, boundary)``.
     ///     condensation: ``"auto"`` (the default), ``"dense"`` or ``"sparse"``: how each body
     ///         answers for its contact points (the results agree, the costs differ).
-    #[pyo3(signature = (method = None, gamma = None, tol = None, max_iter = None, u0 = None, u_prev = None, threads = None, accelerator = None, coarse = None, equilibrium_tol = None, gap_tol = None, max_updates = None, load_steps = None, monitor = None, condensation = None))]
+    #[pyo3(signature = (method = None, gamma = None, tol = None, max_iter = None, u0 = None, u_prev = None, threads = None, accelerator = None, coarse = None, equilibrium_tol = None, balance_tol = None, gap_tol = None, max_updates = None, load_steps = None, monitor = None, condensation = None))]
     #[allow(clippy::too_many_arguments)]
     fn solver(
         &mut self,
@@ -541,6 +545,7 @@ impl Problem {
         accelerator: Option<String>,
         coarse: Option<String>,
         equilibrium_tol: Option<f64>,
+        balance_tol: Option<f64>,
         gap_tol: Option<f64>,
         max_updates: Option<usize>,
         load_steps: Option<&Bound<'_, PyAny>>,
@@ -559,6 +564,7 @@ impl Problem {
             threads,
             gap_tol,
             equilibrium_tol,
+            balance_tol,
             max_updates,
             condensation,
             enforcement: None,
@@ -639,7 +645,7 @@ impl Problem {
 
     /// Default solver settings, the keys of :meth:`solver`: ``method``, ``gamma``, ``tol``,
     /// ``max_iter``, ``u0``, ``u_prev``, ``threads``, ``accelerator``, ``coarse``,
-    /// ``equilibrium_tol``, ``gap_tol``, ``max_updates``, ``load_steps``, ``monitor`` and
+    /// ``equilibrium_tol``, ``balance_tol``, ``gap_tol``, ``max_updates``, ``load_steps``, ``monitor`` and
     /// ``condensation`` (``None`` where unset: ``threads``, ``gap_tol``, ``load_steps``,
     /// ``monitor``).
     #[getter]
@@ -658,6 +664,7 @@ impl Problem {
         d.set_item("accelerator", written.accelerator.as_ref().map(name_of))?;
         d.set_item("coarse", written.coarse.as_ref().map(name_of))?;
         d.set_item("equilibrium_tol", s.equilibrium_tol)?;
+        d.set_item("balance_tol", s.balance_tol)?;
         d.set_item("gap_tol", s.gap_tol)?;
         d.set_item("max_updates", s.max_updates)?;
         let steps = written.load_steps.as_ref();

@@ -65,7 +65,7 @@ use crate::steps::{self, load_steps_spec, monitor_spec};
 ///     progress: a callable called after every iteration with a dict ``{"k", "gamma",
 ///         "rel_change", "active", "normal_force"}`` (the last three per body); an exception it
 ///         raises stops the solve and is raised by :func:`solve`.
-///     equilibrium_tol, max_updates, condensation: as for :meth:`Problem.solver`.
+///     equilibrium_tol, balance_tol, max_updates, condensation: as for :meth:`Problem.solver`.
 ///     monitor: the boundary whose mean displacement the result reports as
 ///         ``Result.monitor``: ``{"body": name, "boundary": name}`` or ``(body, boundary)``.
 ///     out: a folder to write the result files into (summary.json, contact.csv, history.csv,
@@ -82,7 +82,7 @@ use crate::steps::{self, load_steps_spec, monitor_spec};
 ///         partial result.
 ///     KeyboardInterrupt: interrupted.
 #[pyfunction]
-#[pyo3(signature = (problem, method = None, gamma = None, tol = None, max_iter = None, u0 = None, u_prev = None, threads = None, check = true, accelerator = None, coarse = None, enforcement = None, friction = None, gap_tol = None, progress = None, equilibrium_tol = None, max_updates = None, condensation = None, monitor = None, out = None))]
+#[pyo3(signature = (problem, method = None, gamma = None, tol = None, max_iter = None, u0 = None, u_prev = None, threads = None, check = true, accelerator = None, coarse = None, enforcement = None, friction = None, gap_tol = None, progress = None, equilibrium_tol = None, balance_tol = None, max_updates = None, condensation = None, monitor = None, out = None))]
 #[allow(clippy::too_many_arguments)]
 pub fn solve(
     py: Python<'_>,
@@ -102,6 +102,7 @@ pub fn solve(
     gap_tol: Option<f64>,
     progress: Option<Py<PyAny>>,
     equilibrium_tol: Option<f64>,
+    balance_tol: Option<f64>,
     max_updates: Option<usize>,
     condensation: Option<String>,
     monitor: Option<&Bound<'_, PyAny>>,
@@ -119,6 +120,7 @@ pub fn solve(
         threads,
         gap_tol,
         equilibrium_tol,
+        balance_tol,
         max_updates,
         condensation,
         enforcement,
@@ -283,7 +285,7 @@ fn call_progress(py: Python<'_>, callback: &Py<PyAny>, r: &Record) -> PyResult<(
 ///         number from 0 plus the fraction done), else its ``[solver] load-steps`` (or
 ///         :meth:`Problem.solver`); a :class:`ContactddError` if it has neither.
 ///     tol, max_iter, threads, accelerator, enforcement, friction, gap_tol, method, gamma,
-///         coarse, u0, u_prev, equilibrium_tol, max_updates, condensation, progress: as for
+///         coarse, u0, u_prev, equilibrium_tol, balance_tol, max_updates, condensation, progress: as for
 ///         :func:`solve`.
 ///     check: raise :class:`ConvergenceError` if a step does not converge (default); the steps
 ///         stop at the first such step either way.
@@ -297,7 +299,7 @@ fn call_progress(py: Python<'_>, callback: &Py<PyAny>, r: &Record) -> PyResult<(
 /// Returns:
 ///     One :class:`Result` per step solved, each with its ``load_factor``.
 #[pyfunction]
-#[pyo3(signature = (problem, load_steps = None, tol = None, max_iter = None, threads = None, check = true, accelerator = None, enforcement = None, friction = None, gap_tol = None, method = None, gamma = None, coarse = None, u0 = None, u_prev = None, equilibrium_tol = None, max_updates = None, condensation = None, monitor = None, out = None, progress = None))]
+#[pyo3(signature = (problem, load_steps = None, tol = None, max_iter = None, threads = None, check = true, accelerator = None, enforcement = None, friction = None, gap_tol = None, method = None, gamma = None, coarse = None, u0 = None, u_prev = None, equilibrium_tol = None, balance_tol = None, max_updates = None, condensation = None, monitor = None, out = None, progress = None))]
 #[allow(clippy::too_many_arguments)]
 pub fn solve_steps<'py>(
     py: Python<'py>,
@@ -317,6 +319,7 @@ pub fn solve_steps<'py>(
     u0: Option<f64>,
     u_prev: Option<f64>,
     equilibrium_tol: Option<f64>,
+    balance_tol: Option<f64>,
     max_updates: Option<usize>,
     condensation: Option<String>,
     monitor: Option<&Bound<'py, PyAny>>,
@@ -335,6 +338,7 @@ pub fn solve_steps<'py>(
         threads,
         gap_tol,
         equilibrium_tol,
+        balance_tol,
         max_updates,
         condensation,
         enforcement,

@@ -94,6 +94,10 @@ pub struct SolveArgs {
     /// (overrides solver.gap-tol).
     #[arg(long, value_name = "L", value_parser = parse_positive)]
     pub gap_tol: Option<f64>,
+    /// The largest net force and moment of a body of a converged result, relative to the largest
+    /// force total of a body (overrides solver.balance-tol).
+    #[arg(long, value_name = "B", value_parser = parse_positive)]
+    pub balance_tol: Option<f64>,
     /// Solver options.
     #[command(flatten)]
     pub common: Common,

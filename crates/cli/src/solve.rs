@@ -123,6 +123,9 @@ fn cli_settings(args: &SolveArgs, loaded: &Loaded) -> (contactdd_ddm::Settings, 
     if let Some(g) = args.gap_tol {
         settings.gap_tol = Some(g);
     }
+    if let Some(b) = args.balance_tol {
+        settings.balance_tol = Some(b);
+    }
     let threads = apply_common(&args.common, &mut settings, loaded.threads);
     (settings, threads)
 }

@@ -121,6 +121,7 @@ fn cell(run: &SweepRun) -> String {
         Stop::MaxIterations => "max".into(),
         Stop::Interrupted => "int".into(),
         Stop::Stalled { .. } => "stall".into(),
+        Stop::Unbalanced { .. } => "unbal".into(),
         Stop::Unenforced { .. } => "unenf".into(),
         Stop::Diverged { .. } => format!("div@{}", run.iterations),
     }

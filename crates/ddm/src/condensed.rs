@@ -458,6 +458,18 @@ impl CondensedBody {
         &self.f0
     }
 
+    /// The load vector the body carries now: its own load at the load factor plus every load
+    /// group at its factor.
+    pub fn applied_load(&self) -> Vec<f64> {
+        let mut f: Vec<f64> = self.load.iter().map(|v| self.factor * v).collect();
+        for g in self.groups.iter().filter(|g| g.factor != 0.0) {
+            f.iter_mut()
+                .zip(&g.load)
+                .for_each(|(a, b)| *a += g.factor * b);
+        }
+        f
+    }
+
     /// Scales the loads and prescribed displacements by `factor` (a load step): f₀ is linear
     /// in both.
     /// The other load groups' factors become 0.

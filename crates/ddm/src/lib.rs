@@ -22,6 +22,7 @@ pub mod equilibrium;
 pub mod error;
 pub mod exchange;
 pub mod facts;
+pub mod force_balance;
 pub mod gamma_study;
 pub mod history;
 pub mod iteration;

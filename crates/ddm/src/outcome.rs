@@ -76,6 +76,18 @@ pub enum Stop {
         /// The tolerance it exceeds.
         limit: f64,
     },
+    /// The iteration met its tolerance, but a body's applied loads, contact forces and support
+    /// reactions do not balance (set by [`crate::solver::solve`] from [`crate::force_balance`]).
+    Unbalanced {
+        /// The body out of balance (the worst one).
+        body: usize,
+        /// Its net force and moment, relative to the largest force total of a body.
+        imbalance: f64,
+        /// The rounding its reactions can carry, on the same scale.
+        floor: f64,
+        /// The tolerance the imbalance exceeds.
+        limit: f64,
+    },
 }
 
 /// Interface state and history at the end of an iteration.

@@ -42,6 +42,12 @@ pub const ANDERSON_DEPTH: usize = 40;
 /// stopped far from its fixed point (a tiny γ) is off by tens of percent.
 pub const EQUILIBRIUM_TOL: f64 = 1e-2;
 
+/// Default largest net force and moment of a body of a converged result under the interface
+/// Newton method, relative to the largest force total of a body ([`crate::force_balance`]). The
+/// Robin sweeps, which stop on a change rather than a residual, default to the equilibrium
+/// tolerance instead ([`Settings::balance_limit`]).
+pub const BALANCE_TOL: f64 = 1e-6;
+
 /// Settings of one DD solve.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Settings {
@@ -58,6 +64,10 @@ pub struct Settings {
     /// Largest equilibrium residual (relative to the total contact force) a converged result may
     /// have; above it the solve reports [`crate::outcome::Stop::Stalled`].
     pub equilibrium_tol: f64,
+    /// Largest net force and moment of a body a converged result may have, relative to the
+    /// largest force total of a body; `None`: [`Settings::balance_limit`]'s default. Above it
+    /// the solve reports [`crate::outcome::Stop::Unbalanced`].
+    pub balance_tol: Option<f64>,
     /// Iteration cap.
     pub max_iter: usize,
     /// Initial normal displacement u^0_n on all contact points.
@@ -227,7 +237,7 @@ impl Settings {
             v >= 1.0
         }
         let count = |n: usize| n as f64;
-        let checks: [(&'static str, Requirement, Option<f64>, fn(f64) -> bool); 8] = [
+        let checks: [(&'static str, Requirement, Option<f64>, fn(f64) -> bool); 9] = [
             (
                 "gamma",
                 Requirement::PositiveOrAuto,
@@ -239,6 +249,12 @@ impl Settings {
                 "equilibrium-tol",
                 Requirement::Positive,
                 Some(self.equilibrium_tol),
+                positive,
+            ),
+            (
+                "balance-tol",
+                Requirement::Positive,
+                self.balance_tol,
                 positive,
             ),
             (
@@ -279,6 +295,17 @@ impl Settings {
         Ok(())
     }
 
+    /// The largest relative net force and moment of a body that a converged result may have:
+    /// `balance_tol`, or by default [`BALANCE_TOL`] under the interface Newton method and the
+    /// equilibrium tolerance under the Robin sweeps, whose change test bounds the last step
+    /// rather than the remaining residual.
+    pub fn balance_limit(&self) -> f64 {
+        self.balance_tol.unwrap_or(match self.accelerator {
+            Accelerator::Newton => BALANCE_TOL,
+            Accelerator::None | Accelerator::Anderson { .. } => self.equilibrium_tol,
+        })
+    }
+
     fn constant_gamma(&self) -> Option<f64> {
         match self.gamma {
             Gamma::Constant(g) => Some(g),
@@ -313,6 +340,7 @@ impl Default for Settings {
             coarse: CoarseMode::Off,
             tol: 1e-6,
             equilibrium_tol: EQUILIBRIUM_TOL,
+            balance_tol: None,
             max_iter: 500,
             u0: 1e-4,
             u_prev: 2e-4,

@@ -3,11 +3,12 @@
 use std::collections::BTreeMap;
 
 use contactdd_core::post::stresses;
-use contactdd_core::{ElasticBody, Mesh, Vector, DIM};
+use contactdd_core::{dof, ElasticBody, Mesh, Vector, DIM};
 
 use crate::coarse::CoarseMode;
 use crate::contact::formulation::Forces;
 use crate::contact::{Friction, Interface, Status};
+use crate::force_balance::BodyBalance;
 use crate::method::Method;
 use crate::model::Model;
 use crate::outcome::{Breakdown, Record, Stop};
@@ -197,6 +198,25 @@ impl PairResult {
     }
 }
 
+/// Per body, the nodal contact forces of the reported pressures (2 per node; w σ_n n for an
+/// own-side pair, the dual mortar shares for a balanced one).
+pub fn nodal_contact_force(model: &Model, b: usize, contact: &[PairResult]) -> Vec<f64> {
+    let mut f = vec![0.0; model.bodies[b].load.len()];
+    for (pair, p) in model.pairs.iter().zip(contact) {
+        if !pair.bodies.contains(&b) {
+            continue;
+        }
+        for i in (0..p.side.len()).filter(|&i| pair.bodies[p.side[i]] == b) {
+            // A point without a partner has no force.
+            if p.fx[i].is_finite() && p.fy[i].is_finite() {
+                f[dof(p.node[i], 0)] += p.fx[i];
+                f[dof(p.node[i], 1)] += p.fy[i];
+            }
+        }
+    }
+    f
+}
+
 /// A solve's result (also the partial result of a failed solve).
 #[derive(Clone, Debug)]
 pub struct Solution {
@@ -227,6 +247,9 @@ pub struct Solution {
     /// Per body, the equilibrium residual: the contact forces the fields carry against those of
     /// the reported pressures, relative to the total contact force ([`crate::equilibrium::equilibrium`]).
     pub equilibrium: Vec<f64>,
+    /// Per body, the independent force balance of the result: applied loads, contact forces and
+    /// support reactions of the field ([`crate::force_balance`]).
+    pub balance: Vec<BodyBalance>,
     /// Multiplier updates (inner solves) of the augmented Lagrangian pairs; 0 if every pair
     /// uses the penalty formulation.
     pub updates: usize,
@@ -280,6 +303,7 @@ pub fn stop_message(
         }
         Stop::Interrupted => Some(format!("interrupted after {} iterations", history.len())),
         Stop::Unenforced { .. } => unenforced_message(stop),
+        Stop::Unbalanced { .. } => unbalanced_message(stop, model, "tighten tol"),
         Stop::Stalled { residual, limit } => Some(format!(
             "stalled: after {} iterations the change is below the tolerance {tol:.1e}, but the contact forces that the fields carry differ from those of the contact pressures by {residual:.2e} of the total contact force (more than equilibrium-tol = {limit:.1e}); the iteration was still far from its fixed point: use a tighter tol, a larger gamma or gamma = \"auto\"",
             history.len()
@@ -343,6 +367,39 @@ fn unenforced_message(stop: &Stop) -> Option<String> {
     ))
 }
 
+/// The message of a result whose forces do not balance: rounding, when the body's field cannot
+/// resolve its reactions (a contrast of stiffness beyond double precision), else `remedy`.
+fn unbalanced_message(stop: &Stop, model: &Model, remedy: &str) -> Option<String> {
+    let Stop::Unbalanced {
+        body: b,
+        imbalance,
+        floor,
+        limit,
+    } = *stop
+    else {
+        return None;
+    };
+    let name = body_name(model, b);
+    let head = format!(
+        "not a solution: the iteration met its tolerance, but on body '{name}' the applied loads, contact forces and support reactions leave a net force {imbalance:.2e} of the largest force total of a body (more than balance-tol = {limit:.1e})"
+    );
+    if floor < 0.1 * imbalance.max(limit) {
+        if model.pairs.iter().any(|p| p.forces == Forces::OwnSide) {
+            return Some(format!("{head}; own-side pairs on non-matching meshes let each side integrate its own pressures, so action and reaction differ: use forces = \"balanced\" (the default), or raise balance-tol to accept the difference"));
+        }
+        return Some(format!("{head}; {remedy}"));
+    }
+    let young = |b: usize| model.bodies[b].material.young();
+    let softest = (0..model.bodies.len())
+        .map(young)
+        .fold(f64::INFINITY, f64::min);
+    Some(format!(
+        "{head}, and the rounding of its displacements alone reaches {floor:.1e}: its Young's modulus {:.3e} is {:.1e} times the softest body's, so its elastic strains are lost beside its rigid motion in double precision. Lower its Young's modulus: 1e4 to 1e6 times its partners' already makes it rigid for them",
+        young(b),
+        young(b) / softest
+    ))
+}
+
 /// Why the Newton steps can stall with own-side pairs, if the model has any.
 fn own_side_hint(model: &Model) -> &'static str {
     if model.pairs.iter().any(|p| p.forces == Forces::OwnSide) {
@@ -374,6 +431,7 @@ fn newton_message(stop: &Stop, model: &Model, history: &[Record], tol: f64) -> O
         }
         Stop::Interrupted => Some(format!("interrupted after {steps} Newton steps")),
         Stop::Unenforced { .. } => unenforced_message(stop),
+        Stop::Unbalanced { .. } => unbalanced_message(stop, model, "tighten tol"),
         Stop::Stalled { residual, limit } => Some(format!(
             "stalled: the Newton steps converged, but the contact forces that the fields carry differ from those of the contact pressures by {residual:.2e} of the total contact force (more than equilibrium-tol = {limit:.1e}); with own-side pairs on non-matching meshes each body integrates its own pressures, so a body held only by contact may not balance: refine the coarser contact mesh or use forces = \"balanced\""
         )),
@@ -416,6 +474,7 @@ pub fn short_reason(model: &Model, stop: &Stop) -> String {
         Stop::MaxIterations => "max iterations".into(),
         Stop::Interrupted => "interrupted".into(),
         Stop::Stalled { .. } => "stalled (out of equilibrium)".into(),
+        Stop::Unbalanced { .. } => "out of balance".into(),
         Stop::Unenforced { .. } => "max multiplier updates".into(),
         Stop::Diverged {
             body,

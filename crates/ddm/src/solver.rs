@@ -11,13 +11,14 @@ use rayon::prelude::*;
 use crate::contact::Interface;
 use crate::equilibrium::equilibrium;
 use crate::error::SetupError;
+use crate::force_balance::{balance, BodyBalance, BodyForces};
 use crate::iteration::Iteration;
 use crate::model::Model;
 use crate::newton::InterfaceNewton;
 use crate::outcome::{Hooks, Outcome, Stop};
 pub use crate::prepared::{prepare, prepare_on, prepare_with, Preparation, Prepared};
 use crate::settings::{Accelerator, Settings};
-use crate::solution::{body_results, pair_results, stop_message, Solution};
+use crate::solution::{body_results, nodal_contact_force, pair_results, stop_message, Solution};
 use crate::sweeps::Sweeps;
 
 /// The iteration `settings` name: the interface Newton method, or the Robin sweeps.
@@ -75,6 +76,17 @@ pub fn solve_from(
     let bodies = body_results(model, &interface, &outcome.un, displacements);
     let contact = pair_results(model, &interface, &outcome.un);
     let friction_state = friction_state(&interface, &outcome.un);
+    let fields: Vec<_> = (bodies.iter().zip(&prepared.bodies).enumerate())
+        .map(|(b, (r, body))| {
+            let body = body.as_ref().filter(|_| r.has_fields())?;
+            Some(BodyForces {
+                displacement: &r.displacement,
+                load: body.applied_load(),
+                contact: nodal_contact_force(model, b, &contact),
+            })
+        })
+        .collect();
+    let balance = balance(model, &fields, &*prepared.exchange);
     let t_post = t.elapsed().as_secs_f64();
     let mut timing: std::collections::BTreeMap<String, f64> =
         prepared.timing.iter().cloned().collect();
@@ -96,6 +108,9 @@ pub fn solve_from(
             residual: worst,
             limit: settings.equilibrium_tol,
         },
+        Stop::Converged => {
+            unbalanced(&balance, settings.balance_limit()).unwrap_or(Stop::Converged)
+        }
         stop => stop,
     };
     Ok(Solution {
@@ -112,6 +127,7 @@ pub fn solve_from(
         bodies,
         contact,
         equilibrium,
+        balance,
         updates,
         gap_tol,
         tol: settings.tol,
@@ -121,6 +137,27 @@ pub fn solve_from(
         friction_state,
         condensation: prepared.paths.clone(),
         timing,
+    })
+}
+
+/// The verdict of the independent balance check: the worst body, if one is out of balance by more
+/// than `limit` (a NaN imbalance counts as the worst).
+fn unbalanced(balance: &[BodyBalance], limit: f64) -> Option<Stop> {
+    let (body, worst) = balance.iter().enumerate().max_by(|(_, a), (_, b)| {
+        let key = |x: &BodyBalance| {
+            if x.imbalance.is_nan() {
+                f64::INFINITY
+            } else {
+                x.imbalance
+            }
+        };
+        key(a).total_cmp(&key(b))
+    })?;
+    (worst.imbalance.is_nan() || worst.imbalance > limit).then_some(Stop::Unbalanced {
+        body,
+        imbalance: worst.imbalance,
+        floor: worst.floor,
+        limit,
     })
 }
 

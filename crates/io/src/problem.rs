@@ -458,6 +458,11 @@ pub struct SolverSpec {
     /// (default 1e-2).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub equilibrium_tol: Option<f64>,
+    /// Largest net force and moment of a body of a converged result (applied loads, contact
+    /// forces and support reactions), relative to the largest force total of a body (default
+    /// 1e-6 under the interface Newton method, `equilibrium-tol` under the Robin sweeps).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub balance_tol: Option<f64>,
     /// Iteration cap ≥ 1 (default 500).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub max_iter: Option<usize>,

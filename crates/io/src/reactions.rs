@@ -9,7 +9,7 @@
 
 use contactdd_core::post::residual;
 use contactdd_core::{dof, Constraints, Vector, DIM};
-use contactdd_ddm::solution::{BodyResult, PairResult};
+use contactdd_ddm::solution::{nodal_contact_force, BodyResult, PairResult};
 use contactdd_ddm::Model;
 
 /// The reaction on one supported boundary (or Gmsh node set) of a body.
@@ -187,23 +187,4 @@ fn split(
         }
         _ => vec![(s1, r)],
     }
-}
-
-/// The nodal contact forces of the result on body `b` (2 per node; w σ_n n for an own-side
-/// pair).
-fn nodal_contact_force(model: &Model, b: usize, contact: &[PairResult]) -> Vec<f64> {
-    let mut f = vec![0.0; model.bodies[b].load.len()];
-    for (pair, p) in model.pairs.iter().zip(contact) {
-        if !pair.bodies.contains(&b) {
-            continue;
-        }
-        for i in (0..p.side.len()).filter(|&i| pair.bodies[p.side[i]] == b) {
-            // A point without a partner has no force (NaN-free by construction, but be safe).
-            if p.fx[i].is_finite() && p.fy[i].is_finite() {
-                f[dof(p.node[i], 0)] += p.fx[i];
-                f[dof(p.node[i], 1)] += p.fy[i];
-            }
-        }
-    }
-    f
 }

@@ -29,6 +29,9 @@ pub fn settings(spec: &SolverSpec, base: &Settings) -> Result<Settings, SetupErr
     if let Some(tol) = spec.tol {
         s.tol = tol;
     }
+    if let Some(b) = spec.balance_tol {
+        s.balance_tol = Some(b);
+    }
     if let Some(e) = spec.equilibrium_tol {
         s.equilibrium_tol = e;
     }

@@ -114,6 +114,7 @@ pub fn summary_json_with(model: &Model, sol: &Solution, reactions: &[BodyReactio
         "theta": json_numbers(&sol.theta),
         "message": sol.message,
         "equilibrium": json_numbers(&sol.equilibrium),
+        "balance": sol.balance.iter().map(|b| json!({"imbalance": json_number(b.imbalance), "floor": json_number(b.floor)})).collect::<Vec<_>>(),
         "accelerator": sol.accelerator.to_string(),
         "coarse": sol.coarse.to_string(),
         "history": history,
@@ -173,6 +174,7 @@ pub fn stop_name(stop: &Stop) -> &'static str {
         Stop::Diverged { .. } => "diverged",
         Stop::Interrupted => "interrupted",
         Stop::Stalled { .. } => "stalled",
+        Stop::Unbalanced { .. } => "unbalanced",
         Stop::Unenforced { .. } => "unenforced",
     }
 }

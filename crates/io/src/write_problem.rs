@@ -32,6 +32,7 @@ pub fn solver_spec(settings: &Settings, threads: Option<usize>, keep: &SolverSpe
         }),
         tol: Some(settings.tol),
         equilibrium_tol: Some(settings.equilibrium_tol),
+        balance_tol: settings.balance_tol,
         max_iter: Some(settings.max_iter),
         gap_tol: settings.gap_tol,
         max_updates: Some(settings.max_updates),

@@ -95,6 +95,7 @@ class _SettingsDict(TypedDict):
     accelerator: str
     coarse: str
     equilibrium_tol: float
+    balance_tol: Optional[float]
     gap_tol: Optional[float]
     max_updates: int
     load_steps: Optional[Union[int, list[float]]]
@@ -205,6 +206,7 @@ class Problem:
         accelerator: Optional[_AcceleratorName] = None,
         coarse: Optional[_CoarseName] = None,
         equilibrium_tol: Optional[float] = None,
+        balance_tol: Optional[float] = None,
         gap_tol: Optional[float] = None,
         max_updates: Optional[int] = None,
         load_steps: Optional[_LoadSteps] = None,
@@ -416,6 +418,7 @@ def solve(
     gap_tol: Optional[float] = None,
     progress: Optional[Callable[[dict[str, Any]], object]] = None,
     equilibrium_tol: Optional[float] = None,
+    balance_tol: Optional[float] = None,
     max_updates: Optional[int] = None,
     condensation: Optional[_CondensationName] = None,
     monitor: Optional[_Monitor] = None,
@@ -442,6 +445,7 @@ def solve_steps(
     u0: Optional[float] = None,
     u_prev: Optional[float] = None,
     equilibrium_tol: Optional[float] = None,
+    balance_tol: Optional[float] = None,
     max_updates: Optional[int] = None,
     condensation: Optional[_CondensationName] = None,
     monitor: Optional[_Monitor] = None,
