@@ -5,6 +5,7 @@
 use std::path::{Path, PathBuf};
 
 use anyhow::{anyhow, bail, Context, Result};
+use contactdd_io::result_set::read_result_file;
 use serde_json::Value;
 
 /// A CSV table: the header and the rows, each as text fields.
@@ -18,10 +19,10 @@ pub struct Table {
 }
 
 impl Table {
-    /// Reads a CSV file (RFC 4180 quoting, the `csv` crate's reader).
+    /// Reads a CSV file (RFC 4180 quoting, the `csv` crate's reader) by [`read_text`], at most
+    /// [`TEXT_LIMIT`] bytes.
     pub fn read(path: &Path) -> Result<Table> {
-        let text = std::fs::read_to_string(path)
-            .with_context(|| format!("cannot read '{}'", path.display()))?;
+        let text = read_text(path, TEXT_LIMIT)?;
         let mut reader = csv::ReaderBuilder::new()
             .has_headers(false)
             .flexible(true)
@@ -107,50 +108,61 @@ pub struct Summary {
 }
 
 impl Summary {
-    /// Reads `dir/summary.json`; a folder without it holds no complete result.
+    /// Reads `dir/summary.json` (a folder without it holds no complete result), checking the type
+    /// of every key it uses: a summary that is not a JSON object, has no `files` list, or holds a
+    /// key of another type (`"contact": "x"`) is an error naming the file and the key.
     pub fn read(dir: &Path) -> Result<Summary> {
         let path = dir.join("summary.json");
-        if !path.is_file() {
-            bail!(
+        let text = match read_text(&path, TEXT_LIMIT) {
+            Err(e) if is_not_found(&e) => bail!(
                 "'{}' has no summary.json: not a complete result folder (see docs/outputs.md)",
                 dir.display()
-            );
-        }
-        let text = std::fs::read_to_string(&path)
-            .with_context(|| format!("cannot read '{}'", path.display()))?;
+            ),
+            other => other?,
+        };
         let json: Value = serde_json::from_str(&text)
             .with_context(|| format!("'{}' is not valid JSON", path.display()))?;
-        let strings = |v: &Value| -> Vec<String> {
-            v.as_array()
-                .map(|a| a.iter().filter_map(|f| f.as_str().map(String::from)))
-                .map(Iterator::collect)
-                .unwrap_or_default()
+        let Some(object) = json.as_object() else {
+            bail!(
+                "'{}' is {}, not a JSON object: not a summary written by contactdd \
+                 (see docs/outputs.md)",
+                path.display(),
+                kind(&json)
+            );
         };
-        let bodies = json["bodies"].as_array().map(|a| {
-            a.iter()
-                .filter_map(|b| b["name"].as_str().map(String::from))
-                .collect()
-        });
-        let monitor = &json["monitor"];
-        let monitor = match (monitor["body"].as_str(), monitor["boundary"].as_str()) {
-            (Some(body), Some(boundary)) => Some(monitor_name(body, boundary)),
-            _ => None,
+        let keys = Keys {
+            path: &path,
+            object,
         };
-        let friction = json["contact"].as_array().map(|pairs| {
-            pairs
-                .iter()
-                .filter_map(|p| Some((p["name"].as_str()?.to_string(), p.get("friction")?.clone())))
-                .collect()
-        });
+        if keys.get("files").is_none() {
+            bail!(
+                "'{}' has no file list ('files'): not a result folder of contactdd \
+                 (see docs/outputs.md)",
+                path.display()
+            );
+        }
+        let files = keys.items("files", "a file name", |_, v| Some(v.as_str()?.to_string()))?;
+        let name = |k: &Keys, v: &Value| -> Option<String> {
+            let o = v.as_object()?;
+            k.with(o).string("name").ok()?
+        };
+        let bodies = keys.items("bodies", "a body with a \"name\"", name)?;
+        let friction = keys.items("contact", "a pair with a \"name\"", |k, p| {
+            Some((name(k, p)?, p.get("friction").cloned()))
+        })?;
+        let friction = friction
+            .into_iter()
+            .filter_map(|(pair, law)| Some((pair, law?)))
+            .collect();
         Ok(Summary {
-            tol: json["tol"].as_f64(),
-            stop_measure: json["stop_measure"].as_str().map(String::from),
-            units: json["units"].as_str().map(String::from),
-            files: strings(&json["files"]),
-            bodies: bodies.unwrap_or_default(),
-            steps: json["steps"].as_array().map_or(0, Vec::len),
-            monitor,
-            friction: friction.unwrap_or_default(),
+            tol: keys.number("tol")?,
+            stop_measure: keys.string("stop_measure")?,
+            units: keys.string("units")?,
+            files,
+            bodies,
+            steps: keys.items("steps", "a load step", |_, _| Some(()))?.len(),
+            monitor: keys.monitor()?,
+            friction,
         })
     }
 
@@ -181,20 +193,141 @@ fn plain(name: &str) -> bool {
     ) && !name.contains(['/', '\\'])
 }
 
-/// `dir/name` for a file of the result set, checked to be a regular file (after links): a
-/// device, FIFO or folder under a listed name is refused rather than read (reading `/dev/zero`
-/// never ends, a FIFO may block).
-pub fn listed_file(dir: &Path, name: &str) -> Result<PathBuf> {
-    let path = dir.join(name);
-    let meta =
-        std::fs::metadata(&path).with_context(|| format!("cannot read '{}'", path.display()))?;
-    if !meta.is_file() {
-        bail!(
-            "'{}' is not a regular file; refusing to read it",
-            path.display()
-        );
+/// The largest CSV or JSON file `plot` reads: 256 MiB, hundreds of times the files of the
+/// largest shipped example (a file near it would also make a figure of no use).
+pub const TEXT_LIMIT: u64 = 256 << 20;
+
+/// The largest VTU file `plot` reads: 1 GiB (about 40 million ASCII numbers, meshes of several
+/// million nodes).
+pub const VTU_LIMIT: u64 = 1 << 30;
+
+/// The text of `path`, a file of a result folder (or a sweep's CSV), read by
+/// [`read_result_file`]: a regular file itself (no symbolic link is followed, no FIFO or device
+/// opened) of at most `limit` bytes, in UTF-8.
+pub fn read_text(path: &Path, limit: u64) -> Result<String> {
+    let bytes = read_result_file(path, limit)?;
+    String::from_utf8(bytes).map_err(|e| {
+        anyhow!(
+            "'{}' is not UTF-8 text (byte {})",
+            path.display(),
+            e.utf8_error().valid_up_to()
+        )
+    })
+}
+
+/// True if `e` is an I/O error "not found".
+fn is_not_found(e: &anyhow::Error) -> bool {
+    e.downcast_ref::<std::io::Error>()
+        .is_some_and(|e| e.kind() == std::io::ErrorKind::NotFound)
+}
+
+/// What a JSON value is, for messages: "a string", "an array", ….
+fn kind(v: &Value) -> &'static str {
+    match v {
+        Value::Null => "null",
+        Value::Bool(_) => "a boolean",
+        Value::Number(_) => "a number",
+        Value::String(_) => "a string",
+        Value::Array(_) => "an array",
+        Value::Object(_) => "an object",
     }
-    Ok(path)
+}
+
+/// The keys of a JSON object of `path`, read with their types checked. A missing key and `null`
+/// (how the summary writes a value it does not have) are both "absent".
+struct Keys<'a> {
+    path: &'a Path,
+    object: &'a serde_json::Map<String, Value>,
+}
+
+impl<'a> Keys<'a> {
+    /// The same file, another object in it.
+    fn with<'b>(&self, object: &'b serde_json::Map<String, Value>) -> Keys<'b>
+    where
+        'a: 'b,
+    {
+        Keys {
+            path: self.path,
+            object,
+        }
+    }
+
+    /// The value of `key`, `None` when absent or `null`.
+    fn get(&self, key: &str) -> Option<&'a Value> {
+        self.object.get(key).filter(|v| !v.is_null())
+    }
+
+    /// The error of `key` holding `v` where `expected` belongs.
+    fn wrong(&self, key: &str, v: &Value, expected: &str) -> anyhow::Error {
+        anyhow!(
+            "'{}': \"{key}\" is {}, expected {expected}",
+            self.path.display(),
+            kind(v)
+        )
+    }
+
+    /// The number `key`, if present.
+    fn number(&self, key: &str) -> Result<Option<f64>> {
+        self.get(key)
+            .map(|v| v.as_f64().ok_or_else(|| self.wrong(key, v, "a number")))
+            .transpose()
+    }
+
+    /// The string `key`, if present.
+    fn string(&self, key: &str) -> Result<Option<String>> {
+        self.get(key)
+            .map(|v| {
+                v.as_str()
+                    .map(String::from)
+                    .ok_or_else(|| self.wrong(key, v, "a string"))
+            })
+            .transpose()
+    }
+
+    /// The items of the array `key` (empty if absent), each read by `item`; `None` from it is
+    /// an error saying the item is not `what`.
+    fn items<T>(
+        &self,
+        key: &str,
+        what: &str,
+        item: impl Fn(&Keys<'a>, &'a Value) -> Option<T>,
+    ) -> Result<Vec<T>> {
+        let Some(value) = self.get(key) else {
+            return Ok(Vec::new());
+        };
+        let array = value
+            .as_array()
+            .ok_or_else(|| self.wrong(key, value, &format!("an array, each item {what}")))?;
+        let at = |i: usize, v: &Value| {
+            anyhow!(
+                "'{}': \"{key}\" item {} is {}, expected {what}",
+                self.path.display(),
+                i + 1,
+                kind(v)
+            )
+        };
+        array
+            .iter()
+            .enumerate()
+            .map(|(i, v)| item(self, v).ok_or_else(|| at(i, v)))
+            .collect()
+    }
+
+    /// The monitored boundary `monitor: {"body", "boundary"}`, if present.
+    fn monitor(&self) -> Result<Option<String>> {
+        let Some(value) = self.get("monitor") else {
+            return Ok(None);
+        };
+        let expected = "an object with \"body\" and \"boundary\"";
+        let object = value
+            .as_object()
+            .ok_or_else(|| self.wrong("monitor", value, expected))?;
+        let keys = self.with(object);
+        match (keys.string("body")?, keys.string("boundary")?) {
+            (Some(body), Some(boundary)) => Ok(Some(monitor_name(&body, &boundary))),
+            _ => Err(self.wrong("monitor", value, expected)),
+        }
+    }
 }
 
 /// The axis units taken from a units note such as `"cm, N/cm^2"`.

@@ -6,12 +6,12 @@
 use std::ops::Range;
 use std::path::{Path, PathBuf};
 
-use anyhow::{anyhow, Context, Result};
+use anyhow::{anyhow, Result};
 use plotters::coord::Shift;
 use plotters::prelude::*;
 
 use crate::args::Format;
-use crate::plot_data::{listed_file, Units};
+use crate::plot_data::{read_text, Units, VTU_LIMIT};
 use crate::plot_draw::{linear, ok, render, span, tick, Figure, Frame};
 
 /// Pixels right of the chart for the colour bar.
@@ -41,7 +41,7 @@ pub fn figures(
     }
     let mut bodies = Vec::new();
     for name in &names {
-        match read_body(&listed_file(dir, name)?)? {
+        match read_body(&dir.join(name))? {
             Some(body) => bodies.push(body),
             None => {
                 // Not an error of the folder: a field holding NaN (the iterate of a failed solve)
@@ -111,8 +111,7 @@ fn array(text: &str, path: &Path, after: &str, key: &str) -> Result<Option<Vec<f
 
 /// A body's mesh and stress, or `None` when an array it needs is binary.
 fn read_body(path: &Path) -> Result<Option<Body>> {
-    let text = std::fs::read_to_string(path)
-        .with_context(|| format!("cannot read '{}'", path.display()))?;
+    let text = read_text(path, VTU_LIMIT)?;
     let arrays = [
         ("<Points>", "NumberOfComponents=\"3\""),
         ("<PointData", "Name=\"displacement\""),

@@ -143,6 +143,71 @@ pub fn write_set(
     }
 }
 
+/// Reads the file `path` of a result folder, which a reader must treat as untrusted: `path` must
+/// itself be a regular file (a symbolic link, a FIFO, a device, a socket or a folder is an
+/// [`ErrorKind::InvalidInput`] error, checked before opening, so nothing is followed and no open
+/// waits for a writer), and a file of more than `limit` bytes is an [`ErrorKind::InvalidData`]
+/// error (at most `limit + 1` bytes are ever read, even of a file that grows). On Unix the opened
+/// file must be the one checked (same device and inode). Every error message names `path`.
+pub fn read_result_file(path: &Path, limit: u64) -> std::io::Result<Vec<u8>> {
+    use std::io::Read as _;
+    let cannot = |e: Error| Error::new(e.kind(), format!("cannot read '{}': {e}", path.display()));
+    let meta = std::fs::symlink_metadata(path).map_err(cannot)?;
+    let refuse = |what: &str| {
+        Error::new(
+            ErrorKind::InvalidInput,
+            format!(
+                "'{}' is {what}, not a regular file; refusing to read it",
+                path.display()
+            ),
+        )
+    };
+    let kind = meta.file_type();
+    if kind.is_symlink() {
+        return Err(refuse("a symbolic link"));
+    }
+    if kind.is_dir() {
+        return Err(refuse("a folder"));
+    }
+    if !kind.is_file() {
+        return Err(refuse("a special file (FIFO, device or socket)"));
+    }
+    let too_large = || {
+        Error::new(
+            ErrorKind::InvalidData,
+            format!(
+                "'{}' is larger than {limit} bytes, the limit for this kind of result file; \
+                 refusing to read it",
+                path.display()
+            ),
+        )
+    };
+    if meta.len() > limit {
+        return Err(too_large());
+    }
+    let file = std::fs::File::open(path).map_err(cannot)?;
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::MetadataExt as _;
+        let opened = file.metadata().map_err(cannot)?;
+        if (opened.dev(), opened.ino()) != (meta.dev(), meta.ino()) || !opened.is_file() {
+            let msg = format!(
+                "'{}' changed while being opened; refusing to read it",
+                path.display()
+            );
+            return Err(Error::new(ErrorKind::InvalidInput, msg));
+        }
+    }
+    let mut bytes = Vec::new();
+    file.take(limit.saturating_add(1))
+        .read_to_end(&mut bytes)
+        .map_err(cannot)?;
+    if bytes.len() as u64 > limit {
+        return Err(too_large());
+    }
+    Ok(bytes)
+}
+
 /// The file names the manifest of an existing `summary.json` lists: plain names with one of our
 /// extensions only (never a path elsewhere). Empty when there is no readable manifest.
 fn previous_manifest(summary: &Path) -> Vec<String> {
@@ -204,5 +269,30 @@ mod tests {
         ] {
             assert!(!is_plain_result_name(bad), "{bad}");
         }
+    }
+
+    #[cfg(unix)]
+    #[test]
+    fn result_files_are_read_only_as_bounded_regular_files() {
+        let dir = std::env::temp_dir().join(format!("contactdd-readres-{}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&dir);
+        std::fs::create_dir_all(&dir).unwrap();
+        let file = dir.join("a.csv");
+        std::fs::write(&file, b"12345").unwrap();
+        assert_eq!(read_result_file(&file, 5).unwrap(), b"12345");
+        let err = read_result_file(&file, 4).unwrap_err();
+        assert_eq!(err.kind(), ErrorKind::InvalidData);
+        let link = dir.join("b.csv");
+        std::os::unix::fs::symlink(&file, &link).unwrap();
+        let err = read_result_file(&link, 5).unwrap_err();
+        assert!(err.to_string().contains("symbolic link"), "{err}");
+        let err = read_result_file(&dir, 5).unwrap_err();
+        assert!(err.to_string().contains("folder"), "{err}");
+        let err = read_result_file(Path::new("/dev/null"), 5).unwrap_err();
+        assert!(err.to_string().contains("special file"), "{err}");
+        let err = read_result_file(&dir.join("missing.csv"), 5).unwrap_err();
+        assert_eq!(err.kind(), ErrorKind::NotFound);
+        assert!(err.to_string().contains("missing.csv"), "{err}");
+        std::fs::remove_dir_all(&dir).unwrap();
     }
 }
