@@ -577,3 +577,22 @@ fn a_repeated_triangle_is_refused() {
     }
     assert!(parse_msh(&text).is_ok());
 }
+
+/// A triangle on the same three points as another, through a copy of one of its nodes (node 31
+/// at node 1's position), is refused too, naming both element tags.
+#[test]
+fn a_triangle_repeated_on_copied_nodes_is_refused() {
+    let text = square_text()
+        .replace("10 10 1 30\n", "10 11 1 31\n")
+        .replace("2 1 0 1\n20\n0.5 0.5 0\n", "2 1 0 2\n20\n31\n0.5 0.5 0\n0 0 0\n");
+    assert!(parse_msh(&text).is_ok(), "the copied node alone is harmless");
+    // Element 11 (1 20 8) becomes 31 5 20: element 10 (1 5 20) again.
+    let i = line_index(&text, "11 1 20 8");
+    let repeated = replace_line(&text, i, "11 31 5 20");
+    assert_eq!(parse_error_line(parse_msh(&repeated)), i + 1);
+    let message = parse_msh(&repeated).unwrap_err().to_string();
+    assert!(
+        message.contains("triangles 10 (line") && message.contains("and 11 have the same"),
+        "{message}"
+    );
+}

@@ -28,6 +28,8 @@ pub(super) enum Kind {
 pub(super) struct RawElement {
     /// 1-based line of the element in the file.
     pub(super) line: usize,
+    /// The element's tag (its number in the file).
+    pub(super) tag: u64,
     pub(super) kind: Kind,
     /// Node tags.
     pub(super) nodes: Vec<u64>,
@@ -334,10 +336,11 @@ impl RawMsh {
                 ));
             }
             for _ in 0..count {
-                let (line, _) = tokens.parse_at::<u64>("an element tag")?;
+                let (line, tag) = tokens.parse_at::<u64>("an element tag")?;
                 let nodes = Self::read_element_nodes(tokens, len)?;
                 self.elements.push(RawElement {
                     line,
+                    tag,
                     kind,
                     nodes,
                     entity: Some((dim, entity)),
@@ -358,7 +361,7 @@ impl RawMsh {
     fn read_elements_v2(&mut self, tokens: &mut Tokens<'_>) -> Result<(), GmshError> {
         let count = tokens.usize("the number of elements")?;
         for _ in 0..count {
-            let (line, _) = tokens.parse_at::<u64>("an element tag")?;
+            let (line, tag) = tokens.parse_at::<u64>("an element tag")?;
             let (kind, len) = element_kind(tokens.usize("an element type")?, line)?;
             let num_tags = tokens.usize("the number of element tags")?;
             let mut physical = None;
@@ -371,6 +374,7 @@ impl RawMsh {
             let nodes = Self::read_element_nodes(tokens, len)?;
             self.elements.push(RawElement {
                 line,
+                tag,
                 kind,
                 nodes,
                 entity: None,
