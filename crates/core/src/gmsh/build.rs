@@ -6,6 +6,7 @@ use std::collections::{BTreeMap, BTreeSet, HashMap};
 use crate::error::{GmshError, MeshError};
 use crate::geometry::{Point, DIM};
 use crate::mesh::{counter_clockwise, dist, Edge, Mesh, Order};
+use crate::names::{listed, shown};
 
 use super::raw::{kind_dim, Kind, RawElement, RawMsh};
 
@@ -58,13 +59,17 @@ impl RawMsh {
         let listed = if names.is_empty() {
             "the file has no physical surface".to_string()
         } else {
-            format!("physical surfaces: {}", names.join(", "))
+            format!(
+                "physical surfaces: {}",
+                listed(names.iter().map(String::as_str)).join(", ")
+            )
         };
         match surface {
             Some(name) => match tags.iter().find(|&&t| self.group_name(2, t) == name) {
                 Some(&tag) => Ok(Some(tag)),
                 None => Err(GmshError::Surface(format!(
-                    "no physical surface named '{name}' ({listed})"
+                    "no physical surface named '{}' ({listed})",
+                    shown(name)
                 ))),
             },
             None if tags.len() > 1 => Err(GmshError::Surface(format!(
