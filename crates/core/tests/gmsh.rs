@@ -617,7 +617,10 @@ fn hostile_physical_names_are_refused_and_shown_safely() {
         assert_eq!(parse_error_line(parse_msh(&bad)), i + 1);
         let message = parse_msh(&bad).unwrap_err().to_string();
         assert!(message.contains(shown), "{message}");
-        assert!(message.len() < 400 && !message.contains('\u{1b}'), "{message}");
+        assert!(
+            message.len() < 400 && !message.contains('\u{1b}'),
+            "{message}"
+        );
     }
     // A long unknown token is cut too.
     let junk = replace_line(&text, 0, &"$".repeat(1 << 20));

@@ -32,6 +32,7 @@ pub mod history;
 pub mod load_steps;
 pub mod meshes;
 pub mod model_builder;
+pub mod names;
 pub mod nearest_segment;
 pub mod number;
 pub mod output;

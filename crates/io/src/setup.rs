@@ -42,6 +42,7 @@ use crate::distributed_setup::{add_bodies, agreed};
 use crate::error::{no_bodies, LoadError};
 use crate::history::history;
 use crate::load_steps::{load_steps, monitor};
+use crate::names::check_problem_names;
 use crate::problem::Problem;
 use crate::solver_settings::starting_values;
 
@@ -158,6 +159,8 @@ fn resolve_named(
     default_name: &str,
     exchange: Option<&dyn Exchange>,
 ) -> Result<Loaded, LoadError> {
+    // Every name first, so that no later message echoes a hostile one.
+    check_problem_names(&problem)?;
     let settings = settings(&problem.solver, &Settings::default())?;
     // Checked before the materials and bodies so that an empty file gets this message first.
     if problem.bodies.is_empty() {
