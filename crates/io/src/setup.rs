@@ -72,6 +72,25 @@ pub struct Loaded {
     pub history: Option<LoadHistory>,
 }
 
+impl Loaded {
+    /// The warning for a `[solver] monitor` that a command-line run would ignore: without
+    /// `load-steps` and without a `[[steps]]` history there are no steps to report it in (Python's
+    /// `contactdd.solve` reports it as `Result.monitor`, so it is not an error). `None` when
+    /// there is no monitor or some steps report it.
+    pub fn unreported_monitor(&self) -> Option<String> {
+        let m = self.problem.solver.monitor.as_ref()?;
+        if self.steps.is_some() || self.history.is_some() {
+            return None;
+        }
+        Some(format!(
+            "[solver] monitor: '{}' of body '{}' is reported only by load steps (`load-steps`) \
+             or a [[steps]] load history, and this problem has neither: it is ignored",
+            contactdd_core::names::shown(&m.boundary),
+            contactdd_core::names::shown(&m.body)
+        ))
+    }
+}
+
 /// Reads, parses and resolves a TOML problem file. Relative mesh paths resolve against the file's
 /// folder; the default problem name is the file stem.
 pub fn load_file(path: &Path) -> Result<Loaded, LoadError> {
