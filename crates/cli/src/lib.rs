@@ -151,9 +151,19 @@ where
     }
 }
 
-/// Loads a problem file; the setup error's message already names the file, body and key.
+/// Loads a problem file; the setup error's message already names the file, body and key. A
+/// `monitor` that no step would report is warned about on stderr.
 fn load(path: &std::path::Path) -> Result<contactdd_io::Loaded> {
     // `to_string` rather than `?`: the message already contains the cause, so a `{:#}` chain
     // would repeat it.
-    contactdd_io::load_file(path).map_err(|e| anyhow::anyhow!("{e}"))
+    let loaded = contactdd_io::load_file(path).map_err(|e| anyhow::anyhow!("{e}"))?;
+    warn_loaded(path, &loaded);
+    Ok(loaded)
+}
+
+/// Prints the warnings of a loaded problem file on stderr (a `monitor` that no step reports).
+fn warn_loaded(path: &std::path::Path, loaded: &contactdd_io::Loaded) {
+    if let Some(warning) = loaded.unreported_monitor() {
+        eprintln!("warning: {}: {warning}", path.display());
+    }
 }

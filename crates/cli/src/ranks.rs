@@ -47,9 +47,13 @@ impl Ranks {
                     size: mpi.size(),
                     mpi: Some(mpi),
                 };
+                if ranks.is_root() {
+                    crate::warn_loaded(path, &loaded);
+                }
                 return Ok((loaded, ranks));
             }
             let loaded = file.resolve().map_err(|e| anyhow::anyhow!("{e}"))?;
+            crate::warn_loaded(path, &loaded);
             let ranks = Ranks::alone(&loaded.model);
             Ok((loaded, ranks))
         }

@@ -110,3 +110,31 @@ fn bad_load_steps_are_refused() {
     }
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+/// A `monitor` without `load-steps` or `[[steps]]` has no step to be reported in: `check` warns
+/// (and goes on), with load steps it does not.
+#[test]
+fn a_monitor_without_steps_is_warned_about() {
+    let dir = temp("monitor-alone");
+    let check = |solver: &str| {
+        let file = notch_with(&dir, solver);
+        Command::new(env!("CARGO_BIN_EXE_contactdd"))
+            .arg("check")
+            .arg(&file)
+            .output()
+            .expect("contactdd runs")
+    };
+    let alone = check("monitor = { body = \"upper\", boundary = \"top\" }");
+    let stderr = String::from_utf8_lossy(&alone.stderr);
+    assert!(alone.status.success(), "{stderr}");
+    assert!(
+        stderr.contains("warning: ") && stderr.contains("[solver] monitor: 'top' of body 'upper'"),
+        "{stderr}"
+    );
+    let stepped = check("load-steps = 2\nmonitor = { body = \"upper\", boundary = \"top\" }");
+    let stderr = String::from_utf8_lossy(&stepped.stderr);
+    assert!(
+        stepped.status.success() && !stderr.contains("monitor"),
+        "{stderr}"
+    );
+}

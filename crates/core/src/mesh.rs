@@ -10,6 +10,7 @@ use std::collections::{BTreeMap, HashMap};
 
 use crate::error::MeshError;
 use crate::geometry::{Point, Vector, DIM};
+use crate::names::{listed, shown};
 
 /// Polynomial order of the Lagrange triangle.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, serde::Serialize, serde::Deserialize)]
@@ -121,7 +122,7 @@ impl Mesh {
         for (name, set) in &mesh.node_sets {
             if let Some(&node) = set.iter().find(|&&v| v >= n) {
                 return Err(MeshError::NodeSetOutOfRange {
-                    set: name.clone(),
+                    set: shown(name),
                     node,
                 });
             }
@@ -186,7 +187,7 @@ impl Mesh {
                     Some([one]) => *one,
                     _ => {
                         return Err(MeshError::NotABoundaryEdge {
-                            boundary: name.clone(),
+                            boundary: shown(&name),
                             a: edge.a,
                             b: edge.b,
                         })
@@ -257,8 +258,8 @@ impl Mesh {
             .get(name)
             .map(Vec::as_slice)
             .ok_or_else(|| MeshError::NoSuchBoundary {
-                name: name.to_string(),
-                known: self.boundaries.keys().cloned().collect(),
+                name: shown(name),
+                known: listed(self.boundaries.keys().map(String::as_str)),
             })
     }
 
@@ -269,13 +270,12 @@ impl Mesh {
             (None, Some(set)) => set.clone(),
             (None, None) => {
                 return Err(MeshError::NoSuchBoundary {
-                    name: name.to_string(),
-                    known: self
-                        .boundaries
-                        .keys()
-                        .chain(self.node_sets.keys())
-                        .cloned()
-                        .collect(),
+                    name: shown(name),
+                    known: listed(
+                        (self.boundaries.keys())
+                            .chain(self.node_sets.keys())
+                            .map(String::as_str),
+                    ),
                 })
             }
         };
@@ -404,7 +404,7 @@ impl Mesh {
         for (name, edges) in &boundaries {
             if let Some(e) = edges.iter().find(|e| e.nodes().any(|v| v >= nodes.len())) {
                 return Err(MeshError::NotABoundaryEdge {
-                    boundary: name.clone(),
+                    boundary: shown(name),
                     a: e.a,
                     b: e.b,
                 });

@@ -577,3 +577,53 @@ fn a_repeated_triangle_is_refused() {
     }
     assert!(parse_msh(&text).is_ok());
 }
+
+/// A triangle on the same three points as another, through a copy of one of its nodes (node 31
+/// at node 1's position), is refused too, naming both element tags.
+#[test]
+fn a_triangle_repeated_on_copied_nodes_is_refused() {
+    let text = square_text()
+        .replace("10 10 1 30\n", "10 11 1 31\n")
+        .replace(
+            "2 1 0 1\n20\n0.5 0.5 0\n",
+            "2 1 0 2\n20\n31\n0.5 0.5 0\n0 0 0\n",
+        );
+    assert!(
+        parse_msh(&text).is_ok(),
+        "the copied node alone is harmless"
+    );
+    // Element 11 (1 20 8) becomes 31 5 20: element 10 (1 5 20) again.
+    let i = line_index(&text, "11 1 20 8");
+    let repeated = replace_line(&text, i, "11 31 5 20");
+    assert_eq!(parse_error_line(parse_msh(&repeated)), i + 1);
+    let message = parse_msh(&repeated).unwrap_err().to_string();
+    assert!(
+        message.contains("triangles 10 (line") && message.contains("and 11 have the same"),
+        "{message}"
+    );
+}
+
+/// A physical name with a terminal escape, or of a megabyte, is refused with the name escaped and
+/// cut in the message.
+#[test]
+fn hostile_physical_names_are_refused_and_shown_safely() {
+    let text = square_text();
+    let i = line_index(&text, "1 1 \"left\"");
+    for (name, shown) in [
+        ("le\u{1b}[2Jft".to_string(), "le\\u{1b}[2Jft"),
+        ("x".repeat(1 << 20), "bytes)"),
+    ] {
+        let bad = replace_line(&text, i, &format!("1 1 \"{name}\""));
+        assert_eq!(parse_error_line(parse_msh(&bad)), i + 1);
+        let message = parse_msh(&bad).unwrap_err().to_string();
+        assert!(message.contains(shown), "{message}");
+        assert!(
+            message.len() < 400 && !message.contains('\u{1b}'),
+            "{message}"
+        );
+    }
+    // A long unknown token is cut too.
+    let junk = replace_line(&text, 0, &"$".repeat(1 << 20));
+    let message = parse_msh(&junk).unwrap_err().to_string();
+    assert!(message.len() < 400, "{} bytes", message.len());
+}

@@ -1,6 +1,7 @@
 //! The checks of single bodies: a material, a body's name, its supports and loads on a built
 //! mesh, and whether every body of a model is held.
 
+use contactdd_core::names::shown;
 use contactdd_core::{BodyError, Constraints, ElasticBody, Load, Material, Mesh, Plane};
 use contactdd_ddm::{Model, SetupError};
 
@@ -13,7 +14,7 @@ use crate::problem::{LoadSpec, SupportSpec};
 /// A `[materials.NAME]` table → a validated material (errors name the material and the key).
 pub fn material(name: &str, young: f64, poisson: f64) -> Result<Material, SetupError> {
     Material::new(young, poisson).map_err(|source| SetupError::MaterialValue {
-        material: name.to_string(),
+        material: shown(name),
         source,
     })
 }
@@ -58,7 +59,7 @@ pub fn check_floating(model: &Model) -> Result<(), SetupError> {
         }
         if !body.constraints.any() {
             return Err(SetupError::Floating {
-                body: body.name.clone(),
+                body: shown(&body.name),
             });
         }
         // Without contact the supports alone must hold the body.
@@ -96,7 +97,7 @@ pub fn body_on_mesh(
         constraints
             .fix(&mesh, &s.boundary, s.component, s.value)
             .map_err(|source| SetupError::Support {
-                body: name.to_string(),
+                body: shown(name),
                 key: format!("supports[{i}]"),
                 source,
             })?;

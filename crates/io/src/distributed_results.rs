@@ -21,7 +21,7 @@ use crate::csv_tables::{contact_csv, history_csv};
 use crate::load_steps::Monitor;
 use crate::packed::{pack_reactions, unpack_reactions};
 use crate::reactions::{body_reactions, BodyReactions};
-use crate::result_set::ResultSet;
+use crate::result_set::{staging_dir, ResultSet};
 use crate::steps::{monitored_displacement, pvd, steps_csv, steps_json, HistoryLabels};
 use crate::summary::summary_json_with;
 
@@ -173,10 +173,12 @@ fn write_shared(
     };
     agreed(part, begun.as_ref().err())?;
     let set = begun?;
+    // Every process writes into the set's staging folder, which the root created.
+    let staging = staging_dir(dir);
     let mut own = Vec::new();
     let written = contents.vtus.iter().try_for_each(|(_, suffix, sol)| {
         write_solution_vtus_of(
-            dir,
+            &staging,
             model,
             &sol.bodies,
             &sol.contact,
@@ -193,7 +195,11 @@ fn write_shared(
         return Err(e);
     }
     let Some(mut set) = set else {
-        return Ok(own);
+        // Where the root's swap puts them.
+        return Ok(own
+            .iter()
+            .filter_map(|p| Some(dir.join(p.file_name()?)))
+            .collect());
     };
     let mut summary = contents.summary;
     summary["units"] = json!(units);
@@ -204,7 +210,7 @@ fn write_shared(
         let mut entries = Vec::new();
         for (time, suffix, sol) in &contents.vtus {
             let before = set.len();
-            set.record(vtu_paths(dir, suffix, &sol.bodies));
+            set.record(vtu_paths(&staging, suffix, &sol.bodies));
             for (part, name) in set.names_since(before).into_iter().enumerate() {
                 entries.push((*time, part, name));
             }

@@ -98,7 +98,7 @@ pub(crate) fn add_bodies(
         let (body, remote) = body.ok_or_else(|| {
             distributed(format!(
                 "body '{}' did not arrive whole from its process",
-                spec.name
+                contactdd_core::names::shown(&spec.name)
             ))
         })?;
         builder.push_body(body, remote);

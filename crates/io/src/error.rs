@@ -4,6 +4,7 @@
 
 use thiserror::Error;
 
+use contactdd_core::names::{is_hidden, shown};
 use contactdd_core::{GmshError, MeshError};
 use contactdd_ddm::SetupError;
 
@@ -53,16 +54,29 @@ pub enum LoadError {
 /// Longest line of a parser message that is echoed whole; longer lines end in `…`.
 pub const MAX_ECHOED_LINE: usize = 200;
 
-/// A parser message with every line cut to [`MAX_ECHOED_LINE`] characters: the parser echoes the
-/// offending source line, which can be megabytes long (a huge string, deeply nested brackets).
-/// Line and column numbers are in the first line, so nothing needed is lost.
+/// A parser message with every line cut to [`MAX_ECHOED_LINE`] characters and its control and
+/// invisible formatting characters escaped ([`contactdd_core::names::is_hidden`]): the parser
+/// echoes the offending source line, which can be megabytes long (a huge string, deeply nested
+/// brackets) or hold a raw terminal escape (a tab is kept). Line and column numbers are in the first line, so
+/// nothing needed is lost.
 pub fn excerpt(message: &str) -> String {
     let lines: Vec<String> = message
         .trim_end()
         .lines()
-        .map(|line| match line.char_indices().nth(MAX_ECHOED_LINE) {
-            Some((cut, _)) => format!("{}…", &line[..cut]),
-            None => line.to_string(),
+        .map(|line| {
+            let (line, cut) = match line.char_indices().nth(MAX_ECHOED_LINE) {
+                Some((cut, _)) => (&line[..cut], "…"),
+                None => (line, ""),
+            };
+            let mut out = String::with_capacity(line.len());
+            for c in line.chars() {
+                // A tab is harmless, and common in indented source lines.
+                match is_hidden(c) && c != '\t' {
+                    true => out.extend(c.escape_unicode()),
+                    false => out.push(c),
+                }
+            }
+            out + cut
         })
         .collect();
     lines.join("\n")
@@ -79,7 +93,7 @@ pub(crate) fn no_bodies() -> SetupError {
 /// An invalid value of body `body` at `key`.
 pub(crate) fn body_error(body: &str, key: &str, message: impl std::fmt::Display) -> SetupError {
     SetupError::Body {
-        body: body.to_string(),
+        body: shown(body),
         message: format!("{key}: {message}"),
     }
 }
@@ -87,7 +101,7 @@ pub(crate) fn body_error(body: &str, key: &str, message: impl std::fmt::Display)
 /// A mesh error of body `body` at `key`.
 pub(crate) fn mesh_error(body: &str, key: &str, source: MeshError) -> SetupError {
     SetupError::Mesh {
-        body: body.to_string(),
+        body: shown(body),
         key: key.to_string(),
         source,
     }
@@ -96,7 +110,7 @@ pub(crate) fn mesh_error(body: &str, key: &str, source: MeshError) -> SetupError
 /// An invalid value of contact pair `pair` at `key`.
 pub(crate) fn pair_error(pair: &str, key: &str, message: impl std::fmt::Display) -> SetupError {
     SetupError::Pair {
-        pair: pair.to_string(),
+        pair: shown(pair),
         message: format!("{key}: {message}"),
     }
 }
@@ -116,5 +130,6 @@ mod tests {
         let long = "é".repeat(MAX_ECHOED_LINE + 1);
         let cut = excerpt(&format!("head\n{long}"));
         assert_eq!(cut, format!("head\n{}…", "é".repeat(MAX_ECHOED_LINE)));
+        assert_eq!(excerpt("a\u{1b}[2Jb\u{7}"), "a\\u{1b}[2Jb\\u{7}");
     }
 }

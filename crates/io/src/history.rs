@@ -6,12 +6,15 @@
 //! `default`. Every group with a load must be named by some step (else its loads would never
 //! apply), and a step may name only known groups. A load with a group needs a history.
 
-use std::collections::BTreeSet;
+use std::collections::{BTreeSet, HashMap};
+
+use contactdd_core::names::{listed, shown};
 
 use contactdd_ddm::history::{HistoryStep, LoadGroup, LoadHistory, DEFAULT_GROUP};
 use contactdd_ddm::{Model, SetupError};
 
 use crate::bodies::group_load;
+use crate::body_vtus::safe_file_name;
 use crate::error::solver_error;
 use crate::load_steps::MAX_LOAD_STEPS;
 use crate::number::format_f64 as num;
@@ -28,7 +31,8 @@ pub fn history(problem: &Problem, model: &Model) -> Result<Option<LoadHistory>, 
     if problem.steps.is_empty() {
         return match names.iter().find(|n| *n != DEFAULT_GROUP) {
             Some(name) => Err(steps_error(format!(
-                "loads of group '{name}' need a [[steps]] history that sets the group's factor"
+                "loads of group '{}' need a [[steps]] history that sets the group's factor",
+                shown(name)
             ))),
             None => Ok(None),
         };
@@ -38,6 +42,7 @@ pub fn history(problem: &Problem, model: &Model) -> Result<Option<LoadHistory>, 
             "[solver] load-steps and [[steps]] exclude each other: give the history's steps only",
         ));
     }
+    check_columns(&names)?;
     let steps = problem
         .steps
         .iter()
@@ -57,7 +62,8 @@ pub fn history(problem: &Problem, model: &Model) -> Result<Option<LoadHistory>, 
         let loaded = g > 0 || default_loads(problem);
         if loaded && !named {
             return Err(steps_error(format!(
-                "no step sets the factor of load group '{name}', so its loads would never apply"
+                "no step sets the factor of load group '{}', so its loads would never apply",
+                shown(name)
             )));
         }
     }
@@ -68,6 +74,24 @@ pub fn history(problem: &Problem, model: &Model) -> Result<Option<LoadHistory>, 
     let history = LoadHistory { groups, steps };
     history.check(model.bodies.len()).map_err(steps_error)?;
     Ok(Some(history))
+}
+
+/// Refuses two groups whose `steps.csv` columns (`factor_<group>`, the group's
+/// [`safe_file_name`]) would be the same.
+fn check_columns(names: &[String]) -> Result<(), SetupError> {
+    let mut columns: HashMap<String, &str> = HashMap::with_capacity(names.len());
+    for name in names {
+        if let Some(other) = columns.insert(safe_file_name(name), name) {
+            return Err(steps_error(format!(
+                "load groups '{}' and '{}' give the same steps.csv column 'factor_{}'; name \
+                 groups so that they differ in letters, digits, '-', '_' or '.'",
+                shown(other),
+                shown(name),
+                shown(&safe_file_name(name))
+            )));
+        }
+    }
+    Ok(())
 }
 
 /// The group names: `default` first, then the loads' groups in order of appearance.
@@ -94,7 +118,7 @@ fn default_loads(problem: &Problem) -> bool {
 /// Step `k` of the history, its factors by group number of `names`.
 fn step(k: usize, spec: &StepSpec, names: &[String]) -> Result<HistoryStep, SetupError> {
     let name = spec.step_name(k);
-    let error = |m: String| steps_error(format!("[{k}] '{name}': {m}"));
+    let error = |m: String| steps_error(format!("[{k}] '{}': {m}", shown(&name)));
     let increments = spec.increments.unwrap_or(1);
     let increments = usize::try_from(increments)
         .ok()
@@ -116,13 +140,15 @@ fn step(k: usize, spec: &StepSpec, names: &[String]) -> Result<HistoryStep, Setu
             let known: BTreeSet<&str> = names.iter().map(String::as_str).collect();
             let known: Vec<&str> = known.into_iter().collect();
             return Err(error(format!(
-                "factors: no load group named '{group}' (known: {})",
-                known.join(", ")
+                "factors: no load group named '{}' (known: {})",
+                shown(group),
+                listed(known).join(", ")
             )));
         };
         if !f.is_finite() {
             return Err(error(format!(
-                "factors.{group}: must be finite, got {}",
+                "factors.{}: must be finite, got {}",
+                shown(group),
                 num(f)
             )));
         }

@@ -4,7 +4,8 @@
 //! crates (`contactdd-core`, `contactdd-ddm`) read and write no file format, this crate does.
 //!
 //! Data flow: a TOML problem file → [`problem`] (plain serde types, the file's schema) →
-//! [`setup`] (one resolve step: validated `Model` and `Settings`, built by a
+//! [`setup`] (one resolve step: every name checked first by [`names`], then validated `Model` and
+//! `Settings`, built by a
 //! [`model_builder::ModelBuilder`] from [`meshes`], [`bodies`] and [`pairs`], with
 //! [`solver_settings`] and [`load_steps`] for the `[solver]` table, [`history`] for `[[steps]]`) → the solver of
 //! `contactdd-ddm` → [`output`] (`summary.json` from [`summary`], `contact.csv`, `history.csv`
@@ -32,6 +33,7 @@ pub mod history;
 pub mod load_steps;
 pub mod meshes;
 pub mod model_builder;
+pub mod names;
 pub mod nearest_segment;
 pub mod number;
 pub mod output;

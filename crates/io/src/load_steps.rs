@@ -1,6 +1,7 @@
 //! The `load-steps` and `monitor` keys of `[solver]`: the load factors of a load-step run and the
 //! boundary whose mean displacement each step reports.
 
+use contactdd_core::names::shown;
 use contactdd_ddm::steps::{check_factors, equal_steps};
 use contactdd_ddm::{Model, SetupError};
 
@@ -50,11 +51,11 @@ pub(crate) fn monitor(model: &Model, spec: &MonitorSpec) -> Result<Monitor, Setu
         .bodies
         .iter()
         .position(|b| b.name == spec.body)
-        .ok_or_else(|| solver_error("monitor", format!("no body named '{}'", spec.body)))?;
+        .ok_or_else(|| solver_error("monitor", format!("no body named '{}'", shown(&spec.body))))?;
     model.bodies[body]
         .mesh
         .boundary(&spec.boundary)
-        .map_err(|e| solver_error("monitor", format!("body '{}': {e}", spec.body)))?;
+        .map_err(|e| solver_error("monitor", format!("body '{}': {e}", shown(&spec.body))))?;
     Ok(Monitor {
         body,
         boundary: spec.boundary.clone(),

@@ -152,7 +152,7 @@ fn gmsh_mesh(
         .into());
     }
     let mut mesh = read_msh_surface(path, surface).map_err(|source| LoadError::Gmsh {
-        body: body.to_string(),
+        body: contactdd_core::names::shown(body),
         path: path.display().to_string(),
         source,
     })?;

@@ -11,8 +11,10 @@ use contactdd_ddm::{ContactPair, Model, Remote, SetupError};
 use crate::bodies::{body_on_mesh, check_body_name, check_floating, material};
 use crate::error::{body_error, no_bodies, LoadError};
 use crate::meshes::mesh;
+use crate::names::{check_body_names, check_entry_names, check_name, check_pair_names};
 use crate::pairs::pair;
 use crate::problem::{BodySpec, ContactSpec, LoadSpec, MaterialSpec, SupportSpec};
+use contactdd_core::names::{listed, shown};
 
 /// Builds a [`Model`] entry by entry, checking each entry as it is added: the one resolve step of
 /// a problem file ([`crate::setup::resolve`]) and of a problem built in code (the Python module).
@@ -72,9 +74,10 @@ impl ModelBuilder {
 
     /// Adds a `[materials.NAME]` table. (A file cannot define a name twice; code can, and is told.)
     pub fn add_material(&mut self, name: &str, spec: &MaterialSpec) -> Result<(), SetupError> {
+        check_name("materials", name)?;
         if self.materials.contains_key(name) {
             return Err(SetupError::Material {
-                material: name.to_string(),
+                material: shown(name),
                 message: "is already defined".into(),
             });
         }
@@ -91,6 +94,7 @@ impl ModelBuilder {
     /// Adds a `[[bodies]]` entry: name, material, mesh (a relative Gmsh path resolves against
     /// `base_dir`), supports and loads.
     pub fn add_body(&mut self, spec: &BodySpec, base_dir: &Path) -> Result<(), LoadError> {
+        check_body_names(self.bodies.len(), spec)?;
         self.check_body_name(&spec.name)?;
         let body = self.body(spec, base_dir)?;
         self.push_body(body, None);
@@ -130,6 +134,10 @@ impl ModelBuilder {
         supports: &[SupportSpec],
         loads: &[LoadSpec],
     ) -> Result<(), SetupError> {
+        let key = format!("bodies[{}]", self.bodies.len());
+        check_name(format!("{key}.name"), name)?;
+        check_name(format!("{key}.material"), material)?;
+        check_entry_names(&key, supports, loads)?;
         self.check_body_name(name)?;
         let material = self.material_of(name, material)?;
         let body = body_on_mesh(name, mesh, material, self.plane, supports, loads)?;
@@ -139,6 +147,7 @@ impl ModelBuilder {
 
     /// Adds a `[[contact]]` entry between two of the bodies added so far.
     pub fn add_pair(&mut self, spec: &ContactSpec) -> Result<(), SetupError> {
+        check_pair_names(self.pairs.len(), spec)?;
         let p = pair(spec, &self.bodies, &self.pairs)?;
         self.pairs.push(p);
         Ok(())
@@ -177,7 +186,8 @@ impl ModelBuilder {
                 body,
                 "material",
                 format!(
-                    "unknown material '{material}' (known: {})",
+                    "unknown material '{}' (known: {})",
+                    shown(material),
                     known(self.materials.keys())
                 ),
             )
@@ -186,7 +196,7 @@ impl ModelBuilder {
 }
 
 fn known<'a>(names: impl Iterator<Item = &'a String>) -> String {
-    let names: Vec<&str> = names.map(String::as_str).collect();
+    let names = listed(names.map(String::as_str));
     if names.is_empty() {
         "none defined".into()
     } else {

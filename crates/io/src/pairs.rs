@@ -1,9 +1,11 @@
 //! One `[[contact]]` entry → a contact pair: its two bodies and boundaries, its penalty (the rod
 //! model θ = c·h·(1/E*₁ + 1/E*₂) for `{ c, h }`, θ itself for `{ theta }`) and its gap profile.
 
+use contactdd_core::names::{listed, shown};
 use contactdd_core::ElasticBody;
 use contactdd_ddm::{ContactPair, Forces, Friction, GapProfile, Penalty, SetupError};
 
+use crate::body_vtus::safe_file_name;
 use crate::error::pair_error;
 use crate::number::format_f64 as num;
 use crate::problem::{ContactSpec, FrictionLaw, FrictionSpec, GapSpec, PenaltySpec};
@@ -53,6 +55,7 @@ pub fn pair(
             ),
         ));
     }
+    check_file_name(&name, earlier)?;
     Ok(ContactPair {
         name,
         bodies: ids,
@@ -63,6 +66,29 @@ pub fn pair(
         forces,
         friction,
     })
+}
+
+/// Refuses a pair name that gives the same file name as an earlier pair's: the pair names
+/// become `steps.csv` columns (`<pair>_force_x`…) and plot files (`pressure-<pair>.svg`…) through
+/// [`safe_file_name`], compared regardless of case so that the files differ on every file
+/// system.
+fn check_file_name(name: &str, earlier: &[ContactPair]) -> Result<(), SetupError> {
+    let file_name = |n: &str| safe_file_name(n).to_lowercase();
+    let own = file_name(name);
+    match earlier.iter().position(|p| file_name(&p.name) == own) {
+        Some(j) => Err(pair_error(
+            name,
+            "name",
+            format!(
+                "gives the same column and file names ('{}') as contact[{j}]'s name '{}'; give \
+                 the pairs names that differ in more than case and characters other than \
+                 letters, digits, '-', '_' and '.'",
+                shown(&safe_file_name(name)),
+                shown(&earlier[j].name)
+            ),
+        )),
+        None => Ok(()),
+    }
 }
 
 /// The indices of the two bodies of pair `name`, which must be two different ones of `bodies`,
@@ -89,7 +115,11 @@ fn pair_bodies(
             pair_error(
                 name,
                 &format!("bodies[{s}]"),
-                format!("unknown body '{body}' (known: {})", names.join(", ")),
+                format!(
+                    "unknown body '{}' (known: {})",
+                    shown(body),
+                    listed(names).join(", ")
+                ),
             )
         })?;
     }
@@ -99,7 +129,7 @@ fn pair_bodies(
             "bodies",
             format!(
                 "names body '{}' twice; a contact pair needs two different bodies",
-                spec.bodies[0]
+                shown(&spec.bodies[0])
             ),
         ));
     }
@@ -108,9 +138,9 @@ fn pair_bodies(
         body.mesh
             .boundary(&spec.boundaries[s])
             .map_err(|source| SetupError::PairBoundary {
-                pair: name.to_string(),
+                pair: shown(name),
                 key: format!("boundaries[{s}]"),
-                body: body.name.clone(),
+                body: shown(&body.name),
                 source,
             })?;
     }
@@ -207,15 +237,20 @@ pub fn friction_law(spec: &FrictionSpec) -> Result<Friction, (String, String)> {
 /// The friction of the command line's `--friction` (and Python's `friction=` string):
 /// `coulomb:MU`, `tresca:BOUND` or `none`, the parameter finite and at least 0.
 pub fn parse_friction(s: &str) -> Result<Friction, String> {
-    let s = s.trim();
-    let (law, value) = match s.split_once(':') {
+    let given = s.trim();
+    let (law, value) = match given.split_once(':') {
         Some((law, value)) => (law.trim(), Some(value.trim())),
-        None => (s, None),
+        None => (given, None),
     };
+    // What the messages echo: the value shown safely (escaped, cut).
+    let (s, law_shown) = (shown(given), shown(law));
     let number = |what: &str| match value.map(str::parse::<f64>) {
         Some(Ok(v)) => Ok(v),
-        Some(Err(_)) => Err(format!("'{s}': the {what} after '{law}:' must be a number")),
-        None => Err(format!("'{s}': give the {what} as {law}:VALUE")),
+        Some(Err(_)) => Err(format!(
+            "'{s}': the {what} after '{law}:' must be a number",
+            law = law_shown
+        )),
+        None => Err(format!("'{s}': give the {what} as {law_shown}:VALUE")),
     };
     let friction = match law {
         "none" if value.is_none() => Friction::None,

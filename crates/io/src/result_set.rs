@@ -1,13 +1,27 @@
 //! A result folder written as a set, so that a reader can tell a complete result from an
-//! interrupted one: `summary.json` exists only when every file it lists was written.
+//! interrupted one: `summary.json` exists only when every file it lists was written, and the
+//! previous set stays complete until the new one is.
 //!
-//! [`ResultSet::begin`] first removes the previous set: its `summary.json`, then the files its
-//! manifest (the `files` key) names, and temporary files of ours left by a killed run. The data
-//! files follow ([`ResultSet::write`], or [`ResultSet::record`] for files written by another
-//! function), each atomically, and [`ResultSet::finish`] writes `summary.json` last, with the
-//! manifest added. A failure in between leaves no `summary.json` and removes the data files of
-//! this run ([`ResultSet::abandon`]). Only files named in a manifest or matching our temporary
-//! name are ever removed: other files in the folder are the user's.
+//! [`ResultSet::begin`] removes what a killed run left (the staging folder [`STAGING`], temporary
+//! files of ours) and creates the staging folder, `DIR/.contactdd-staging`. The data files are
+//! written into it ([`ResultSet::write`], or [`ResultSet::record`] for files written by another
+//! function into [`ResultSet::dir`]), each atomically, and [`ResultSet::finish`] writes the new
+//! `summary.json` there last, with the manifest added, then swaps the new set in:
+//!
+//! 1. the previous `summary.json` is moved into the staging folder (as `PREVIOUS`): from here the
+//!    folder no longer claims a complete result;
+//! 2. the previous set's files that the new set does not have are removed;
+//! 3. each new data file is renamed into the folder (replacing the previous one of its name);
+//! 4. the new `summary.json` is renamed in: the new set is complete;
+//! 5. the staging folder is removed.
+//!
+//! Before step 1 nothing of the previous set is touched, and every target of a rename is checked
+//! to be a regular file or missing. A failure of the data or of an earlier step removes the
+//! staging folder ([`ResultSet::abandon`]) and leaves the previous set as it was. A run killed
+//! during steps 1–4 leaves the staging folder, with both manifests in it; the next `begin`
+//! removes the files those manifests name from the folder (unless a `summary.json` there claims
+//! them), then the staging folder. Only files named in a manifest, our temporary files and the
+//! staging folder are ever removed: other files in the folder are the user's.
 
 use std::io::{Error, ErrorKind};
 use std::path::{Component, Path, PathBuf};
@@ -20,28 +34,52 @@ use crate::atomic::{check_output_path, is_temp_name, write_atomic};
 pub const SUMMARY: &str = "summary.json";
 /// The key of `summary.json` that lists the other files of the set.
 pub const MANIFEST_KEY: &str = "files";
+/// The folder in the result folder where a set is written before it is swapped in.
+pub const STAGING: &str = ".contactdd-staging";
+/// The name the previous `summary.json` has in the staging folder during the swap.
+pub const PREVIOUS: &str = ".previous-summary.json";
 /// Extensions of the files a result set may hold; a manifest name with another one is ignored.
 const EXTENSIONS: &[&str] = &["json", "csv", "vtu", "pvd"];
+
+/// The staging folder of the result folder `dir`, where the files of a set are written before
+/// it is swapped in (the processes of a distributed solve write their bodies' files there).
+pub fn staging_dir(dir: &Path) -> PathBuf {
+    dir.join(STAGING)
+}
+
+/// The points of [`ResultSet::finish`] at which a test stops it, as a kill would.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Step {
+    /// The new set is complete in the staging folder; the previous one is untouched.
+    Staged,
+    /// The previous `summary.json` is in the staging folder.
+    SummaryMoved,
+    /// The previous set's stale files are removed.
+    StaleRemoved,
+    /// Some of the new data files are renamed in (one).
+    DataMoving,
+    /// The new `summary.json` is in place.
+    Swapped,
+}
 
 /// A result folder being written.
 #[derive(Debug)]
 pub struct ResultSet {
-    dir: PathBuf,
+    /// The result folder.
+    target: PathBuf,
+    /// Its staging folder, where the files are written.
+    staging: PathBuf,
     written: Vec<PathBuf>,
 }
 
 impl ResultSet {
-    /// Starts a set in `dir` (created if needed), removing the previous set first.
+    /// Starts a set in `dir` (created if needed): removes what a killed run left and creates the
+    /// staging folder. The previous set stays complete until [`ResultSet::finish`] swaps.
     pub fn begin(dir: &Path) -> std::io::Result<ResultSet> {
         std::fs::create_dir_all(dir)?;
-        let summary = dir.join(SUMMARY);
-        check_output_path(&summary)?;
-        let previous = previous_manifest(&summary);
-        // The summary goes first: from here on the folder no longer claims a complete result.
-        remove_if_file(&summary)?;
-        for name in previous {
-            remove_if_file(&dir.join(name))?;
-        }
+        check_output_path(&dir.join(SUMMARY))?;
+        let staging = staging_dir(dir);
+        clean_staging(dir, &staging)?;
         for entry in std::fs::read_dir(dir)? {
             let entry = entry?;
             if entry
@@ -52,20 +90,22 @@ impl ResultSet {
                 remove_if_file(&entry.path())?;
             }
         }
+        std::fs::create_dir(&staging)?;
         Ok(ResultSet {
-            dir: dir.to_path_buf(),
+            target: dir.to_path_buf(),
+            staging,
             written: Vec::new(),
         })
     }
 
-    /// The folder of the set.
+    /// The folder the data files of the set are written into: the staging folder.
     pub fn dir(&self) -> &Path {
-        &self.dir
+        &self.staging
     }
 
     /// Writes the data file `name` of the set atomically.
     pub fn write(&mut self, name: &str, bytes: &[u8]) -> std::io::Result<()> {
-        let path = self.dir.join(name);
+        let path = self.staging.join(name);
         write_atomic(&path, bytes)?;
         self.written.push(path);
         Ok(())
@@ -90,39 +130,109 @@ impl ResultSet {
             .collect()
     }
 
-    /// Adds files already written into the set's folder (e.g. by [`crate::output::write_body_vtus`]).
+    /// Adds files already written into the set's folder [`ResultSet::dir`] (e.g. by
+    /// [`crate::output::write_body_vtus`]).
     pub fn record(&mut self, paths: impl IntoIterator<Item = PathBuf>) {
         self.written.extend(paths);
     }
 
     /// Writes `summary` (a JSON object) as `summary.json` with the manifest of the files written
-    /// added, last. Returns every path of the set, `summary.json` last.
-    pub fn finish(mut self, mut summary: Value) -> std::io::Result<Vec<PathBuf>> {
-        let names: Vec<Value> = self
+    /// added, last, and swaps the new set in for the previous one (see the module docs). Returns
+    /// every path of the set in the result folder, `summary.json` last. On an error before the
+    /// swap the staging folder is removed and the previous set is as it was.
+    pub fn finish(self, summary: Value) -> std::io::Result<Vec<PathBuf>> {
+        self.finish_until(summary, None)
+    }
+
+    /// [`ResultSet::finish`], stopped after `stop` as a kill would stop it (nothing cleaned up).
+    fn finish_until(
+        mut self,
+        mut summary: Value,
+        stop: Option<Step>,
+    ) -> std::io::Result<Vec<PathBuf>> {
+        let names: Vec<String> = self
             .written
             .iter()
-            .filter_map(|p| p.file_name()?.to_str().map(Value::from))
+            .filter_map(|p| Some(p.file_name()?.to_str()?.to_string()))
             .collect();
         let Some(object) = summary.as_object_mut() else {
+            self.abandon();
             return Err(Error::new(
                 ErrorKind::InvalidInput,
                 "the summary is not a JSON object",
             ));
         };
-        object.insert(MANIFEST_KEY.into(), Value::Array(names));
-        let mut text = serde_json::to_string_pretty(&summary).map_err(Error::other)?;
-        text.push('\n');
-        self.write(SUMMARY, text.as_bytes())?;
-        sync_dir(&self.dir);
-        Ok(self.written)
+        object.insert(
+            MANIFEST_KEY.into(),
+            names.iter().map(|n| Value::from(n.as_str())).collect(),
+        );
+        let staged = serde_json::to_string_pretty(&summary)
+            .map_err(Error::other)
+            .and_then(|mut text| {
+                text.push('\n');
+                self.write(SUMMARY, text.as_bytes())
+            })
+            .and_then(|()| {
+                // Every rename target must be replaceable before anything is touched.
+                (names.iter().map(String::as_str).chain([SUMMARY]))
+                    .try_for_each(|n| check_output_path(&self.target.join(n)))
+            });
+        if let Err(e) = staged {
+            self.abandon();
+            return Err(e);
+        }
+        sync_dir(&self.staging);
+        if stop == Some(Step::Staged) {
+            return Ok(Vec::new());
+        }
+        self.swap(&names, stop)?;
+        Ok(names
+            .iter()
+            .map(String::as_str)
+            .chain([SUMMARY])
+            .map(|n| self.target.join(n))
+            .collect())
     }
 
-    /// Removes the data files written so far (best effort): they belong to no manifest, so no later
-    /// run would know to remove them.
-    pub fn abandon(self) {
-        for path in &self.written {
-            let _ = std::fs::remove_file(path);
+    /// Steps 1 to 5 of the module docs: the staged set (data files `names`) replaces the
+    /// previous one.
+    fn swap(&self, names: &[String], stop: Option<Step>) -> std::io::Result<()> {
+        let previous = previous_manifest(&self.target.join(SUMMARY));
+        let old_summary = self.target.join(SUMMARY);
+        if std::fs::symlink_metadata(&old_summary).is_ok() {
+            std::fs::rename(&old_summary, self.staging.join(PREVIOUS))?;
         }
+        sync_dir(&self.target);
+        if stop == Some(Step::SummaryMoved) {
+            return Ok(());
+        }
+        for name in previous.iter().filter(|n| !names.contains(n)) {
+            remove_if_file(&self.target.join(name))?;
+        }
+        if stop == Some(Step::StaleRemoved) {
+            return Ok(());
+        }
+        for (k, name) in names.iter().enumerate() {
+            if k == 1 && stop == Some(Step::DataMoving) {
+                return Ok(());
+            }
+            std::fs::rename(self.staging.join(name), self.target.join(name))?;
+        }
+        sync_dir(&self.target);
+        std::fs::rename(self.staging.join(SUMMARY), self.target.join(SUMMARY))?;
+        sync_dir(&self.target);
+        if stop == Some(Step::Swapped) {
+            return Ok(());
+        }
+        // The new set is complete: what is left is the previous summary (best effort).
+        let _ = std::fs::remove_dir_all(&self.staging);
+        Ok(())
+    }
+
+    /// Removes the staging folder with the data files written so far (best effort); the previous
+    /// set is untouched.
+    pub fn abandon(self) {
+        let _ = std::fs::remove_dir_all(&self.staging);
     }
 }
 
@@ -208,6 +318,34 @@ pub fn read_result_file(path: &Path, limit: u64) -> std::io::Result<Vec<u8>> {
     Ok(bytes)
 }
 
+/// Removes the staging folder a killed run left in `dir`. Killed during the swap, the folder has
+/// no `summary.json` and holds a mix of the two sets: the files the staged manifests (the new
+/// `summary.json` and the previous one, [`PREVIOUS`]) name are removed from it first. A
+/// `STAGING` that is not a folder (a link, a file) is an error, not removed.
+fn clean_staging(dir: &Path, staging: &Path) -> std::io::Result<()> {
+    match std::fs::symlink_metadata(staging) {
+        Err(e) if e.kind() == ErrorKind::NotFound => return Ok(()),
+        Err(e) => return Err(e),
+        Ok(meta) if !meta.is_dir() => {
+            return Err(Error::new(
+                ErrorKind::InvalidInput,
+                format!(
+                    "'{}' is not a folder of contactdd's; refusing to write results beside it",
+                    staging.display()
+                ),
+            ))
+        }
+        Ok(_) => {}
+    }
+    if std::fs::symlink_metadata(dir.join(SUMMARY)).is_err() {
+        let staged = [SUMMARY, PREVIOUS].map(|n| previous_manifest(&staging.join(n)));
+        for name in staged.iter().flatten() {
+            remove_if_file(&dir.join(name))?;
+        }
+    }
+    std::fs::remove_dir_all(staging)
+}
+
 /// The file names the manifest of an existing `summary.json` lists: plain names with one of our
 /// extensions only (never a path elsewhere). Empty when there is no readable manifest.
 fn previous_manifest(summary: &Path) -> Vec<String> {
@@ -254,6 +392,155 @@ fn sync_dir(dir: &Path) {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    fn temp(name: &str) -> PathBuf {
+        let dir =
+            std::env::temp_dir().join(format!("contactdd-swap-{name}-{}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&dir);
+        std::fs::create_dir_all(&dir).unwrap();
+        dir
+    }
+
+    /// The folder's entries, sorted (the staging folder's as `.contactdd-staging/<name>`).
+    fn listing(dir: &Path) -> Vec<String> {
+        let mut names = Vec::new();
+        for e in std::fs::read_dir(dir).unwrap() {
+            let name = e.unwrap().file_name().into_string().unwrap();
+            if name == STAGING {
+                for f in std::fs::read_dir(dir.join(STAGING)).unwrap() {
+                    names.push(format!(
+                        "{STAGING}/{}",
+                        f.unwrap().file_name().to_string_lossy()
+                    ));
+                }
+            } else {
+                names.push(name);
+            }
+        }
+        names.sort();
+        names
+    }
+
+    /// A set of `files` (name, content) with `summary.json` = `{"run": run}` and its manifest,
+    /// finished up to `stop`.
+    fn set(dir: &Path, run: &str, files: &[(&str, &str)], stop: Option<Step>) {
+        let mut set = ResultSet::begin(dir).unwrap();
+        for (name, text) in files {
+            set.write(name, text.as_bytes()).unwrap();
+        }
+        set.finish_until(serde_json::json!({ "run": run }), stop)
+            .unwrap();
+    }
+
+    /// The run named by the folder's `summary.json`, which must list files that all exist with
+    /// that run's contents (`None` without a summary).
+    fn complete_run(dir: &Path) -> Option<String> {
+        let text = std::fs::read_to_string(dir.join(SUMMARY)).ok()?;
+        let summary: Value = serde_json::from_str(&text).unwrap();
+        let run = summary["run"].as_str().unwrap().to_string();
+        for name in summary[MANIFEST_KEY].as_array().unwrap() {
+            let content = std::fs::read_to_string(dir.join(name.as_str().unwrap())).unwrap();
+            assert!(content.starts_with(&run), "{name}: {content} in run {run}");
+        }
+        Some(run)
+    }
+
+    const OLD: &[(&str, &str)] = &[("a.vtu", "old a"), ("b.vtu", "old b"), ("gone.csv", "old")];
+    const NEW: &[(&str, &str)] = &[("a.vtu", "new a"), ("b.vtu", "new b"), ("c.csv", "new c")];
+
+    /// A run stopped at each step of the swap, as a kill would stop it: the folder holds the old
+    /// complete set up to the summary's move, no summary (and both manifests staged) until the
+    /// new summary is in, then the new complete set; the next run cleans up after each.
+    #[test]
+    fn every_crash_point_of_the_swap() {
+        let user = ("notes.txt", "mine");
+        for stop in [
+            Step::Staged,
+            Step::SummaryMoved,
+            Step::StaleRemoved,
+            Step::DataMoving,
+            Step::Swapped,
+        ] {
+            let dir = temp(&format!("{stop:?}"));
+            std::fs::write(dir.join(user.0), user.1).unwrap();
+            set(&dir, "old", OLD, None);
+            assert_eq!(
+                listing(&dir),
+                ["a.vtu", "b.vtu", "gone.csv", "notes.txt", SUMMARY]
+            );
+            set(&dir, "new", NEW, Some(stop));
+            let staged = |names: &[&str]| -> Vec<String> {
+                names.iter().map(|n| format!("{STAGING}/{n}")).collect()
+            };
+            let expected: Vec<String> = match stop {
+                Step::Staged => {
+                    assert_eq!(complete_run(&dir).as_deref(), Some("old"));
+                    let mut e = staged(&["a.vtu", "b.vtu", "c.csv", SUMMARY]);
+                    e.extend(
+                        ["a.vtu", "b.vtu", "gone.csv", "notes.txt", SUMMARY].map(String::from),
+                    );
+                    e
+                }
+                Step::SummaryMoved => {
+                    assert_eq!(complete_run(&dir), None);
+                    let mut e = staged(&[PREVIOUS, "a.vtu", "b.vtu", "c.csv", SUMMARY]);
+                    e.extend(["a.vtu", "b.vtu", "gone.csv", "notes.txt"].map(String::from));
+                    e
+                }
+                Step::StaleRemoved => {
+                    assert_eq!(complete_run(&dir), None);
+                    let mut e = staged(&[PREVIOUS, "a.vtu", "b.vtu", "c.csv", SUMMARY]);
+                    e.extend(["a.vtu", "b.vtu", "notes.txt"].map(String::from));
+                    e
+                }
+                Step::DataMoving => {
+                    assert_eq!(complete_run(&dir), None);
+                    assert_eq!(std::fs::read_to_string(dir.join("a.vtu")).unwrap(), "new a");
+                    assert_eq!(std::fs::read_to_string(dir.join("b.vtu")).unwrap(), "old b");
+                    let mut e = staged(&[PREVIOUS, "b.vtu", "c.csv", SUMMARY]);
+                    e.extend(["a.vtu", "b.vtu", "notes.txt"].map(String::from));
+                    e
+                }
+                Step::Swapped => {
+                    assert_eq!(complete_run(&dir).as_deref(), Some("new"));
+                    let mut e = staged(&[PREVIOUS]);
+                    e.extend(["a.vtu", "b.vtu", "c.csv", "notes.txt", SUMMARY].map(String::from));
+                    e
+                }
+            };
+            let mut expected = expected;
+            expected.sort();
+            assert_eq!(listing(&dir), expected, "{stop:?}");
+            // The next run removes the leftovers (of both sets where none was complete) and
+            // writes its set; the user's file stays.
+            let mut next = ResultSet::begin(&dir).unwrap();
+            let left = listing(&dir);
+            let kept: Vec<&str> = match stop {
+                Step::Staged => vec!["a.vtu", "b.vtu", "gone.csv", "notes.txt", SUMMARY],
+                Step::Swapped => vec!["a.vtu", "b.vtu", "c.csv", "notes.txt", SUMMARY],
+                _ => vec!["notes.txt"],
+            };
+            assert_eq!(left, kept, "{stop:?}");
+            next.write("d.vtu", b"next d").unwrap();
+            next.finish(serde_json::json!({ "run": "next" })).unwrap();
+            assert_eq!(complete_run(&dir).as_deref(), Some("next"));
+            assert_eq!(listing(&dir), ["d.vtu", "notes.txt", SUMMARY], "{stop:?}");
+            std::fs::remove_dir_all(&dir).unwrap();
+        }
+    }
+
+    /// Without a stop, the swap leaves the new set and no staging folder; the files' bytes are
+    /// those written.
+    #[test]
+    fn a_finished_swap_leaves_the_new_set_only() {
+        let dir = temp("finished");
+        set(&dir, "old", OLD, None);
+        set(&dir, "new", NEW, None);
+        assert_eq!(listing(&dir), ["a.vtu", "b.vtu", "c.csv", SUMMARY]);
+        assert_eq!(complete_run(&dir).as_deref(), Some("new"));
+        assert_eq!(std::fs::read_to_string(dir.join("c.csv")).unwrap(), "new c");
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
 
     #[test]
     fn manifest_names_must_be_plain_result_files() {

@@ -42,6 +42,7 @@ use crate::distributed_setup::{add_bodies, agreed};
 use crate::error::{no_bodies, LoadError};
 use crate::history::history;
 use crate::load_steps::{load_steps, monitor};
+use crate::names::check_problem_names;
 use crate::problem::Problem;
 use crate::solver_settings::starting_values;
 
@@ -69,6 +70,25 @@ pub struct Loaded {
     pub monitor: Option<Monitor>,
     /// The load history of `[[steps]]` (`None` without one; never with `steps`).
     pub history: Option<LoadHistory>,
+}
+
+impl Loaded {
+    /// The warning for a `[solver] monitor` that a command-line run would ignore: without
+    /// `load-steps` and without a `[[steps]]` history there are no steps to report it in (Python's
+    /// `contactdd.solve` reports it as `Result.monitor`, so it is not an error). `None` when
+    /// there is no monitor or some steps report it.
+    pub fn unreported_monitor(&self) -> Option<String> {
+        let m = self.problem.solver.monitor.as_ref()?;
+        if self.steps.is_some() || self.history.is_some() {
+            return None;
+        }
+        Some(format!(
+            "[solver] monitor: '{}' of body '{}' is reported only by load steps (`load-steps`) \
+             or a [[steps]] load history, and this problem has neither: it is ignored",
+            contactdd_core::names::shown(&m.boundary),
+            contactdd_core::names::shown(&m.body)
+        ))
+    }
 }
 
 /// Reads, parses and resolves a TOML problem file. Relative mesh paths resolve against the file's
@@ -158,6 +178,8 @@ fn resolve_named(
     default_name: &str,
     exchange: Option<&dyn Exchange>,
 ) -> Result<Loaded, LoadError> {
+    // Every name first, so that no later message echoes a hostile one.
+    check_problem_names(&problem)?;
     let settings = settings(&problem.solver, &Settings::default())?;
     // Checked before the materials and bodies so that an empty file gets this message first.
     if problem.bodies.is_empty() {

@@ -288,7 +288,7 @@ fn fields_of(
     }
 }
 
-/// Writes the `.vtu` files of a solution into `dir`.
+/// Writes the `.vtu` files of a solution into `dir`, as a set (with an empty summary).
 fn write_solution_vtus(
     dir: &Path,
     model: &contactdd_ddm::Model,
@@ -297,6 +297,7 @@ fn write_solution_vtus(
 ) {
     let mut set = contactdd_io::result_set::ResultSet::begin(dir).expect("a folder");
     contactdd_io::output::write_solution_vtus(&mut set, model, bodies, contact).expect("written");
+    set.finish(serde_json::json!({})).expect("swapped in");
 }
 
 fn temp(name: &str) -> PathBuf {

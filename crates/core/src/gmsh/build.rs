@@ -6,6 +6,7 @@ use std::collections::{BTreeMap, BTreeSet, HashMap};
 use crate::error::{GmshError, MeshError};
 use crate::geometry::{Point, DIM};
 use crate::mesh::{counter_clockwise, dist, Edge, Mesh, Order};
+use crate::names::{listed, shown};
 
 use super::raw::{kind_dim, Kind, RawElement, RawMsh};
 
@@ -58,13 +59,17 @@ impl RawMsh {
         let listed = if names.is_empty() {
             "the file has no physical surface".to_string()
         } else {
-            format!("physical surfaces: {}", names.join(", "))
+            format!(
+                "physical surfaces: {}",
+                listed(names.iter().map(String::as_str)).join(", ")
+            )
         };
         match surface {
             Some(name) => match tags.iter().find(|&&t| self.group_name(2, t) == name) {
                 Some(&tag) => Ok(Some(tag)),
                 None => Err(GmshError::Surface(format!(
-                    "no physical surface named '{name}' ({listed})"
+                    "no physical surface named '{}' ({listed})",
+                    shown(name)
                 ))),
             },
             None if tags.len() > 1 => Err(GmshError::Surface(format!(
@@ -147,13 +152,26 @@ impl RawMsh {
         Ok(ids)
     }
 
+    /// The positions of the first three nodes (a triangle's vertices) of `element`, sorted, as
+    /// bits (`-0.0` as `0.0`): equal for two triangles on the same three points.
+    fn vertex_key(&self, element: &RawElement) -> Result<[[u64; 2]; 3], GmshError> {
+        let mut key = [[0; 2]; 3];
+        for (k, &tag) in key.iter_mut().zip(&element.nodes) {
+            let xyz = self.coords[self.node_position(element, tag)?];
+            *k = [(xyz[0] + 0.0).to_bits(), (xyz[1] + 0.0).to_bits()];
+        }
+        key.sort_unstable();
+        Ok(key)
+    }
+
     /// The order of the triangles (all the same) and, per node of `coords`, whether a triangle
     /// uses it.
     fn triangle_order_and_nodes(&self, body: Option<i64>) -> Result<(Order, Vec<bool>), GmshError> {
         let mut order = None;
         let mut used = vec![false; self.coords.len()];
-        // A triangle listed twice would be assembled twice: a body twice as stiff there.
-        let mut vertices: HashMap<[u64; 3], usize> = HashMap::new();
+        // A triangle listed twice would be assembled twice: a body twice as stiff there. Its
+        // vertices are compared by position, so that a copy on duplicated nodes is caught too.
+        let mut vertices: HashMap<[[u64; 2]; 3], (u64, usize)> = HashMap::new();
         for element in &self.elements {
             let Kind::Triangle(o) = element.kind else {
                 continue;
@@ -161,16 +179,14 @@ impl RawMsh {
             if !self.in_body(element, body) {
                 continue;
             }
-            let mut key = [0; 3];
-            key.iter_mut()
-                .zip(&element.nodes)
-                .for_each(|(k, &n)| *k = n);
-            key.sort_unstable();
-            if let Some(first) = vertices.insert(key, element.line) {
+            let key = self.vertex_key(element)?;
+            if let Some((tag, line)) = vertices.insert(key, (element.tag, element.line)) {
                 return Err(GmshError::Parse {
                     line: element.line,
                     message: format!(
-                        "this triangle has the same three vertices as the one on line {first}"
+                        "triangles {tag} (line {line}) and {} have the same three vertices; \
+                         a mesh lists each triangle once",
+                        element.tag
                     ),
                 });
             }

@@ -5,6 +5,7 @@ use std::collections::HashMap;
 
 use crate::error::GmshError;
 use crate::mesh::Order;
+use crate::names::{name_problem, shown};
 
 use super::tokens::{read_dim, skip_section, Tokens};
 
@@ -28,6 +29,8 @@ pub(super) enum Kind {
 pub(super) struct RawElement {
     /// 1-based line of the element in the file.
     pub(super) line: usize,
+    /// The element's tag (its number in the file).
+    pub(super) tag: u64,
     pub(super) kind: Kind,
     /// Node tags.
     pub(super) nodes: Vec<u64>,
@@ -109,7 +112,10 @@ impl RawMsh {
             let Some(name) = token.strip_prefix('$') else {
                 return Err(tokens.error(
                     line,
-                    format!("expected a section header such as $Nodes, found '{token}'"),
+                    format!(
+                        "expected a section header such as $Nodes, found '{}'",
+                        shown(token)
+                    ),
                 ));
             };
             match name {
@@ -147,7 +153,9 @@ impl RawMsh {
                     }
                 }
                 _ if name.starts_with("End") => {
-                    return Err(tokens.error(line, format!("'{token}' without its section")));
+                    return Err(
+                        tokens.error(line, format!("'{}' without its section", shown(token)))
+                    );
                 }
                 _ => {
                     skip_section(&mut tokens, line, name)?;
@@ -171,6 +179,12 @@ impl RawMsh {
 
     fn read_physical_names(&mut self, tokens: &mut Tokens<'_>) -> Result<(), GmshError> {
         let count = tokens.usize("the number of physical names")?;
+        // The groups by name, so that each name is looked up once (a file may hold many).
+        let mut by_name: HashMap<(u8, String), i64> = self
+            .names
+            .iter()
+            .map(|(&(dim, tag), name)| ((dim, name.clone()), tag))
+            .collect();
         for _ in 0..count {
             let dim = read_dim(tokens)?;
             let (line, tag): (usize, i64) = tokens.parse_at("a physical tag")?;
@@ -182,26 +196,31 @@ impl RawMsh {
             if name.is_empty() {
                 return Err(tokens.error(line, "expected a quoted physical name"));
             }
+            if let Some(problem) = name_problem(name) {
+                return Err(tokens.error(line, format!("physical name: {problem}")));
+            }
             // Either would silently merge or drop groups: a boundary would not be what was drawn.
             if let Some(old) = self.names.get(&(dim, tag)) {
                 return Err(tokens.error(
                     line,
-                    format!("{dim}D physical group {tag} is named twice ('{old}' and '{name}')"),
-                ));
-            }
-            if let Some(((_, other), _)) = self
-                .names
-                .iter()
-                .find(|((d, _), n)| *d == dim && n.as_str() == name)
-            {
-                return Err(tokens.error(
-                    line,
                     format!(
-                        "physical name '{name}' is used by two {dim}D groups ({other} and {tag}); \
-                         give each group its own name"
+                        "{dim}D physical group {tag} is named twice ('{}' and '{}')",
+                        shown(old),
+                        shown(name)
                     ),
                 ));
             }
+            if let Some(other) = by_name.get(&(dim, name.to_string())) {
+                return Err(tokens.error(
+                    line,
+                    format!(
+                        "physical name '{}' is used by two {dim}D groups ({other} and {tag}); \
+                         give each group its own name",
+                        shown(name)
+                    ),
+                ));
+            }
+            by_name.insert((dim, name.to_string()), tag);
             self.names.insert((dim, tag), name.to_string());
             self.name_lines.insert((dim, tag), line);
         }
@@ -334,10 +353,11 @@ impl RawMsh {
                 ));
             }
             for _ in 0..count {
-                let (line, _) = tokens.parse_at::<u64>("an element tag")?;
+                let (line, tag) = tokens.parse_at::<u64>("an element tag")?;
                 let nodes = Self::read_element_nodes(tokens, len)?;
                 self.elements.push(RawElement {
                     line,
+                    tag,
                     kind,
                     nodes,
                     entity: Some((dim, entity)),
@@ -358,7 +378,7 @@ impl RawMsh {
     fn read_elements_v2(&mut self, tokens: &mut Tokens<'_>) -> Result<(), GmshError> {
         let count = tokens.usize("the number of elements")?;
         for _ in 0..count {
-            let (line, _) = tokens.parse_at::<u64>("an element tag")?;
+            let (line, tag) = tokens.parse_at::<u64>("an element tag")?;
             let (kind, len) = element_kind(tokens.usize("an element type")?, line)?;
             let num_tags = tokens.usize("the number of element tags")?;
             let mut physical = None;
@@ -371,6 +391,7 @@ impl RawMsh {
             let nodes = Self::read_element_nodes(tokens, len)?;
             self.elements.push(RawElement {
                 line,
+                tag,
                 kind,
                 nodes,
                 entity: None,
@@ -405,7 +426,10 @@ fn read_header(tokens: &mut Tokens<'_>, line: usize, token: &str) -> Result<Vers
     if token != "$MeshFormat" {
         return Err(tokens.error(
             line,
-            format!("not a Gmsh mesh: expected $MeshFormat, found '{token}'"),
+            format!(
+                "not a Gmsh mesh: expected $MeshFormat, found '{}'",
+                shown(token)
+            ),
         ));
     }
     tokens.section = "MeshFormat";
@@ -423,8 +447,9 @@ fn read_format(tokens: &mut Tokens<'_>) -> Result<Version, GmshError> {
         "2.2" => Version::V2,
         other => {
             return Err(GmshError::Unsupported(format!(
-                "line {line}: MSH format version {other}; save the mesh as version 4.1 or 2.2 \
-                 ASCII (gmsh -format msh41)"
+                "line {line}: MSH format version {}; save the mesh as version 4.1 or 2.2 \
+                 ASCII (gmsh -format msh41)",
+                shown(other)
             )))
         }
     };
@@ -440,7 +465,7 @@ fn read_format(tokens: &mut Tokens<'_>) -> Result<Version, GmshError> {
         other => {
             return Err(tokens.error(
                 line,
-                format!("expected file type 0 (ASCII), found '{other}'"),
+                format!("expected file type 0 (ASCII), found '{}'", shown(other)),
             ))
         }
     }

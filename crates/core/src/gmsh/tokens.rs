@@ -1,6 +1,7 @@
 //! The white-space separated tokens of a `.msh` file, with their line numbers for errors.
 
 use crate::error::GmshError;
+use crate::names::shown;
 
 /// A cursor over the white-space separated tokens of the file, tracking line numbers.
 pub(super) struct Tokens<'a> {
@@ -97,7 +98,7 @@ impl<'a> Tokens<'a> {
         let (line, token) = self.next()?;
         match token.parse() {
             Ok(value) => Ok((line, value)),
-            Err(_) => Err(self.error(line, format!("expected {what}, found '{token}'"))),
+            Err(_) => Err(self.error(line, format!("expected {what}, found '{}'", shown(token)))),
         }
     }
 
@@ -116,8 +117,11 @@ impl<'a> Tokens<'a> {
         let (line, token) = self.next()?;
         match token.parse::<f64>() {
             Ok(x) if x.is_finite() => Ok((line, x)),
-            Ok(_) => Err(self.error(line, format!("non-finite coordinate '{token}'"))),
-            Err(_) => Err(self.error(line, format!("expected a coordinate, found '{token}'"))),
+            Ok(_) => Err(self.error(line, format!("non-finite coordinate '{}'", shown(token)))),
+            Err(_) => Err(self.error(
+                line,
+                format!("expected a coordinate, found '{}'", shown(token)),
+            )),
         }
     }
 
@@ -129,7 +133,10 @@ impl<'a> Tokens<'a> {
             self.section = "";
             Ok(())
         } else {
-            Err(self.error(line, format!("expected $End{section}, found '{token}'")))
+            Err(self.error(
+                line,
+                format!("expected $End{section}, found '{}'", shown(token)),
+            ))
         }
     }
 }
@@ -141,7 +148,7 @@ pub(super) fn read_dim(tokens: &mut Tokens<'_>) -> Result<u8, GmshError> {
         Ok(dim) if dim <= 3 => Ok(dim),
         _ => Err(tokens.error(
             line,
-            format!("expected a dimension (0 to 3), found '{token}'"),
+            format!("expected a dimension (0 to 3), found '{}'", shown(token)),
         )),
     }
 }
@@ -156,7 +163,10 @@ pub(super) fn skip_section(
     // Skip whole lines: unknown sections may hold quoted strings.
     loop {
         if tokens.line >= tokens.lines.len() {
-            return Err(tokens.error(start, format!("section ${name} is not closed by {end}")));
+            return Err(tokens.error(
+                start,
+                format!("section ${} is not closed by {}", shown(name), shown(&end)),
+            ));
         }
         if tokens.rest_of_line() == end {
             return Ok(());
