@@ -18,7 +18,9 @@ use crate::newton::InterfaceNewton;
 use crate::outcome::{Hooks, Outcome, Stop};
 pub use crate::prepared::{prepare, prepare_on, prepare_with, Preparation, Prepared};
 use crate::settings::{Accelerator, Settings};
-use crate::solution::{body_results, nodal_contact_force, pair_results, stop_message, Solution};
+use crate::solution::{
+    body_results, nodal_contact_force, pair_results, stop_message, BodyResult, PairResult, Solution,
+};
 use crate::sweeps::Sweeps;
 
 /// The iteration `settings` name: the interface Newton method, or the Robin sweeps.
@@ -76,17 +78,7 @@ pub fn solve_from(
     let bodies = body_results(model, &interface, &outcome.un, displacements);
     let contact = pair_results(model, &interface, &outcome.un);
     let friction_state = friction_state(&interface, &outcome.un);
-    let fields: Vec<_> = (bodies.iter().zip(&prepared.bodies).enumerate())
-        .map(|(b, (r, body))| {
-            let body = body.as_ref().filter(|_| r.has_fields())?;
-            Some(BodyForces {
-                displacement: &r.displacement,
-                load: body.applied_load(),
-                contact: nodal_contact_force(model, b, &contact),
-            })
-        })
-        .collect();
-    let balance = balance(model, &fields, &*prepared.exchange);
+    let balance = forces_balance(model, prepared, &bodies, &contact);
     let t_post = t.elapsed().as_secs_f64();
     let mut timing: std::collections::BTreeMap<String, f64> =
         prepared.timing.iter().cloned().collect();
@@ -95,24 +87,7 @@ pub fn solve_from(
     timing.insert("post".into(), t_post);
     let theta = model.thetas();
     let equilibrium = equilibrium(&interface, &outcome.un, &outcome.t_load);
-    // A NaN residual wins the fold: a non-finite result is out of equilibrium too.
-    let worst = equilibrium.iter().fold(0.0f64, |m, &e| {
-        if e.is_nan() || m.is_nan() {
-            f64::NAN
-        } else {
-            m.max(e)
-        }
-    });
-    let stop = match outcome.stop {
-        Stop::Converged if worst.is_nan() || worst > settings.equilibrium_tol => Stop::Stalled {
-            residual: worst,
-            limit: settings.equilibrium_tol,
-        },
-        Stop::Converged => {
-            unbalanced(&balance, settings.balance_limit()).unwrap_or(Stop::Converged)
-        }
-        stop => stop,
-    };
+    let stop = verdict(outcome.stop, &equilibrium, &balance, settings);
     Ok(Solution {
         converged: stop == Stop::Converged,
         message: stop_message(&stop, model, settings, &outcome.history),
@@ -138,6 +113,47 @@ pub fn solve_from(
         condensation: prepared.paths.clone(),
         timing,
     })
+}
+
+/// The force balance of every body ([`crate::force_balance`]) at the loads of `prepared`.
+fn forces_balance(
+    model: &Model,
+    prepared: &Prepared,
+    bodies: &[BodyResult],
+    contact: &[PairResult],
+) -> Vec<BodyBalance> {
+    let fields: Vec<_> = (bodies.iter().zip(&prepared.bodies).enumerate())
+        .map(|(b, (r, body))| {
+            let body = body.as_ref().filter(|_| r.has_fields())?;
+            Some(BodyForces {
+                displacement: &r.displacement,
+                load: body.applied_load(),
+                contact: nodal_contact_force(model, b, contact),
+            })
+        })
+        .collect();
+    balance(model, &fields, &*prepared.exchange)
+}
+
+/// How a solve ends: an iteration that met its tolerance is a solution only if its contact forces
+/// are those its fields carry (`equilibrium`) and every body balances (`balance`).
+fn verdict(stop: Stop, equilibrium: &[f64], balance: &[BodyBalance], settings: &Settings) -> Stop {
+    // A NaN residual wins the fold: a non-finite result is out of equilibrium too.
+    let worst = equilibrium.iter().fold(0.0f64, |m, &e| {
+        if e.is_nan() || m.is_nan() {
+            f64::NAN
+        } else {
+            m.max(e)
+        }
+    });
+    match stop {
+        Stop::Converged if worst.is_nan() || worst > settings.equilibrium_tol => Stop::Stalled {
+            residual: worst,
+            limit: settings.equilibrium_tol,
+        },
+        Stop::Converged => unbalanced(balance, settings.balance_limit()).unwrap_or(Stop::Converged),
+        stop => stop,
+    }
 }
 
 /// The verdict of the independent balance check: the worst body, if one is out of balance by more
