@@ -390,13 +390,18 @@ fn unbalanced_message(stop: &Stop, model: &Model, remedy: &str) -> Option<String
         return Some(format!("{head}; {remedy}"));
     }
     let young = |b: usize| model.bodies[b].material.young();
-    let softest = (0..model.bodies.len())
-        .map(young)
-        .fold(f64::INFINITY, f64::min);
+    let softest = (0..model.bodies.len()).map(young).fold(f64::INFINITY, f64::min);
+    let ratio = young(b) / softest;
+    let cause = if ratio >= 1e6 {
+        format!(
+            "its Young's modulus {:.3e} is {ratio:.1e} times the softest body's, so its elastic strains are lost beside its rigid motion in double precision. Lower its Young's modulus: 1e4 to 1e6 times its partners' already makes it rigid for them",
+            young(b)
+        )
+    } else {
+        "its displacements are so much larger than its strains (a prescribed displacement or a rigid motion far beyond its deformation) that double precision loses the strains: prescribe displacements of the size the linear theory assumes".to_string()
+    };
     Some(format!(
-        "{head}, and the rounding of its displacements alone reaches {floor:.1e}: its Young's modulus {:.3e} is {:.1e} times the softest body's, so its elastic strains are lost beside its rigid motion in double precision. Lower its Young's modulus: 1e4 to 1e6 times its partners' already makes it rigid for them",
-        young(b),
-        young(b) / softest
+        "{head}, and the rounding of its displacements alone reaches {floor:.1e}: {cause}"
     ))
 }
 
