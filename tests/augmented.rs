@@ -337,6 +337,68 @@ fn exact_mode_agrees_with_the_monolithic_reference() {
     }
 }
 
+/// The paper's notch in exact mode with penalty θ given.
+fn exact_notch_with_theta(theta: f64) -> Model {
+    let mut model = augmented(notch(0.05));
+    model.pairs[0].penalty = contactdd::ddm::Penalty::Theta(theta);
+    model
+}
+
+/// A penalty far softer than the contact (θ = 100 and 1e6 on the notch, whose rod model gives
+/// 4.3e−7): the monolithic reference's exact mode meets the Signorini conditions to its gap
+/// tolerance, a millionth of the notch's depth at most (with the pair's own θ its first solve
+/// moved the bodies into each other by θ·p, and the tolerance taken from it let a violation of 85 %
+/// of the depth through), and its peak pressure is the decomposition's to 1e−6.
+#[test]
+fn a_soft_penalty_reaches_exact_contact_in_the_monolithic_reference() {
+    use contactdd::ddm::monolithic::{solve_monolithic_with, MonolithicSettings};
+    // The notch's depth r0 (`contactdd::ddm::benchmark`).
+    let depth = 0.05;
+    for theta in [100.0, 1e6] {
+        let model = exact_notch_with_theta(theta);
+        let dd = run(&model, &Settings::default());
+        assert!(dd.converged, "θ = {theta}: {:?}", dd.message);
+        let mono = solve_monolithic_with(&model, &MonolithicSettings::default(), None).unwrap();
+        assert!(mono.converged, "θ = {theta}: {:?}", mono.message);
+        let gap_tol = mono.gap_tol.expect("an augmented pair has a gap tolerance");
+        assert!(gap_tol <= 1e-6 * depth, "θ = {theta}: gap-tol {gap_tol:e}");
+        let pair = &mono.contact[0];
+        assert!(pair.complementarity() <= gap_tol, "θ = {theta}");
+        assert!(pair.max_penetration() <= gap_tol, "θ = {theta}");
+        let (a, b) = (peak(&dd.contact[0]), peak(pair));
+        assert!(
+            (a - b).abs() <= 1e-6 * a,
+            "θ = {theta}: peak {b} against {a}"
+        );
+        assert_eq!(dd.contact[0].closed, pair.closed, "θ = {theta}");
+    }
+}
+
+/// The default gap tolerance does not depend on θ where the inner penalty is the stiffer one
+/// (θ softer than the rod model's with c = AUGMENTED_C and h the points' shares): the paper's θ,
+/// 100 times it, 100 and 1e6 give the monolithic reference the same tolerance, and the same as
+/// the decomposition's.
+#[test]
+fn the_default_gap_tolerance_does_not_depend_on_the_penalty() {
+    use contactdd::ddm::monolithic::{solve_monolithic_with, MonolithicSettings};
+    let paper = notch(0.05).theta(0);
+    let tols: Vec<(f64, f64)> = [paper, 100.0 * paper, 100.0, 1e6]
+        .into_iter()
+        .map(|theta| {
+            let model = exact_notch_with_theta(theta);
+            let settings = MonolithicSettings::default();
+            let mono = solve_monolithic_with(&model, &settings, None).unwrap();
+            let dd = run(&model, &Settings::default());
+            (mono.gap_tol.unwrap(), dd.gap_tol.unwrap())
+        })
+        .collect();
+    let (first, _) = tols[0];
+    for &(mono, dd) in &tols {
+        assert!((mono - first).abs() <= 1e-12 * first, "{tols:?}");
+        assert!((mono - dd).abs() <= 1e-9 * dd, "{tols:?}");
+    }
+}
+
 /// A wall of 8 blocks drawn by `scripts/random_walls.py` (seed 99: non-matching balanced pairs,
 /// c = 5e−4, exact contact on every pair). An Anderson extrapolation across a change of the
 /// closed set takes its loop further from done, and later updates would build on it: restarted

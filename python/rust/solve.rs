@@ -375,7 +375,8 @@ pub fn solve_steps<'py>(
             contactdd_io::output::write_step_results(&dir, &model, &steps, monitor, units)
         })?;
     }
-    step_results(py, &model, steps, monitor.as_ref(), check)
+    let models = vec![model; steps.len()];
+    step_results(py, models, steps, monitor.as_ref(), check)
 }
 
 /// What `solve_steps` runs: the problem's load history (no `load_steps` argument), else the load
@@ -409,19 +410,19 @@ fn step_factors(problem: &Problem, arg: Option<&Bound<'_, PyAny>>) -> PyResult<V
     }
 }
 
-/// The steps as a list of results; a `ConvergenceError` holding the last one if it did not
-/// converge and `check` is set.
+/// The steps as a list of results, each of the model it solved (`models`, one per step); a
+/// `ConvergenceError` holding the last one if it did not converge and `check` is set.
 fn step_results<'py>(
     py: Python<'py>,
-    model: &Arc<Model>,
+    models: Vec<Arc<Model>>,
     steps: Vec<(f64, contactdd_ddm::Solution)>,
     monitor: Option<&Monitor>,
     check: bool,
 ) -> PyResult<Bound<'py, PyList>> {
     let mut results = Vec::with_capacity(steps.len());
-    for (factor, sol) in steps {
+    for (model, (factor, sol)) in models.into_iter().zip(steps) {
         let at = monitor.map(|m| monitored_displacement(&sol.bodies, m));
-        let result = SolveResult::new(py, model.clone(), sol)?
+        let result = SolveResult::new(py, model, sol)?
             .at_load_factor(factor)
             .with_monitor(at);
         results.push(result);
@@ -498,20 +499,21 @@ fn solve_history<'py>(
         .into_iter()
         .zip(done.into_iter().map(|(_, s)| s))
         .collect();
-    let last = increments.last().map_or(vec![1.0], |i| i.factors.clone());
-    // The results describe the model at the last increment's combination.
-    let model = Arc::new(history.model_at(&model, &last));
-    if let Some((_, sol)) = steps.last_mut() {
+    // Every result describes the model at its increment's combination (its applied loads and
+    // reactions): that model at factor 1.
+    let models: Vec<Arc<Model>> = increments
+        .iter()
+        .map(|i| Arc::new(history.model_at(&model, &i.factors)))
+        .collect();
+    for (_, sol) in &mut steps {
         sol.load_factor = 1.0;
     }
-    if let Some(dir) = out {
+    if let (Some(dir), Some(last)) = (out, models.last()) {
         let labels = HistoryLabels::new(history, &increments);
         let (units, monitor) = (units.as_deref(), monitor.as_ref());
         written(py, &dir, || {
-            contactdd_io::output::write_history_results(
-                &dir, &model, &steps, monitor, units, &labels,
-            )
+            contactdd_io::output::write_history_results(&dir, last, &steps, monitor, units, &labels)
         })?;
     }
-    step_results(py, &model, steps, monitor.as_ref(), check)
+    step_results(py, models, steps, monitor.as_ref(), check)
 }

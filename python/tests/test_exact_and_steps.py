@@ -59,3 +59,54 @@ def test_an_exception_in_progress_stops_the_solve(notch):
 
     with pytest.raises(Stop, match="enough"):
         contactdd.solve(notch, progress=stop)
+
+
+def held_notch(notch_toml, group, tail):
+    """The notch example with the lower body held at its bottom (its support carries the load),
+    the upper body's pressure in load group ``press`` if ``group``, and ``tail`` (the
+    ``[solver]`` table and any ``[[steps]]``)."""
+    body = notch_toml.read_text().split("[solver]")[0]
+    lower = 'loads = [{ kind = "pressure", boundary = "bottom", value = 2100.0 }]'
+    upper = '{ kind = "pressure", boundary = "top", value = 2100.0 }'
+    support = 'supports = [{ boundary = "right", component = "x", value = 0.0 }]'
+    assert lower in body and upper in body and support in body
+    body = body.replace(lower, "").replace(
+        support, support[:-1] + ', { boundary = "bottom", component = "y", value = 0.0 }]', 1)
+    if group:
+        body = body.replace(upper, upper[:-2] + ', group = "press" }')
+    return contactdd.Problem.from_toml_str(body + "[solver]\ntol = 1e-8\n" + tail,
+                                           source="held_notch.toml")
+
+
+def imbalance(summary):
+    """Per body, applied load + reactions + the pair's contact force on it: the largest, and the
+    largest applied load."""
+    pair = summary["contact"][0]
+    worst = scale = 0.0
+    for b, body in enumerate(summary["bodies"]):
+        side = pair["bodies"].index(body["name"])
+        for c in range(2):
+            applied = body["applied_load"][c]
+            total = applied + summary["reactions"][b]["total"][c] + pair["force"][side][c]
+            worst, scale = max(worst, abs(total)), max(scale, abs(applied))
+    return worst, scale
+
+
+def test_every_step_balances_its_own_applied_loads(notch_toml):
+    """Load steps and a load history that stop below the full load: every result's summary gives
+    the applied loads of its own factors, which balance its reactions and contact forces."""
+    history = ('[[steps]]\nname = "press"\nfactors = { press = 0.6 }\nincrements = 2\n'
+               '[[steps]]\nname = "ease"\nfactors = { press = 0.4 }\n')
+    cases = [(held_notch(notch_toml, False, ""), [0.25, 0.5], [0.25, 0.5]),
+             (held_notch(notch_toml, True, history), None, [0.3, 0.6, 0.4])]
+    for problem, load_steps, factors in cases:
+        results = contactdd.solve_steps(problem, load_steps)
+        assert len(results) == len(factors)
+        for r, factor in zip(results, factors):
+            s = r.summary()
+            applied = s["bodies"][1]["applied_load"][1]
+            assert abs(applied + 8400.0 * factor) <= 1e-9 * 8400.0, (factor, applied)
+            worst, scale = imbalance(s)
+            assert worst <= 1e-6 * scale, (factor, worst)
+    with pytest.raises(contactdd.ContactddError, match="must increase"):
+        contactdd.solve_steps(cases[0][0], [0.5, 0.5])

@@ -137,4 +137,93 @@ fn a_monitor_without_steps_is_warned_about() {
         stepped.status.success() && !stderr.contains("monitor"),
         "{stderr}"
     );
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+/// The notch with the lower body held at its bottom (so that its support carries the load) and
+/// the upper body's pressure in load group `press`, then `tail` (the `[solver]` table and
+/// any `[[steps]]`).
+fn held_notch(dir: &Path, name: &str, group: bool, tail: &str) -> PathBuf {
+    let example = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/notch.toml");
+    let text = std::fs::read_to_string(example).expect("the example");
+    let body = text.split("[solver]").next().expect("a solver table");
+    let lower_load = "loads = [{ kind = \"pressure\", boundary = \"bottom\", value = 2100.0 }]";
+    let upper_load = "{ kind = \"pressure\", boundary = \"top\", value = 2100.0 }";
+    let support = "supports = [{ boundary = \"right\", component = \"x\", value = 0.0 }]";
+    assert!(body.contains(lower_load) && body.contains(upper_load) && body.contains(support));
+    let grouped = "{ kind = \"pressure\", boundary = \"top\", value = 2100.0, group = \"press\" }";
+    let body = body
+        .replace(lower_load, "")
+        .replacen(
+            support,
+            "supports = [{ boundary = \"right\", component = \"x\", value = 0.0 }, \
+             { boundary = \"bottom\", component = \"y\", value = 0.0 }]",
+            1,
+        )
+        .replace(upper_load, if group { grouped } else { upper_load });
+    let path = dir.join(format!("{name}.toml"));
+    std::fs::write(&path, format!("{body}[solver]\ntol = 1e-8\n{tail}\n")).expect("write");
+    path
+}
+
+/// Per body of `summary.json`, applied load + reactions + contact force (the pair's force on it):
+/// the largest of these sums, and the largest applied load.
+fn imbalance(summary: &Value) -> (f64, f64) {
+    let pair = &summary["contact"][0];
+    let (mut worst, mut scale) = (0.0f64, 0.0f64);
+    for (b, body) in summary["bodies"].as_array().unwrap().iter().enumerate() {
+        let name = body["name"].as_str().unwrap();
+        let side = pair["bodies"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .position(|n| n == name)
+            .unwrap();
+        for c in 0..2 {
+            let applied = body["applied_load"][c].as_f64().unwrap();
+            let reaction = summary["reactions"][b]["total"][c].as_f64().unwrap();
+            let contact = pair["force"][side][c].as_f64().unwrap();
+            worst = worst.max((applied + reaction + contact).abs());
+            scale = scale.max(applied.abs());
+        }
+    }
+    (worst, scale)
+}
+
+/// Load steps and a load history that stop below the full load: `summary.json`'s applied loads
+/// are the last step's, so that with the reactions and the contact forces every body balances
+/// (the lower body's support carries the upper body's pressure through the contact).
+#[test]
+fn a_last_factor_below_one_gives_the_applied_loads_that_balance() {
+    let dir = temp("partial");
+    let history = "[[steps]]\nname = \"press\"\nfactors = { press = 0.6 }\nincrements = 2\n\
+                   [[steps]]\nname = \"ease\"\nfactors = { press = 0.4 }";
+    for (name, group, tail, factor) in [
+        ("steps", false, "load-steps = [0.25, 0.5]", 0.5),
+        ("history", true, history, 0.4),
+    ] {
+        let file = held_notch(&dir, name, group, tail);
+        let out = dir.join(format!("{name}-res"));
+        let run = run(&file, &out);
+        assert!(
+            run.status.success(),
+            "{name}: {}",
+            String::from_utf8_lossy(&run.stderr)
+        );
+        let text = std::fs::read_to_string(out.join("summary.json")).unwrap();
+        let summary: Value = serde_json::from_str(&text).unwrap();
+        // The upper block's top, 4 long, under 2100 times the last factor.
+        let applied = summary["bodies"][1]["applied_load"][1].as_f64().unwrap();
+        let expected = -2100.0 * 4.0 * factor;
+        assert!(
+            (applied - expected).abs() <= 1e-9 * 8400.0,
+            "{name}: {applied}"
+        );
+        let (worst, scale) = imbalance(&summary);
+        assert!(
+            worst <= 1e-6 * scale,
+            "{name}: imbalance {worst:e} of {scale}"
+        );
+    }
+    std::fs::remove_dir_all(&dir).unwrap();
 }

@@ -107,11 +107,7 @@ fn update_loop(
         // G(λ): the pressures of this solve on the augmented points, and how far it is from exact.
         let update = uzawa_update(&interface, &outcome.un, &augmented);
         let slip = friction_update(&interface, &outcome.un, &augmented);
-        let distance = update.distance(gap_tol, settings.tol).max(slip.distance(
-            gap_tol,
-            settings.tol,
-            update.peak,
-        ));
+        let distance = distance(&update, &slip, gap_tol, settings.tol);
         if distance <= 1.0 {
             return finish(outcome, history, interface, updates, gap_tol);
         }
@@ -253,9 +249,24 @@ pub(crate) fn augmented_points(model: &Model, interface: &Interface) -> Vec<Opti
         .collect()
 }
 
-/// The default gap tolerance for the normal displacements `un` of a first solve.
+/// The default gap tolerance for the normal displacements `un` of a first solve. The first
+/// solve has λ = 0, so its displacements include the penetration θ·p of the inner penalty: with
+/// the pair's own θ they grow without bound as θ softens, and so would the tolerance. The inner
+/// penalty of [`crate::InnerPenalty::Stiffened`] is never softer than the rod model's with
+/// c = [`crate::contact::AUGMENTED_C`], so with it (the interface Newton method and the
+/// monolithic reference) the tolerance of a balanced pair does not depend on θ once θ is softer
+/// than that.
 pub(crate) fn default_gap_tol(un: &[f64]) -> f64 {
     GAP_TOL * un.iter().fold(0.0, |m: f64, u| m.max(u.abs()))
+}
+
+/// How far an inner solve is from done, 1 at the tolerances: the normal update's
+/// [`Update::distance`] and the tangential one's [`FrictionUpdate::distance`], against the gap
+/// tolerance `gap_tol` and the pressures' settling tolerance `tol` (relative to the peak).
+pub(crate) fn distance(update: &Update, slip: &FrictionUpdate, gap_tol: f64, tol: f64) -> f64 {
+    update
+        .distance(gap_tol, tol)
+        .max(slip.distance(gap_tol, tol, update.peak))
 }
 
 /// What one Uzawa update finds ([`uzawa_update`]).

@@ -29,11 +29,15 @@ use std::time::Instant;
 
 use rayon::prelude::*;
 
-use crate::augmented::{augmented_points, default_gap_tol, friction_update, uzawa_update};
+use crate::augmented::{
+    augmented_points, default_gap_tol, distance, friction_update, uzawa_update, FrictionUpdate,
+    Update,
+};
 use crate::contact::formulation::InnerPenalty;
 use crate::contact::{Interface, Status};
 use crate::error::SetupError;
 use crate::model::Model;
+use crate::settings::Settings;
 use crate::solution::{body_results, pair_results, BodyResult, PairResult};
 
 use modes::{dot, project_out, Mode};
@@ -63,8 +67,14 @@ pub struct MonolithicSettings {
     /// own pressures).
     pub imbalance_tol: f64,
     /// Augmented Lagrangian pairs: the largest violation of the Signorini conditions (a length;
-    /// `None`: `GAP_TOL` times the largest normal displacement of the contact points).
+    /// `None`: `GAP_TOL` times the largest normal displacement of the contact points in the first
+    /// solve, the decomposition's rule).
     pub gap_tol: Option<f64>,
+    /// Augmented Lagrangian pairs: where a point's inner penalty is stiffer than its pair's θ,
+    /// the largest change of its pressure from one update to the next, relative to the peak
+    /// pressure, at which the pressures count as settled (`docs/augmented-lagrangian.md`,
+    /// "Stopping rule"); the decomposition's default `tol`.
+    pub tol: f64,
     /// Augmented Lagrangian pairs: multiplier updates at most (plain Uzawa updates, each a
     /// Newton solve).
     pub max_updates: usize,
@@ -77,6 +87,7 @@ impl Default for MonolithicSettings {
             equilibrium_tol: 1e-6,
             imbalance_tol: 1e-2,
             gap_tol: None,
+            tol: Settings::default().tol,
             max_updates: 200,
         }
     }
@@ -106,6 +117,8 @@ pub struct MonolithicSolution {
     pub newton_steps: usize,
     /// Augmented Lagrangian multiplier updates (Newton solves); 0 for the penalty formulation.
     pub updates: usize,
+    /// The gap tolerance of the augmented Lagrangian pairs (a length); `None` without them.
+    pub gap_tol: Option<f64>,
     /// The steps.
     pub history: Vec<MonolithicStep>,
     /// Rigid motions of the final closed set that no contact resists, kept out of the steps.
@@ -163,15 +176,13 @@ pub fn solve_monolithic_with(
 ) -> Result<MonolithicSolution, SetupError> {
     check_settings(settings)?;
     let start = Instant::now();
-    // The tangential penalty of a frictional point is its θ, so an augmented frictional pair takes
-    // the inner penalty of the interface Newton method, the decomposition's only method with
-    // friction (docs/monolithic.md, "Friction").
-    let inner = if model.pairs.iter().any(|p| p.friction.is_active()) {
-        InnerPenalty::Stiffened
-    } else {
-        InnerPenalty::AsGiven
-    };
-    let mut interface = Interface::with_inner(model, inner)?;
+    // The inner penalty of the decomposition's interface Newton method (its default): the
+    // augmented balanced pairs' points take a θ no softer than the rod model's with c =
+    // AUGMENTED_C, so that each update contracts by about the same factor and the default gap
+    // tolerance, taken from the first solve, does not depend on the pair's θ. The tangential
+    // penalty of a frictional point is its θ, so an augmented frictional pair needs it too: the
+    // decomposition's only method with friction uses it (docs/monolithic.md).
+    let mut interface = Interface::with_inner(model, InnerPenalty::Stiffened)?;
     check_inclined_corners(model, &interface)?;
     // One level of parallelism: over bodies when there are several, inside faer otherwise.
     let par = if model.bodies.len() > 1 {
@@ -186,42 +197,35 @@ pub fn solve_monolithic_with(
         .map(|(b, body)| ReducedBody::new(body, interface.of_body(b), par))
         .collect::<Result<Vec<_>, _>>()?;
     let augmented = augmented_points(model, &interface);
-    let mut gap_tol = settings.gap_tol.unwrap_or(f64::NAN);
+    let mut gap_tol = settings.gap_tol;
     let mut updates = 0;
     loop {
         updates += 1;
-        let next = {
+        let (next, slip) = {
             let system = ReducedSystem::new(model, &interface, &bodies);
             let modes = modes::free_rigid_modes(model, &system);
             let run = newton(&system, &modes, settings, on_step);
             let un: Vec<f64> = system.un.iter().map(|a| a.at(&run.x)).collect();
-            if gap_tol.is_nan() {
-                gap_tol = default_gap_tol(&un);
-            }
-            // Its contact points keep their pairs' θ, so only the violation decides.
+            let limit = *gap_tol.get_or_insert_with(|| default_gap_tol(&un));
+            // The normal multipliers, and the frictional points' tangential ones (the exact
+            // Coulomb law); done as the decomposition's loop is.
             let update = uzawa_update(&interface, &un, &augmented);
-            // The frictional points' tangential multipliers too (the exact Coulomb law).
             let slip = friction_update(&interface, &un, &augmented);
-            let (lambda, violation) = (update.multipliers, update.violation.max(slip.violation));
-            let enforced = !model.is_augmented() || violation <= gap_tol;
+            let enforced =
+                !model.is_augmented() || distance(&update, &slip, limit, settings.tol) <= 1.0;
             if run.stop.is_some() || enforced || updates >= settings.max_updates {
-                let unenforced = (!enforced).then(|| {
-                    format!(
-                        "not enforced: after {updates} multiplier updates the contact violates \
-                         the Signorini conditions by {violation:.3e} (gap-tol {gap_tol:.3e})"
-                    )
-                });
                 let end = End {
                     run,
                     un,
-                    unenforced,
+                    unenforced: (!enforced)
+                        .then(|| unenforced(updates, &update, &slip, (limit, settings.tol))),
                     updates: if model.is_augmented() { updates } else { 0 },
+                    gap_tol: model.is_augmented().then_some(limit),
                 };
                 return finish(model, &system, &bodies, &modes, settings, end, start);
             }
-            (lambda, slip)
+            (update.multipliers, slip)
         };
-        let (next, slip) = next;
         slip.apply(&mut interface);
         // Uzawa's update: the multipliers become the pressures just found.
         for (j, p) in interface.points.iter_mut().enumerate() {
@@ -232,6 +236,30 @@ pub fn solve_monolithic_with(
     }
 }
 
+/// Why the multiplier updates stopped short of done after `updates` updates: the violation of
+/// the last `update` (and `slip`) above the gap tolerance, or the pressures not settled to `tol`
+/// of the peak; `(gap_tol, tol)`.
+fn unenforced(
+    updates: usize,
+    update: &Update,
+    slip: &FrictionUpdate,
+    (gap_tol, tol): (f64, f64),
+) -> String {
+    let violation = update.violation.max(slip.violation);
+    if violation > gap_tol {
+        return format!(
+            "not enforced: after {updates} multiplier updates the contact violates the \
+             Signorini conditions by {violation:.3e} (gap-tol {gap_tol:.3e}, a length)"
+        );
+    }
+    let change = update.settle.max(slip.settle) / update.peak;
+    format!(
+        "not enforced: after {updates} multiplier updates the gaps meet gap-tol \
+         ({violation:.3e} <= {gap_tol:.3e}, a length) but the contact pressures still change by \
+         {change:.1e} of the peak from one update to the next (tol {tol:.0e})"
+    )
+}
+
 /// How the Newton iteration (and the multiplier updates) ended.
 struct End {
     run: Run,
@@ -239,6 +267,8 @@ struct End {
     /// Why the multiplier updates stopped short of the gap tolerance.
     unenforced: Option<String>,
     updates: usize,
+    /// The gap tolerance of the augmented pairs (`None` without them).
+    gap_tol: Option<f64>,
 }
 
 /// The fields, forces, equilibrium check and verdict of a finished run.
@@ -256,6 +286,7 @@ fn finish(
         un,
         unenforced,
         updates,
+        gap_tol,
     } = end;
     let contact = system.contact_forces(model, &run.eval);
     let displacements = bodies
@@ -286,6 +317,7 @@ fn finish(
         message,
         newton_steps: run.steps,
         updates,
+        gap_tol,
         history: run.history,
         rigid_modes,
         equilibrium: check.bodies,
@@ -306,6 +338,17 @@ fn check_settings(settings: &MonolithicSettings) -> Result<(), SetupError> {
         return Err(SetupError::Solver(format!(
             "the equilibrium tolerances must be positive, got {} and {}",
             settings.equilibrium_tol, settings.imbalance_tol
+        )));
+    }
+    if let Some(g) = settings.gap_tol.filter(|&g| !positive(g)) {
+        return Err(SetupError::Solver(format!(
+            "gap-tol must be positive and finite, got {g}"
+        )));
+    }
+    if !positive(settings.tol) || settings.max_updates == 0 {
+        return Err(SetupError::Solver(format!(
+            "tol must be positive and finite and max-updates at least 1, got {} and {}",
+            settings.tol, settings.max_updates
         )));
     }
     Ok(())

@@ -130,7 +130,9 @@ pub fn summary_json_with(model: &Model, sol: &Solution, reactions: &[BodyReactio
 }
 
 /// `summary.json` of a monolithic reference solve: `solver = "monolithic"`, `converged`,
-/// `message` (why not, or null), `newton_steps`, `history` (per step: `step`, `active`,
+/// `message` (why not, or null), `newton_steps`, `enforcement` and `updates` and `gap_tol` (the
+/// augmented Lagrangian's gap tolerance, a length; null without augmented pairs) as in
+/// [`summary_json`], `history` (per step: `step`, `active`,
 /// `residual`, `step_length`), `rigid_modes` (the rigid motions no contact resists, as text),
 /// `equilibrium` (per body, the residual of the assembled equations relative to the forces),
 /// `imbalance` (per rigid mode, the net force along it, relative), `bodies`, `contact` and
@@ -155,6 +157,7 @@ pub fn monolithic_summary_json(model: &Model, sol: &MonolithicSolution) -> Value
         "newton_steps": sol.newton_steps,
         "enforcement": model.pairs.iter().map(|p| p.enforcement.to_string()).collect::<Vec<_>>(),
         "updates": sol.updates,
+        "gap_tol": sol.gap_tol.map(json_number),
         "history": history,
         "rigid_modes": sol.rigid_modes,
         "equilibrium": json_numbers(&sol.equilibrium),
