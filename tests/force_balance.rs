@@ -45,13 +45,14 @@ fn global_imbalance(loaded: &Loaded, sol: &Solution) -> f64 {
     net[0].hypot(net[1]) / applied
 }
 
-/// The message a refusal for rounding gives.
+/// The message of a refusal for rounding (a stiffness contrast or a displacement far beyond the
+/// strains).
 fn says_rounding(sol: &Solution) -> bool {
     matches!(sol.stop, Stop::Unbalanced { .. })
         && sol
             .message
             .as_deref()
-            .is_some_and(|m| m.contains("rounding of its displacements"))
+            .is_some_and(|m| m.contains("double precision"))
 }
 
 /// The stack of eight blocks with its steel `young` times stiffer: every pair carries 200 where
@@ -70,7 +71,11 @@ fn a_stiff_stack_is_right_or_refused() {
         }
         for pair in &sol.contact {
             let f = pair.force_on(1)[1];
-            assert!((f - 200.0).abs() <= 1e-6 * 200.0, "E = {young:e}, {}: {f}", pair.name);
+            assert!(
+                (f - 200.0).abs() <= 1e-6 * 200.0,
+                "E = {young:e}, {}: {f}",
+                pair.name
+            );
         }
         assert!(global_imbalance(&loaded, &sol) <= 1e-6);
     }
@@ -126,12 +131,25 @@ fn a_huge_prescribed_displacement_is_never_a_wrong_solution() {
 /// agrees with the reactions computed apart.
 #[test]
 fn the_examples_balance() {
-    for name in ["stack.toml", "three_bodies.toml", "hertz.toml", "cylinder_plates.toml"] {
+    for name in [
+        "stack.toml",
+        "three_bodies.toml",
+        "hertz.toml",
+        "cylinder_plates.toml",
+    ] {
         let loaded = load(&example(name));
         let sol = run(&loaded);
         assert!(sol.converged, "{name}: {:?}", sol.message);
-        let worst = sol.balance.iter().map(|b| b.imbalance).fold(0.0, f64::max);
-        assert!(worst <= 1e-6, "{name}: {worst:e}");
+        let worst = sol
+            .balance
+            .bodies
+            .iter()
+            .map(|b| b.imbalance)
+            .fold(0.0, f64::max);
+        assert!(
+            worst <= 1e-6 && sol.balance.loads <= 1e-6,
+            "{name}: {worst:e}"
+        );
         let global = global_imbalance(&loaded, &sol);
         assert!(global <= 1e-6, "{name}: {global:e}");
     }

@@ -9,8 +9,8 @@ use contactdd::cases;
 use contactdd::ddm::benchmark::Notch;
 use contactdd::ddm::monolithic::{solve_monolithic_with, MonolithicSettings};
 use contactdd::ddm::{
-    prepare, prepare_with, solve, solve_monolithic, Condensation, Hooks, Model, MonolithicSolution,
-    Settings, Solution,
+    prepare, prepare_with, solve, solve_monolithic, Condensation, Forces, Hooks, Model,
+    MonolithicSolution, Settings, Solution,
 };
 use contactdd::fem::{Component, Constraints, Material};
 
@@ -283,6 +283,15 @@ fn wall_agrees(seed: usize) {
     wall_agrees_on(seed, Condensation::Auto, 30);
 }
 
+/// Own-side pairs on non-matching meshes carry different forces on their two sides, so their
+/// walls do not balance (docs/outputs.md, "The force balance"): these tests compare the
+/// decomposition with the monolithic reference on the same discrete problem, so they accept
+/// that imbalance.
+fn own_side_tol(model: &Model) -> Option<f64> {
+    let own_side = model.pairs.iter().any(|p| p.forces == Forces::OwnSide);
+    own_side.then_some(1.0)
+}
+
 /// [`wall_agrees`] with every body on the path `condensation`, in at most `steps` steps.
 fn wall_agrees_on(seed: usize, condensation: Condensation, steps: usize) {
     let file =
@@ -291,6 +300,7 @@ fn wall_agrees_on(seed: usize, condensation: Condensation, steps: usize) {
     let prepared = prepare_with(&model, condensation).unwrap();
     let settings = Settings {
         tol: 1e-10,
+        balance_tol: own_side_tol(&model),
         ..Settings::default()
     };
     let dd = solve(&model, &prepared, &settings, Hooks::default()).unwrap();
@@ -339,6 +349,7 @@ fn sparse_blocks_start_unloaded_only_where_the_solution_is_unique() {
     let model = contactdd::io::setup::load_file(&file).unwrap().model;
     let settings = Settings {
         tol: 1e-10,
+        balance_tol: own_side_tol(&model),
         ..Settings::default()
     };
     let on = |condensation| {

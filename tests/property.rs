@@ -187,8 +187,14 @@ fn judge(text: &str, cancel: &AtomicBool) -> Verdict {
         // The solver's own figures, for the report only.
         Err(e) => Verdict::Failed(format!(
             "{e} [the solver's balance: imbalance {:.2e}, floor {:.2e}]",
-            sol.balance.iter().fold(0.0f64, |a, b| a.max(b.imbalance)),
-            sol.balance.iter().fold(0.0f64, |a, b| a.max(b.floor)),
+            sol.balance
+                .bodies
+                .iter()
+                .fold(0.0f64, |a, b| a.max(b.imbalance)),
+            sol.balance
+                .bodies
+                .iter()
+                .fold(0.0f64, |a, b| a.max(b.floor)),
         )),
     }
 }

@@ -4,15 +4,15 @@
 //!
 //! It uses nothing of the iteration: the body's stiffness is assembled again, the reactions are the
 //! residual `K u − f − f_c` on the prescribed directions, and the net force and moment are the
-//! rigid-motion projections of what is left on the free DOFs. A factorisation that lost a floating
+//! rigid-motion projections of the loads, contact forces and reactions. A factorisation that lost a floating
 //! body's rigid motion (a stiffness far above its contact springs), interface loads that do not
 //! carry the reported pressures, or an iteration stopped early all show here, whatever the
 //! iteration's own measure says.
 //!
-//! The rounding of `K u` bounds what the check can see: ε Σ|K||u| over a body. A body much stiffer
-//! than its partners that moves rigidly carries, in `u`, a rigid motion far larger than its
-//! elastic part, and past a contrast of about 1/ε its stresses drown in that rounding. The floor is
-//! reported with the imbalance, so that a failure says which of the two it is.
+//! The rounding of a field is about ε Σ|K||u| in force: a body that moves far more than it
+//! deforms (a huge prescribed displacement, or a rigid motion against a huge stiffness) carries
+//! forces drowned in it. This floor is reported with the imbalance, so that a failure says which
+//! of the two it is.
 
 use contactdd_core::rigid::{RigidBasis, NUM_MODES};
 use contactdd_core::{dof, ElasticBody, DIM};
@@ -26,8 +26,20 @@ pub struct BodyBalance {
     /// |net force and moment| of the applied loads, contact forces and reactions (the moment
     /// over the body's bounding box diameter, a force).
     pub imbalance: f64,
-    /// ε Σ|K||u|: the rounding that computing the reactions from the field can carry.
+    /// ε Σ|K||u|: the rounding that a field of this size carries into its forces.
     pub floor: f64,
+}
+
+/// The balance of a result: per body, and of the whole problem.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Balance {
+    /// Per body.
+    pub bodies: Vec<BodyBalance>,
+    /// |Σ applied loads + Σ reactions| over Σ (|applied load| + |reaction|) of the bodies (the
+    /// resultants of each body): the problem's loads against its supports. The contact forces
+    /// cancel between the bodies only where action equals reaction, so this catches own-side
+    /// pairs whose sides carry different forces, which each body alone does not see.
+    pub loads: f64,
 }
 
 /// The forces of one body whose field this process holds.
@@ -38,15 +50,19 @@ pub struct BodyForces<'a> {
     pub load: Vec<f64>,
     /// The nodal contact forces of the reported pressures.
     pub contact: Vec<f64>,
+    /// The resultant contact force of each pair side on the body.
+    pub pair_forces: Vec<[f64; DIM]>,
 }
 
-/// The balance of every body (the same on every process): `fields` holds the forces of every
-/// body whose field this process holds; the totals travel through `exchange`.
+/// The balance of every body and of the whole problem (the same on every process): `fields`
+/// holds the forces of every body whose field this process holds; the totals travel through
+/// `exchange`. A body's force total is |its load| + |its reaction| + Σ |a pair's force on it|
+/// (resultants); imbalances are relative to the largest total of a body.
 pub fn balance(
     model: &Model,
     fields: &[Option<BodyForces<'_>>],
     exchange: &dyn Exchange,
-) -> Vec<BodyBalance> {
+) -> Balance {
     let own: Vec<Vec<f64>> = (fields.iter().enumerate())
         .map(|(b, field)| match field {
             Some(f) => body_forces(&model.bodies[b], f).to_vec(),
@@ -59,9 +75,10 @@ pub fn balance(
         .filter_map(|v| v.get(1).copied())
         .fold(0.0f64, f64::max)
         .max(f64::MIN_POSITIVE);
-    all.iter()
+    let bodies = all
+        .iter()
         .map(|v| match v.as_slice() {
-            [imbalance, _, floor] => BodyBalance {
+            [imbalance, _, floor, ..] => BodyBalance {
                 imbalance: imbalance / scale,
                 floor: floor / scale,
             },
@@ -70,14 +87,27 @@ pub fn balance(
                 floor: f64::NAN,
             },
         })
-        .collect()
+        .collect();
+    let (mut net, mut size) = ([0.0; DIM], 0.0);
+    for v in &all {
+        if let [_, _, _, x, y, total] = v[..] {
+            net = [net[0] + x, net[1] + y];
+            size += total;
+        } else {
+            net = [f64::NAN; DIM];
+        }
+    }
+    let loads = norm(net) / size.max(f64::MIN_POSITIVE);
+    Balance { bodies, loads }
 }
 
-/// One body's [imbalance, force total, rounding floor], absolute: the net force and moment of
-/// the residual `K u − f − f_c` off the prescribed directions (equal and opposite to that of the
-/// loads, contact forces and reactions together, since K annihilates rigid motions), the sum of
-/// the magnitudes of the nodal loads, contact forces and reactions, and ε Σ|K||u|.
-pub fn body_forces(body: &ElasticBody, forces: &BodyForces<'_>) -> [f64; 3] {
+/// One body's [imbalance, force total, rounding floor, net load and reaction x, y, |load| +
+/// |reaction|], absolute: the net force and moment of its loads, contact forces and support
+/// reactions (the residual `K u − f − f_c` on the prescribed directions), its force total, ε
+/// Σ|K||u| (the rounding that a field of this size carries into its forces), and its load and
+/// reaction resultants. Along a motion no support holds, the net force is that of the loads
+/// and contact forces alone, free of the rounding of `K u`.
+pub fn body_forces(body: &ElasticBody, forces: &BodyForces<'_>) -> [f64; 6] {
     let (u, load, contact) = (forces.displacement, &forces.load, &forces.contact);
     let k = body.stiffness();
     let mut r: Vec<f64> = (0..u.len()).map(|d| -load[d] - contact[d]).collect();
@@ -89,25 +119,29 @@ pub fn body_forces(body: &ElasticBody, forces: &BodyForces<'_>) -> [f64; 3] {
             size[ri[p]] += (val[p] * uj).abs();
         }
     }
-    let reactions = r.clone();
-    body.constraints.remove_prescribed(&mut r);
+    let mut free = r.clone();
+    body.constraints.remove_prescribed(&mut free);
     let basis = RigidBasis::new(&body.mesh);
     let mut net = [0.0; NUM_MODES];
-    let (mut total, mut floor) = (0.0, 0.0);
+    let (mut applied, mut reacted) = ([0.0; DIM], [0.0; DIM]);
     for (v, &x) in body.mesh.nodes().iter().enumerate() {
         let m = basis.at(x);
-        let node = |w: &[f64]| std::array::from_fn::<f64, DIM, _>(|c| w[dof(v, c)]);
-        let reaction: [f64; DIM] = std::array::from_fn(|c| reactions[dof(v, c)] - r[dof(v, c)]);
         for c in 0..DIM {
+            let d = dof(v, c);
+            let reaction = r[d] - free[d];
             for (i, n) in net.iter_mut().enumerate() {
-                *n += m[c][i] * r[dof(v, c)];
+                *n += m[c][i] * (load[d] + contact[d] + reaction);
             }
-            floor += size[dof(v, c)];
+            applied[c] += load[d];
+            reacted[c] += reaction;
         }
-        total += norm(node(load)) + norm(node(contact)) + norm(reaction);
     }
+    let pairs: f64 = forces.pair_forces.iter().map(|&f| norm(f)).sum();
+    let loads = norm(applied) + norm(reacted);
     let imbalance = net.iter().map(|x| x * x).sum::<f64>().sqrt();
-    [imbalance, total, f64::EPSILON * floor]
+    let floor = f64::EPSILON * size.iter().sum::<f64>();
+    let [x, y] = [applied[0] + reacted[0], applied[1] + reacted[1]];
+    [imbalance, loads + pairs, floor, x, y, loads]
 }
 
 fn norm(v: [f64; DIM]) -> f64 {

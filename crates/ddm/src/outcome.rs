@@ -79,9 +79,11 @@ pub enum Stop {
     /// The iteration met its tolerance, but a body's applied loads, contact forces and support
     /// reactions do not balance (set by [`crate::solver::solve`] from [`crate::force_balance`]).
     Unbalanced {
-        /// The body out of balance (the worst one).
-        body: usize,
-        /// Its net force and moment, relative to the largest force total of a body.
+        /// The body out of balance (the worst one); `None`: every body balances, but the
+        /// problem's loads and reactions do not.
+        body: Option<usize>,
+        /// Its net force and moment, relative to the largest force total of a body (for the
+        /// problem: relative to the sum of the bodies' load and reaction magnitudes).
         imbalance: f64,
         /// The rounding its reactions can carry, on the same scale.
         floor: f64,

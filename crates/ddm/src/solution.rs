@@ -8,7 +8,7 @@ use contactdd_core::{dof, ElasticBody, Mesh, Vector, DIM};
 use crate::coarse::CoarseMode;
 use crate::contact::formulation::Forces;
 use crate::contact::{Friction, Interface, Status};
-use crate::force_balance::BodyBalance;
+use crate::force_balance::Balance;
 use crate::method::Method;
 use crate::model::Model;
 use crate::outcome::{Breakdown, Record, Stop};
@@ -249,7 +249,7 @@ pub struct Solution {
     pub equilibrium: Vec<f64>,
     /// Per body, the independent force balance of the result: applied loads, contact forces and
     /// support reactions of the field ([`crate::force_balance`]).
-    pub balance: Vec<BodyBalance>,
+    pub balance: Balance,
     /// Multiplier updates (inner solves) of the augmented Lagrangian pairs; 0 if every pair
     /// uses the penalty formulation.
     pub updates: usize,
@@ -367,8 +367,9 @@ fn unenforced_message(stop: &Stop) -> Option<String> {
     ))
 }
 
-/// The message of a result whose forces do not balance: rounding, when the body's field cannot
-/// resolve its reactions (a contrast of stiffness beyond double precision), else `remedy`.
+/// The message of a result whose forces do not balance, with its likeliest cause: rounding where
+/// the reactions cannot resolve it (a displacement far beyond the strains), own-side pairs, a
+/// stiffness contrast beyond what double precision resolves, else `remedy`.
 fn unbalanced_message(stop: &Stop, model: &Model, remedy: &str) -> Option<String> {
     let Stop::Unbalanced {
         body: b,
@@ -379,30 +380,31 @@ fn unbalanced_message(stop: &Stop, model: &Model, remedy: &str) -> Option<String
     else {
         return None;
     };
-    let name = body_name(model, b);
-    let head = format!(
-        "not a solution: the iteration met its tolerance, but on body '{name}' the applied loads, contact forces and support reactions leave a net force {imbalance:.2e} of the largest force total of a body (more than balance-tol = {limit:.1e})"
-    );
-    if floor < 0.1 * imbalance.max(limit) {
-        if model.pairs.iter().any(|p| p.forces == Forces::OwnSide) {
-            return Some(format!("{head}; own-side pairs on non-matching meshes let each side integrate its own pressures, so action and reaction differ: use forces = \"balanced\" (the default), or raise balance-tol to accept the difference"));
-        }
-        return Some(format!("{head}; {remedy}"));
-    }
-    let young = |b: usize| model.bodies[b].material.young();
-    let softest = (0..model.bodies.len()).map(young).fold(f64::INFINITY, f64::min);
-    let ratio = young(b) / softest;
-    let cause = if ratio >= 1e6 {
-        format!(
-            "its Young's modulus {:.3e} is {ratio:.1e} times the softest body's, so its elastic strains are lost beside its rigid motion in double precision. Lower its Young's modulus: 1e4 to 1e6 times its partners' already makes it rigid for them",
-            young(b)
-        )
-    } else {
-        "its displacements are so much larger than its strains (a prescribed displacement or a rigid motion far beyond its deformation) that double precision loses the strains: prescribe displacements of the size the linear theory assumes".to_string()
+    let head = match b {
+        Some(b) => format!(
+            "not a solution: the iteration met its tolerance, but on body '{}' the applied loads, contact forces and support reactions leave a net force {imbalance:.2e} of the largest force total of a body (more than balance-tol = {limit:.1e})",
+            body_name(model, b)
+        ),
+        None => format!(
+            "not a solution: the iteration met its tolerance, but the applied loads and the support reactions of the whole problem leave a net force {imbalance:.2e} of their magnitudes (more than balance-tol = {limit:.1e})"
+        ),
     };
-    Some(format!(
-        "{head}, and the rounding of its displacements alone reaches {floor:.1e}: {cause}"
-    ))
+    let young = |b: usize| model.bodies[b].material.young();
+    let (soft, stiff) = (0..model.bodies.len())
+        .map(young)
+        .fold((f64::INFINITY, 0.0f64), |(lo, hi), e| {
+            (lo.min(e), hi.max(e))
+        });
+    let cause = if stiff / soft >= 1e6 {
+        format!("the Young's moduli span {:.1e} (from {soft:.3e} to {stiff:.3e}): a floating body that much stiffer than its contact springs loses its rigid motion to rounding in double precision. Lower the stiff bodies' modulus: 1e4 to 1e6 times their partners' already makes them rigid for them", stiff / soft)
+    } else if floor >= 0.1 * imbalance.max(limit) {
+        format!("the rounding of its displacements alone reaches {floor:.1e}: its displacements are so much larger than its strains (a prescribed displacement or a rigid motion far beyond its deformation) that double precision loses the strains: prescribe displacements of the size the linear theory assumes")
+    } else if model.pairs.iter().any(|p| p.forces == Forces::OwnSide) {
+        "own-side pairs on non-matching meshes let each side integrate its own pressures, so action and reaction differ: use forces = \"balanced\" (the default), or raise balance-tol to accept the difference".to_string()
+    } else {
+        remedy.to_string()
+    };
+    Some(format!("{head}; {cause}"))
 }
 
 /// Why the Newton steps can stall with own-side pairs, if the model has any.

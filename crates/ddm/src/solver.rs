@@ -11,7 +11,7 @@ use rayon::prelude::*;
 use crate::contact::Interface;
 use crate::equilibrium::equilibrium;
 use crate::error::SetupError;
-use crate::force_balance::{balance, BodyBalance, BodyForces};
+use crate::force_balance::{balance, Balance, BodyForces};
 use crate::iteration::Iteration;
 use crate::model::Model;
 use crate::newton::InterfaceNewton;
@@ -121,14 +121,22 @@ fn forces_balance(
     prepared: &Prepared,
     bodies: &[BodyResult],
     contact: &[PairResult],
-) -> Vec<BodyBalance> {
+) -> Balance {
     let fields: Vec<_> = (bodies.iter().zip(&prepared.bodies).enumerate())
         .map(|(b, (r, body))| {
             let body = body.as_ref().filter(|_| r.has_fields())?;
+            let pair_forces = (model.pairs.iter().zip(contact))
+                .flat_map(|(pair, result)| {
+                    (0..2)
+                        .filter(move |&side| pair.bodies[side] == b)
+                        .map(move |side| result.force_on(side))
+                })
+                .collect();
             Some(BodyForces {
                 displacement: &r.displacement,
                 load: body.applied_load(),
                 contact: nodal_contact_force(model, b, contact),
+                pair_forces,
             })
         })
         .collect();
@@ -137,7 +145,7 @@ fn forces_balance(
 
 /// How a solve ends: an iteration that met its tolerance is a solution only if its contact forces
 /// are those its fields carry (`equilibrium`) and every body balances (`balance`).
-fn verdict(stop: Stop, equilibrium: &[f64], balance: &[BodyBalance], settings: &Settings) -> Stop {
+fn verdict(stop: Stop, equilibrium: &[f64], balance: &Balance, settings: &Settings) -> Stop {
     // A NaN residual wins the fold: a non-finite result is out of equilibrium too.
     let worst = equilibrium.iter().fold(0.0f64, |m, &e| {
         if e.is_nan() || m.is_nan() {
@@ -157,22 +165,26 @@ fn verdict(stop: Stop, equilibrium: &[f64], balance: &[BodyBalance], settings: &
 }
 
 /// The verdict of the independent balance check: the worst body, if one is out of balance by more
-/// than `limit` (a NaN imbalance counts as the worst).
-fn unbalanced(balance: &[BodyBalance], limit: f64) -> Option<Stop> {
-    let (body, worst) = balance.iter().enumerate().max_by(|(_, a), (_, b)| {
-        let key = |x: &BodyBalance| {
-            if x.imbalance.is_nan() {
-                f64::INFINITY
-            } else {
-                x.imbalance
-            }
-        };
-        key(a).total_cmp(&key(b))
-    })?;
-    (worst.imbalance.is_nan() || worst.imbalance > limit).then_some(Stop::Unbalanced {
-        body,
-        imbalance: worst.imbalance,
-        floor: worst.floor,
+/// than `limit` (a NaN imbalance counts as the worst), else the whole problem's loads against its
+/// reactions.
+fn unbalanced(balance: &Balance, limit: f64) -> Option<Stop> {
+    let key = |x: f64| if x.is_nan() { f64::INFINITY } else { x };
+    let worst = (balance.bodies.iter().enumerate())
+        .max_by(|(_, a), (_, b)| key(a.imbalance).total_cmp(&key(b.imbalance)));
+    if let Some((body, worst)) = worst.filter(|(_, w)| key(w.imbalance) > limit) {
+        return Some(Stop::Unbalanced {
+            body: Some(body),
+            imbalance: worst.imbalance,
+            floor: worst.floor,
+            limit,
+        });
+    }
+    let loads = Some(balance.loads).filter(|&l| key(l) > limit)?;
+    let floor = balance.bodies.iter().map(|b| b.floor).fold(0.0, f64::max);
+    Some(Stop::Unbalanced {
+        body: None,
+        imbalance: loads,
+        floor,
         limit,
     })
 }

@@ -114,7 +114,7 @@ pub fn summary_json_with(model: &Model, sol: &Solution, reactions: &[BodyReactio
         "theta": json_numbers(&sol.theta),
         "message": sol.message,
         "equilibrium": json_numbers(&sol.equilibrium),
-        "balance": sol.balance.iter().map(|b| json!({"imbalance": json_number(b.imbalance), "floor": json_number(b.floor)})).collect::<Vec<_>>(),
+        "balance": balance_json(&sol.balance),
         "accelerator": sol.accelerator.to_string(),
         "coarse": sol.coarse.to_string(),
         "history": history,
@@ -127,6 +127,15 @@ pub fn summary_json_with(model: &Model, sol: &Solution, reactions: &[BodyReactio
         "timing_s": timing,
         "version": env!("CARGO_PKG_VERSION"),
     })
+}
+
+/// The force balance: per body `{imbalance, floor}`, and the problem's `loads` against its
+/// reactions.
+fn balance_json(balance: &contactdd_ddm::force_balance::Balance) -> Value {
+    let bodies: Vec<Value> = (balance.bodies.iter())
+        .map(|b| json!({"imbalance": json_number(b.imbalance), "floor": json_number(b.floor)}))
+        .collect();
+    json!({"bodies": bodies, "loads": json_number(balance.loads)})
 }
 
 /// `summary.json` of a monolithic reference solve: `solver = "monolithic"`, `converged`,
