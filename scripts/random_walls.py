@@ -16,9 +16,13 @@ top row is pressed down. Per seed the script prints both exit codes and, where b
 the largest difference of the contact pressures relative to the peak. A seed counts as failed
 when the decomposition does not converge while the reference does, or when the two disagree by
 more than 1e-6 of the peak (both solve with tol 1e-9; with `--enforcement augmented`, 1e-3, as
-each meets the exact contact only to its gap tolerance).
+each meets the exact contact only to its gap tolerance). Where the decomposition does not
+converge, the line names its stop from summary.json (diverged, stalled, unenforced, or
+unbalanced: converged, but a body's loads, contact forces and reactions do not balance), and an
+unbalanced stop adds the worst body's imbalance and rounding floor.
 """
 import csv
+import json
 import random
 import subprocess
 import sys
@@ -105,6 +109,21 @@ def pressures(path):
                 float(row["pressure"]) for row in csv.DictReader(f)}
 
 
+def stop(out):
+    """How the decomposition's solve in `out` ended, from its summary.json ("" if converged)."""
+    try:
+        summary = json.loads((out / "summary.json").read_text())
+    except (OSError, ValueError):
+        return " (no summary.json)"
+    if summary.get("converged"):
+        return ""
+    shown = f" ({summary.get('stop')}"
+    if summary.get("stop") == "unbalanced" and summary.get("balance"):
+        worst = max(summary["balance"], key=lambda body: body["imbalance"])
+        shown += f": imbalance {worst['imbalance']:.1e}, floor {worst['floor']:.1e}"
+    return shown + ")"
+
+
 def run(seed, work, enforcement, condensation):
     problem = work / f"wall{seed}.toml"
     problem.write_text(wall(seed) + (f'condensation = "{condensation}"\n' if condensation else ""))
@@ -114,6 +133,7 @@ def run(seed, work, enforcement, condensation):
         result = subprocess.run([str(BINARY), command, str(problem), "--quiet", "--out", str(out),
                                  "--enforcement", enforcement], capture_output=True, text=True)
         codes.append(result.returncode)
+    solve_stop = stop(work / f"solve{seed}") if codes[0] != 0 else ""
     difference = None
     if codes == [0, 0]:
         a, b = pressures(work / f"solve{seed}/contact.csv"), pressures(work / f"monolithic{seed}/contact.csv")
@@ -122,7 +142,7 @@ def run(seed, work, enforcement, condensation):
     # Exact contact is met to a gap tolerance, which leaves each solver's pressures that far off.
     limit = 1e-6 if enforcement == "penalty" else 1e-3
     failed = (codes[0] != 0 and codes[1] == 0) or (difference is not None and difference > limit)
-    return codes, difference, failed
+    return codes, solve_stop, difference, failed
 
 
 def main():
@@ -145,10 +165,10 @@ def main():
         work.mkdir(parents=True, exist_ok=True)
         failures, both = [], 0
         for seed in range(first, last + 1):
-            codes, difference, failed = run(seed, work, enforcement, condensation)
+            codes, solve_stop, difference, failed = run(seed, work, enforcement, condensation)
             both += codes == [0, 0]
             shown = "" if difference is None else f" difference {difference:.1e}"
-            print(f"seed {seed}: solve exit {codes[0]}, monolithic exit {codes[1]}{shown}"
+            print(f"seed {seed}: solve exit {codes[0]}{solve_stop}, monolithic exit {codes[1]}{shown}"
                   f"{'  FAILED' if failed else ''}", flush=True)
             if failed:
                 failures.append(seed)
