@@ -203,13 +203,14 @@ fn balanced_pairs_carry_equal_and_opposite_forces() {
 }
 
 /// The test above can fail: the paper's own-side formulation on the same curved, non-matching
-/// zone leaves an imbalance far above its bound.
+/// zone leaves an imbalance far above its bound, and the solver's force balance refuses it.
 #[test]
 fn the_own_side_formulation_does_not_balance_there() {
-    let sol = run(
-        &disc_on_block(1.0, Forces::OwnSide),
-        &settings(Accelerator::Newton, Condensation::Dense),
-    );
+    let model = disc_on_block(1.0, Forces::OwnSide);
+    let settings = settings(Accelerator::Newton, Condensation::Dense);
+    let prepared = prepare_with(&model, settings.condensation).unwrap();
+    let sol = solve(&model, &prepared, &settings, Hooks::default()).unwrap();
+    assert!(matches!(sol.stop, Stop::Unbalanced { .. }), "{:?}", sol.stop);
     let worst = imbalances(&sol)[0];
     assert!(worst > 1e-4, "imbalance {worst:e}");
 }
