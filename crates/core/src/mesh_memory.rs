@@ -102,8 +102,11 @@ pub fn sequence(meshes: impl IntoIterator<Item = MeshMemory>) -> u64 {
 fn grown(start: u64, end: u64) -> (u64, u64) {
     let (mut previous, mut cap) = (0, start.max(1));
     while cap < end {
+        if cap > u64::MAX / 4 {
+            return (cap, u64::MAX);
+        }
         previous = cap;
-        cap = cap.saturating_mul(2).max(4);
+        cap = (cap * 2).max(4);
     }
     (previous, cap)
 }
@@ -114,7 +117,10 @@ fn grown(start: u64, end: u64) -> (u64, u64) {
 fn table_peak(items: u64, entry: u64) -> u64 {
     let mut buckets: u64 = 4;
     while capacity(buckets) < items {
-        buckets = buckets.saturating_mul(2);
+        if buckets > u64::MAX / 4 {
+            return u64::MAX;
+        }
+        buckets *= 2;
     }
     let bytes = |b: u64| b.saturating_mul(entry + 1).saturating_add(16);
     bytes(buckets).saturating_add(if buckets > 4 { bytes(buckets / 2) } else { 0 })
@@ -154,6 +160,9 @@ mod tests {
     fn the_documented_limit_costs_gigabytes() {
         let m = rectangle(2000, 2000, Order::P1);
         assert!(m.peak > 1 << 30 && m.kept < m.peak, "{m:?}");
-        assert!(rectangle(usize::MAX, usize::MAX, Order::P2).peak == u64::MAX);
+        assert_eq!(rectangle(usize::MAX, usize::MAX, Order::P2).peak, u64::MAX);
+        assert_eq!(rectangle(usize::MAX, 1, Order::P1).peak, u64::MAX);
+        assert_eq!(table_peak(u64::MAX, 40), u64::MAX);
+        assert_eq!(grown(1, u64::MAX).1, u64::MAX);
     }
 }
