@@ -118,7 +118,7 @@ pub fn setup_error(e: impl Into<LoadError>) -> PyErr {
 
 /// A `ContactddIOError` with `message` and `errno`. Only `errno` is set, not `strerror` or
 /// `filename`: with those, `OSError.__str__` would replace the message by its own format.
-fn os_error(py: Python<'_>, message: String, errno: Option<i32>) -> PyErr {
+pub fn os_error(py: Python<'_>, message: String, errno: Option<i32>) -> PyErr {
     let make = || -> PyResult<PyErr> {
         let err = PyErr::from_value(io_error_type(py)?.call1((message.as_str(),))?);
         if let Some(errno) = errno {

@@ -28,6 +28,7 @@ mod benchmark;
 mod contact_result;
 mod convert;
 mod error;
+mod files;
 mod options;
 mod problem;
 mod results;
@@ -295,6 +296,7 @@ fn _contactdd(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(sweep, m)?)?;
     m.add_function(wrap_pyfunction!(monolithic, m)?)?;
     m.add_function(wrap_pyfunction!(notch_benchmark, m)?)?;
+    m.add_function(wrap_pyfunction!(files::_read_result_file, m)?)?;
     m.add("ContactddError", py.get_type::<ContactddError>())?;
     m.add("ConvergenceError", convergence_error_type(py)?)?;
     m.add("ContactddIOError", io_error_type(py)?)?;

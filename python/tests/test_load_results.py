@@ -3,8 +3,14 @@ attribute identical, the summary the same, and the plots draw from it. An incomp
 refused."""
 
 import errno
+import json
+import os
+import re
 import shutil
 import subprocess
+import threading
+import time
+from pathlib import Path
 
 import pytest
 
@@ -106,3 +112,107 @@ def test_incomplete_folders_are_refused(notch, tmp_path):
     with pytest.raises(contactdd.ContactddIOError) as info:
         contactdd.load_results(tmp_path / "nowhere")
     assert isinstance(info.value, OSError) and info.value.errno == errno.ENOENT
+
+
+# The folder is untrusted: every file is read by the reader of `contactdd plot`, which follows no
+# symbolic link, opens no FIFO or device and refuses a file over its limit. The limits are the
+# Rust constants TEXT_LIMIT and VTU_LIMIT (crates/io/src/result_set.rs).
+TEXT_LIMIT = 256 << 20
+VTU_LIMIT = 1 << 30
+
+
+@pytest.fixture
+def run(tmp_path):
+    """A small result folder and a folder outside it."""
+    contactdd.solve(contactdd.notch_benchmark(8, 4)).write_vtu(tmp_path / "run")
+    (tmp_path / "outside").mkdir()
+    return tmp_path / "run"
+
+
+def refused(folder, match, seconds=10.0):
+    """load_results(folder) raises ContactddIOError matching `match` within `seconds` (run on a
+    daemon thread, so that a read that blocks fails the test instead of hanging it)."""
+    outcome = {}
+
+    def target():
+        try:
+            contactdd.load_results(folder)
+            outcome["error"] = None
+        except BaseException as e:  # noqa: BLE001 - the test inspects it
+            outcome["error"] = e
+
+    thread = threading.Thread(target=target, daemon=True)
+    start = time.monotonic()
+    thread.start()
+    thread.join(seconds)
+    assert not thread.is_alive(), f"load_results({folder}) still runs after {seconds} s"
+    error = outcome["error"]
+    assert isinstance(error, contactdd.ContactddIOError), repr(error)
+    assert isinstance(error, OSError)
+    assert re.search(match, str(error)), str(error)
+    return time.monotonic() - start
+
+
+def test_a_link_to_a_file_outside_is_refused(run):
+    outside = run.parent / "outside" / "lower.vtu"
+    shutil.copy(run / "lower.vtu", outside)
+    (run / "lower.vtu").unlink()
+    (run / "lower.vtu").symlink_to(outside)
+    refused(run, r"lower\.vtu' is a symbolic link, not a regular file")
+    # The same for summary.json and history.csv, and a link inside the folder.
+    shutil.copy(run / "summary.json", run.parent / "outside" / "summary.json")
+    (run / "summary.json").unlink()
+    (run / "summary.json").symlink_to(run.parent / "outside" / "summary.json")
+    refused(run, r"summary\.json' is a symbolic link")
+    (run / "summary.json").unlink()
+    shutil.copy(run.parent / "outside" / "summary.json", run / "summary.json")
+    (run / "lower.vtu").unlink()
+    shutil.copy(outside, run / "lower.vtu")
+    assert contactdd.load_results(run).bodies[0].name == "lower"
+    (run / "history.csv").rename(run / "history-copy.csv")
+    (run / "history.csv").symlink_to("history-copy.csv")
+    refused(run, r"history\.csv' is a symbolic link")
+
+
+@pytest.mark.skipif(not hasattr(os, "mkfifo"), reason="no FIFOs on this system")
+def test_a_fifo_is_refused_without_waiting_for_a_writer(run):
+    (run / "history.csv").unlink()
+    os.mkfifo(run / "history.csv")
+    refused(run, r"history\.csv' is a special file")
+    (run / "summary.json").unlink()
+    os.mkfifo(run / "summary.json")
+    refused(run, r"summary\.json' is a special file")
+
+
+@pytest.mark.skipif(not Path("/dev/zero").exists(), reason="no /dev/zero")
+def test_a_link_to_dev_zero_is_refused_at_once(run):
+    (run / "upper.vtu").unlink()
+    (run / "upper.vtu").symlink_to("/dev/zero")
+    assert refused(run, r"upper\.vtu' is a symbolic link") < 5.0
+    (run / "summary.json").unlink()
+    (run / "summary.json").symlink_to("/dev/zero")
+    assert refused(run, r"summary\.json' is a symbolic link") < 5.0
+
+
+def test_a_file_over_its_limit_is_refused(run):
+    # Sparse files: a size of limit + 1 bytes costs no disk and no memory.
+    with open(run / "history.csv", "r+b") as f:
+        f.truncate(TEXT_LIMIT + 1)
+    assert refused(run, rf"history\.csv' is larger than {TEXT_LIMIT} bytes") < 5.0
+    with open(run / "lower.vtu", "r+b") as f:
+        f.truncate(VTU_LIMIT + 1)
+    assert refused(run, rf"lower\.vtu' is larger than {VTU_LIMIT} bytes") < 5.0
+    with open(run / "summary.json", "r+b") as f:
+        f.truncate(TEXT_LIMIT + 1)
+    assert refused(run, rf"summary\.json' is larger than {TEXT_LIMIT} bytes") < 5.0
+
+
+def test_a_manifest_names_only_files_of_the_folder(run):
+    shutil.copy(run / "lower.vtu", run.parent / "outside" / "lower.vtu")
+    summary = json.loads((run / "summary.json").read_text())
+    for name in ["../outside/lower.vtu", str(run.parent / "outside" / "lower.vtu"), "..", 3]:
+        summary["files"] = [name if f == "lower.vtu" else f for f in summary["files"]]
+        (run / "summary.json").write_text(json.dumps(summary))
+        with pytest.raises(contactdd.ContactddError, match="not a file name of the folder"):
+            contactdd.load_results(run)
+        summary["files"] = ["lower.vtu" if f == name else f for f in summary["files"]]

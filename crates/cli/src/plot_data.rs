@@ -6,6 +6,7 @@ use std::path::{Path, PathBuf};
 
 use anyhow::{anyhow, bail, Context, Result};
 use contactdd_io::result_set::read_result_file;
+pub use contactdd_io::result_set::{TEXT_LIMIT, VTU_LIMIT};
 use serde_json::Value;
 
 /// A CSV table: the header and the rows, each as text fields.
@@ -192,14 +193,6 @@ fn plain(name: &str) -> bool {
         (Some(std::path::Component::Normal(_)), None)
     ) && !name.contains(['/', '\\'])
 }
-
-/// The largest CSV or JSON file `plot` reads: 256 MiB, hundreds of times the files of the
-/// largest shipped example (a file near it would also make a figure of no use).
-pub const TEXT_LIMIT: u64 = 256 << 20;
-
-/// The largest VTU file `plot` reads: 1 GiB (about 40 million ASCII numbers, meshes of several
-/// million nodes).
-pub const VTU_LIMIT: u64 = 1 << 30;
 
 /// The text of `path`, a file of a result folder (or a sweep's CSV), read by
 /// [`read_result_file`]: a regular file itself (no symbolic link is followed, no FIFO or device

@@ -25,6 +25,7 @@ pub mod loads;
 pub mod material;
 pub mod memory;
 pub mod mesh;
+pub mod mesh_memory;
 pub mod names;
 pub mod ordering;
 pub mod post;

@@ -6,12 +6,13 @@ use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
 use contactdd_core::gmsh::read_msh_surface;
+use contactdd_core::{memory, mesh_memory};
 use contactdd_core::{Edge, Layout, Mesh, Order, Point, Rectangle, Vector, DIM};
 use contactdd_ddm::SetupError;
 
 use crate::error::{body_error, mesh_error, LoadError};
 use crate::number::format_f64 as num;
-use crate::problem::MeshSpec;
+use crate::problem::{BodySpec, MeshSpec};
 
 /// Largest number of rectangle cells (nx · ny) per body: far beyond what the solver handles, but it
 /// keeps absurd inputs from exhausting memory while allocating the mesh.
@@ -33,6 +34,15 @@ pub fn mesh(body: &str, spec: &MeshSpec, base_dir: &Path) -> Result<Mesh, LoadEr
             order,
         } => {
             let grading = rectangle_grading(body, *x, *y, *nx, *ny, grading.map(|g| [g.x, g.y]))?;
+            let needed = mesh_memory::rectangle(*nx, *ny, *order).peak;
+            memory::check(
+                &format!(
+                    "building the mesh of body '{}'",
+                    contactdd_core::names::shown(body)
+                ),
+                needed,
+            )
+            .map_err(SetupError::from)?;
             let layout = Layout {
                 grading,
                 mirror_x: *mirror_x,
@@ -70,6 +80,31 @@ pub fn mesh(body: &str, spec: &MeshSpec, base_dir: &Path) -> Result<Mesh, LoadEr
             node_sets,
         } => Ok(inline_mesh(body, nodes, triangles, boundaries, node_sets)?),
     }
+}
+
+/// Refuses a problem whose rectangle meshes, built one after the other and each kept, would need
+/// more memory than is available ([`mesh_memory::sequence`] of [`mesh_memory::rectangle`]),
+/// before any is built. Rectangles over [`MAX_RECTANGLE_CELLS`] are left to the check of their
+/// body, which names the limit.
+pub fn check_mesh_memory(bodies: &[BodySpec]) -> Result<(), SetupError> {
+    let rectangles: Vec<_> = bodies
+        .iter()
+        .filter_map(|b| match &b.mesh {
+            MeshSpec::Rectangle { nx, ny, order, .. }
+                if nx
+                    .checked_mul(*ny)
+                    .is_some_and(|c| c <= MAX_RECTANGLE_CELLS) =>
+            {
+                Some(mesh_memory::rectangle(*nx, *ny, *order))
+            }
+            _ => None,
+        })
+        .collect();
+    let what = match rectangles.len() {
+        0 | 1 => return Ok(()),
+        n => format!("building the rectangle meshes of {n} bodies"),
+    };
+    Ok(memory::check(&what, mesh_memory::sequence(rectangles))?)
 }
 
 /// Checks the numbers of a rectangle mesh of body `body` (cells, ranges, grading); returns its

@@ -253,6 +253,16 @@ pub fn write_set(
     }
 }
 
+/// The largest CSV or JSON file of a result folder a reader (`contactdd plot`,
+/// `contactdd.load_results`) reads: 256 MiB, hundreds of times the files of the largest shipped
+/// example (a file near it would also make a figure of no use).
+pub const TEXT_LIMIT: u64 = 256 << 20;
+
+/// The largest VTU file of a result folder a reader (`contactdd plot`,
+/// `contactdd.load_results`) reads: 1 GiB (about 40 million ASCII numbers, meshes of several
+/// million nodes).
+pub const VTU_LIMIT: u64 = 1 << 30;
+
 /// Reads the file `path` of a result folder, which a reader must treat as untrusted: `path` must
 /// itself be a regular file (a symbolic link, a FIFO, a device, a socket or a folder is an
 /// [`ErrorKind::InvalidInput`] error, checked before opening, so nothing is followed and no open

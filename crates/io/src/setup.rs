@@ -42,6 +42,7 @@ use crate::distributed_setup::{add_bodies, agreed};
 use crate::error::{no_bodies, LoadError};
 use crate::history::history;
 use crate::load_steps::{load_steps, monitor};
+use crate::meshes::check_mesh_memory;
 use crate::names::check_problem_names;
 use crate::problem::Problem;
 use crate::solver_settings::starting_values;
@@ -198,6 +199,7 @@ fn resolve_named(
         )?;
     }
     let Some(exchange) = exchange else {
+        check_mesh_memory(&problem.bodies)?;
         for spec in &problem.bodies {
             builder.add_body(spec, base_dir)?;
         }

@@ -7,6 +7,11 @@ manifest (the ``files`` key) lists belong to it. This module reads such a folder
 objects :func:`contactdd.solve` and :func:`contactdd.monolithic` return: the fields of every body
 from its VTU file, the contact tables and everything else from ``summary.json``, the iteration
 history from ``history.csv``. Only the standard library and numpy are used.
+
+The folder is untrusted input: every file is read by the reader ``contactdd plot`` uses, which
+follows no symbolic link, opens no FIFO or device and reads at most 256 MiB of a JSON or CSV file
+and 1 GiB of a VTU file (a larger one is refused); a manifest may name only plain file names of
+the folder; and a file not as contactdd writes it gives a :class:`ContactddError`.
 """
 
 from __future__ import annotations
@@ -29,6 +34,7 @@ from ._contactdd import (
     ContactddIOError,
     MonolithicResult,
     Result,
+    _read_result_file,
 )
 
 __all__ = ["load_results"]
@@ -55,7 +61,9 @@ def load_results(directory: Union[str, "os.PathLike[str]"]) -> Union[Result, Mon
 
     Raises:
         ContactddIOError: the folder or one of its files cannot be read, or ``directory`` is a
-            file (an ``OSError``).
+            file (an ``OSError``); also a file of the folder that is a symbolic link, a FIFO, a
+            device or a folder, or larger than its limit (256 MiB for JSON and CSV, 1 GiB for
+            VTU); the message names the file.
         ContactddError: ``directory`` is not a path, the folder holds no complete result (no ``summary.json``: the write was
             interrupted or this is not a result folder; a file of the manifest is missing), or a
             file is not what contactdd writes.
@@ -66,9 +74,26 @@ def load_results(directory: Union[str, "os.PathLike[str]"]) -> Union[Result, Mon
         )
     folder = Path(directory)
     summary = _read_summary(folder)
+    try:
+        return _load(folder, summary)
+    except ContactddError:
+        raise
+    except (KeyError, ValueError, IndexError, TypeError, AttributeError, OverflowError,
+            RecursionError, csv.Error) as e:
+        # The specific checks name what is wrong; this names a file not as contactdd writes it
+        # that they do not foresee.
+        raise ContactddError(f"{folder}: not a result folder as contactdd writes it "
+                             f"({type(e).__name__}: {e})") from e
+
+
+def _load(folder: Path, summary: dict[str, Any]) -> Union[Result, MonolithicResult]:
     files = summary.pop("files")
     for name in files:
-        if not (folder / name).is_file():
+        if not _plain(name):
+            raise ContactddError(
+                f"{folder}: summary.json lists {name!r}, which is not a file name of the folder"
+            )
+        if not os.path.lexists(folder / name):
             raise ContactddError(
                 f"{folder}: incomplete result folder: summary.json lists '{name}', which is "
                 "missing (write the results again)"
@@ -88,17 +113,26 @@ def load_results(directory: Union[str, "os.PathLike[str]"]) -> Union[Result, Mon
     return _result(summary, files, bodies, contact, names, folder)
 
 
+def _plain(name: Any) -> bool:
+    """True if ``name`` is a plain file name: one component, not ``.`` or ``..``."""
+    return (isinstance(name, str) and name not in ("", ".", "..") and "/" not in name
+            and "\\" not in name and "\0" not in name)
+
+
 def _io_error(path: Path, e: OSError) -> ContactddIOError:
     error = ContactddIOError(f"cannot read '{path}': {e.strerror or e}")
     error.errno = e.errno
     return error
 
 
-def _read_text(path: Path) -> str:
+def _read_text(path: Path, kind: str = "text") -> str:
+    """The UTF-8 text of ``path``, read by the reader of ``contactdd plot`` with the limit of
+    ``kind`` (``"text"`` or ``"vtu"``)."""
+    data = _read_result_file(os.fspath(path), kind)
     try:
-        return path.read_text(encoding="utf-8")
-    except OSError as e:
-        raise _io_error(path, e) from e
+        return data.decode("utf-8")
+    except UnicodeDecodeError as e:
+        raise ContactddError(f"{path}: not UTF-8 text (byte {e.start})") from e
 
 
 def _read_summary(folder: Path) -> dict[str, Any]:
@@ -113,14 +147,14 @@ def _read_summary(folder: Path) -> dict[str, Any]:
         e = OSError(errno_codes.ENOENT, os.strerror(errno_codes.ENOENT))
         raise _io_error(folder, e)
     path = folder / "summary.json"
-    if not path.is_file():
+    if not os.path.lexists(path):
         raise ContactddError(
             f"{folder}: no complete result: summary.json is missing (it is written last, so "
             "the write was interrupted, or this is not a result folder)"
         )
     try:
         summary = json.loads(_read_text(path))
-    except json.JSONDecodeError as e:
+    except (json.JSONDecodeError, RecursionError) as e:
         raise ContactddError(f"{path}: not a summary written by contactdd: {e}") from e
     if not isinstance(summary, dict) or not isinstance(summary.get("files"), list):
         raise ContactddError(f"{path}: no manifest ('files'): not a result folder of contactdd")
@@ -153,13 +187,17 @@ def _data_array(element: ET.Element) -> np.ndarray:
         count = int(np.frombuffer(raw[:8], dtype="<u8")[0])
         values = np.frombuffer(raw[8:8 + count], dtype=dtype).astype(dtype.newbyteorder("="))
     else:
-        values = np.array([float(v) for v in text.split()]).astype(dtype.newbyteorder("="))
+        floats = np.array([float(v) for v in text.split()])
+        if dtype.kind in "iu" and not np.all(np.isfinite(floats) & (floats == np.round(floats))
+                                            & (np.abs(floats) < 2**53)):
+            raise ValueError(f"{element.get('Name')}: integers expected")
+        values = floats.astype(dtype.newbyteorder("="))
     components = int(element.get("NumberOfComponents", "1"))
     return values.reshape(-1, components) if components > 1 else values
 
 
 def _body(path: Path, info: dict[str, Any]) -> Body:
-    text = _read_text(path)
+    text = _read_text(path, "vtu")
     try:
         return _parse_body(text, info)
     except (ET.ParseError, KeyError, ValueError, IndexError, TypeError) as e:
@@ -235,7 +273,10 @@ def _contact(pair: dict[str, Any], folder: Path) -> Contact:
 
 def _history(path: Path, names: list[str]) -> dict[str, np.ndarray]:
     """``history.csv``: k, gamma, measure, then rel_change, active and normal_force per body."""
-    lines = list(csv.reader(_read_text(path).splitlines()))
+    try:
+        lines = list(csv.reader(_read_text(path).splitlines()))
+    except csv.Error as e:
+        raise ContactddError(f"{path}: not a CSV file of contactdd: {e}") from e
     columns = ["k", "gamma", "measure"] + [f"{prefix}_{n}" for prefix in
                                            ("rel_change", "active", "normal_force") for n in names]
     if not lines or lines[0] != columns:
@@ -245,6 +286,9 @@ def _history(path: Path, names: list[str]) -> dict[str, np.ndarray]:
     if any(len(r) != len(columns) for r in rows):
         raise ContactddError(f"{path}: expected {len(columns)} columns for {nb} bodies")
     table = np.array([[float(v) for v in r] for r in rows], dtype=np.float64).reshape(-1, len(columns))
+    counts = np.concatenate([table[:, :1], table[:, 3 + nb:3 + 2 * nb]], axis=1)
+    if not np.all(np.isfinite(counts) & (counts == np.round(counts)) & (np.abs(counts) < 2**53)):
+        raise ContactddError(f"{path}: the columns k and active_* must hold integers")
     return {
         "k": table[:, 0].astype(np.int64),
         "gamma": np.ascontiguousarray(table[:, 1]),
