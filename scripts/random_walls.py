@@ -118,9 +118,11 @@ def stop(out):
     if summary.get("converged"):
         return ""
     shown = f" ({summary.get('stop')}"
-    if summary.get("stop") == "unbalanced" and summary.get("balance"):
-        worst = max(summary["balance"], key=lambda body: body["imbalance"])
+    balance = summary.get("balance") or {}
+    if summary.get("stop") == "unbalanced" and balance.get("bodies"):
+        worst = max(balance["bodies"], key=lambda body: body["imbalance"] or 0.0)
         shown += f": imbalance {worst['imbalance']:.1e}, floor {worst['floor']:.1e}"
+        shown += f", loads {balance.get('loads') or 0.0:.1e}"
     return shown + ")"
 
 

@@ -310,7 +310,11 @@ fn wall_agrees_on(seed: usize, condensation: Condensation, steps: usize) {
         "wall{seed}: {} iterations",
         dd.iterations
     );
-    let reference = solve_monolithic(&model).unwrap();
+    let limits = MonolithicSettings {
+        balance_tol: own_side_tol(&model).unwrap_or(MonolithicSettings::default().balance_tol),
+        ..MonolithicSettings::default()
+    };
+    let reference = solve_monolithic_with(&model, &limits, None).unwrap();
     assert!(reference.converged, "wall{seed}: {:?}", reference.message);
     for (pair, refp) in dd.contact.iter().zip(&reference.contact) {
         let err = relative_difference(&pair.pressure, &refp.pressure);

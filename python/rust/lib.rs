@@ -220,6 +220,9 @@ fn monolithic(
         gap_tol: base.gap_tol,
         ..MonolithicSettings::default()
     };
+    if let Some(b) = base.balance_tol {
+        settings.balance_tol = b;
+    }
     if let Some(k) = max_steps {
         settings.max_steps = k;
     }

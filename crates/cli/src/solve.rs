@@ -476,6 +476,9 @@ fn monolithic_settings(
         gap_tol: args.gap_tol.or(loaded.settings.gap_tol),
         ..MonolithicSettings::default()
     };
+    if let Some(b) = loaded.settings.balance_tol {
+        settings.balance_tol = b;
+    }
     if let Some(k) = args.max_steps {
         settings.max_steps = usize::try_from(k).unwrap_or(usize::MAX);
     }

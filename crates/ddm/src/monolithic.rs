@@ -66,6 +66,10 @@ pub struct MonolithicSettings {
     /// resists (own-side pairs on non-matching meshes leave a small one: each side integrates its
     /// own pressures).
     pub imbalance_tol: f64,
+    /// Largest net force and moment of a body, and of the problem's loads against its reactions,
+    /// relative to the largest force total of a body ([`crate::force_balance`], the
+    /// decomposition's check and default).
+    pub balance_tol: f64,
     /// Augmented Lagrangian pairs: the largest violation of the Signorini conditions (a length;
     /// `None`: `GAP_TOL` times the largest normal displacement of the contact points in the first
     /// solve, the decomposition's rule).
@@ -85,6 +89,7 @@ impl Default for MonolithicSettings {
         MonolithicSettings {
             max_steps: 50,
             equilibrium_tol: 1e-6,
+            balance_tol: crate::settings::BALANCE_TOL,
             imbalance_tol: 1e-2,
             gap_tol: None,
             tol: Settings::default().tol,
@@ -125,6 +130,9 @@ pub struct MonolithicSolution {
     pub rigid_modes: Vec<String>,
     /// Per body, the equilibrium residual off those motions (relative).
     pub equilibrium: Vec<f64>,
+    /// The force balance of the bodies and of the problem ([`crate::force_balance`]), checked
+    /// against `equilibrium_tol` as the decomposition checks its own.
+    pub balance: crate::force_balance::Balance,
     /// Per entry of `rigid_modes`, the net force along it (relative).
     pub imbalance: Vec<f64>,
     /// Per-body fields.
@@ -312,6 +320,15 @@ fn finish(
         .or_else(|| verdict(model, settings, &check, &rigid_modes, run.steps))
         .map(|m| friction::sliding(model, system, modes, &run.eval).unwrap_or(m));
     let interface = system.interface;
+    let bodies = body_results(model, interface, &un, displacements);
+    let contact = pair_results(model, interface, &un);
+    let exchange = crate::exchange::Local::new(model.bodies.len());
+    let load = |b: usize| Some(model.bodies[b].load.clone());
+    let forces = crate::solver::balance_of(model, &load, &bodies, &contact, &exchange);
+    let message = message.or_else(|| {
+        let stop = crate::solver::unbalanced(&forces, settings.balance_tol)?;
+        crate::solution::unbalanced_message(&stop, model, "raise max-steps")
+    });
     Ok(MonolithicSolution {
         converged: message.is_none(),
         message,
@@ -322,8 +339,9 @@ fn finish(
         rigid_modes,
         equilibrium: check.bodies,
         imbalance: check.motions,
-        bodies: body_results(model, interface, &un, displacements),
-        contact: pair_results(model, interface, &un),
+        bodies,
+        contact,
+        balance: forces,
         un,
         seconds: start.elapsed().as_secs_f64(),
     })

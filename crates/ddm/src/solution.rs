@@ -370,7 +370,7 @@ fn unenforced_message(stop: &Stop) -> Option<String> {
 /// The message of a result whose forces do not balance, with its likeliest cause: rounding where
 /// the reactions cannot resolve it (a displacement far beyond the strains), own-side pairs, a
 /// stiffness contrast beyond what double precision resolves, else `remedy`.
-fn unbalanced_message(stop: &Stop, model: &Model, remedy: &str) -> Option<String> {
+pub(crate) fn unbalanced_message(stop: &Stop, model: &Model, remedy: &str) -> Option<String> {
     let Stop::Unbalanced {
         body: b,
         imbalance,

@@ -122,9 +122,22 @@ fn forces_balance(
     bodies: &[BodyResult],
     contact: &[PairResult],
 ) -> Balance {
-    let fields: Vec<_> = (bodies.iter().zip(&prepared.bodies).enumerate())
-        .map(|(b, (r, body))| {
-            let body = body.as_ref().filter(|_| r.has_fields())?;
+    let load = |b: usize| prepared.bodies[b].as_ref().map(|body| body.applied_load());
+    balance_of(model, &load, bodies, contact, &*prepared.exchange)
+}
+
+/// The force balance of every body whose field this process holds, under the applied loads
+/// `load(b)` (`None`: another process holds the body).
+pub(crate) fn balance_of(
+    model: &Model,
+    load: &dyn Fn(usize) -> Option<Vec<f64>>,
+    bodies: &[BodyResult],
+    contact: &[PairResult],
+    exchange: &dyn crate::exchange::Exchange,
+) -> Balance {
+    let fields: Vec<_> = (bodies.iter().enumerate())
+        .map(|(b, r)| {
+            let load = load(b).filter(|_| r.has_fields())?;
             let pair_forces = (model.pairs.iter().zip(contact))
                 .flat_map(|(pair, result)| {
                     (0..2)
@@ -134,13 +147,13 @@ fn forces_balance(
                 .collect();
             Some(BodyForces {
                 displacement: &r.displacement,
-                load: body.applied_load(),
+                load,
                 contact: nodal_contact_force(model, b, contact),
                 pair_forces,
             })
         })
         .collect();
-    balance(model, &fields, &*prepared.exchange)
+    balance(model, &fields, exchange)
 }
 
 /// How a solve ends: an iteration that met its tolerance is a solution only if its contact forces
@@ -167,7 +180,7 @@ fn verdict(stop: Stop, equilibrium: &[f64], balance: &Balance, settings: &Settin
 /// The verdict of the independent balance check: the worst body, if one is out of balance by more
 /// than `limit` (a NaN imbalance counts as the worst), else the whole problem's loads against its
 /// reactions.
-fn unbalanced(balance: &Balance, limit: f64) -> Option<Stop> {
+pub(crate) fn unbalanced(balance: &Balance, limit: f64) -> Option<Stop> {
     let key = |x: f64| if x.is_nan() { f64::INFINITY } else { x };
     let worst = (balance.bodies.iter().enumerate())
         .max_by(|(_, a), (_, b)| key(a.imbalance).total_cmp(&key(b.imbalance)));

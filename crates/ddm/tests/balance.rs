@@ -210,7 +210,11 @@ fn the_own_side_formulation_does_not_balance_there() {
     let settings = settings(Accelerator::Newton, Condensation::Dense);
     let prepared = prepare_with(&model, settings.condensation).unwrap();
     let sol = solve(&model, &prepared, &settings, Hooks::default()).unwrap();
-    assert!(matches!(sol.stop, Stop::Unbalanced { .. }), "{:?}", sol.stop);
+    assert!(
+        matches!(sol.stop, Stop::Unbalanced { .. }),
+        "{:?}",
+        sol.stop
+    );
     let worst = imbalances(&sol)[0];
     assert!(worst > 1e-4, "imbalance {worst:e}");
 }

@@ -170,6 +170,7 @@ pub fn monolithic_summary_json(model: &Model, sol: &MonolithicSolution) -> Value
         "history": history,
         "rigid_modes": sol.rigid_modes,
         "equilibrium": json_numbers(&sol.equilibrium),
+        "balance": balance_json(&sol.balance),
         "imbalance": json_numbers(&sol.imbalance),
         "bodies": bodies_json(model, 1.0),
         "contact": contact_json(model, &sol.contact, &sol.bodies),
