@@ -405,7 +405,17 @@ fn hertz_half_disc_on_block_matches_analytic_solution() {
         // 15 × 60 mesh.
         model.pairs[0].forces = Forces::OwnSide;
         let prepared = prepare(&model).unwrap();
-        let sol = run(&model, &prepared, &settings(Method::ActiveSet, 0.5, 1e-8));
+        // Own-side forces on this curved non-matching zone differ between the two sides (the
+        // problem's loads and reactions then differ by the discretisation error): accept that,
+        // since the half-width and peak are the subject.
+        let sol = run(
+            &model,
+            &prepared,
+            &Settings {
+                balance_tol: Some(1.0),
+                ..settings(Method::ActiveSet, 0.5, 1e-8)
+            },
+        );
         assert!(sol.converged, "{nr}x{nt}: {:?}", sol.message);
         let (a, peak) = half_width_and_peak(&sol.contact[0], 0);
         let p0 = 2.0 * total / (std::f64::consts::PI * a_target);
@@ -465,7 +475,15 @@ fn short_body_on_long_body_balances_forces() {
             let mut model = two_bodies("step", base, top, Penalty::RodModel { c: 0.05, h: 1.0 });
             model.pairs[0].forces = forces;
             let prepared = prepare(&model).unwrap();
-            let sol = run(&model, &prepared, &settings(Method::ActiveSet, 0.5, 1e-12));
+            // Own-side forces differ between the sides (the mismatch below is the subject).
+            let sol = run(
+                &model,
+                &prepared,
+                &Settings {
+                    balance_tol: (forces == Forces::OwnSide).then_some(1.0),
+                    ..settings(Method::ActiveSet, 0.5, 1e-12)
+                },
+            );
             assert!(sol.converged, "{order:?}: {:?}", sol.message);
             let (base_force, top_force) = (sol.contact[0].force_on(0), sol.contact[0].force_on(1));
             println!("{order:?} ×{refine}: base {base_force:?}, top {top_force:?}");
