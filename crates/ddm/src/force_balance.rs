@@ -2,18 +2,19 @@
 //! loads, the contact forces of the reported pressures and the support reactions of the recovered
 //! field must balance, in force and in moment.
 //!
-//! It uses nothing of the iteration: the body's stiffness is assembled again, the reactions are the
-//! residual `K u − f − f_c` on the prescribed directions, and the net force and moment are the
+//! It uses nothing of the iteration: the element stiffness matrices of the cells at the supports
+//! give the reactions, the residual `K u − f − f_c` on the prescribed directions, and the net force and moment are the
 //! rigid-motion projections of the loads, contact forces and reactions. A factorisation that lost a floating
 //! body's rigid motion (a stiffness far above its contact springs), interface loads that do not
 //! carry the reported pressures, or an iteration stopped early all show here, whatever the
 //! iteration's own measure says.
 //!
-//! The rounding of a field is about ε Σ|K||u| in force: a body that moves far more than it
-//! deforms (a huge prescribed displacement, or a rigid motion against a huge stiffness) carries
-//! forces drowned in it. This floor is reported with the imbalance, so that a failure says which
+//! The rounding of the reactions is about ε Σ|K||u| over the supported rows: a body that moves far
+//! more than it deforms (a huge prescribed displacement) carries reactions drowned in it. This floor is reported with the imbalance, so that a failure says which
 //! of the two it is.
 
+use contactdd_core::assembly::affine;
+use contactdd_core::element;
 use contactdd_core::rigid::{RigidBasis, NUM_MODES};
 use contactdd_core::{dof, ElasticBody, DIM};
 
@@ -26,8 +27,10 @@ pub struct BodyBalance {
     /// |net force and moment| of the applied loads, contact forces and reactions (the moment
     /// over the body's bounding box diameter, a force).
     pub imbalance: f64,
-    /// ε Σ|K||u|: the rounding that a field of this size carries into its forces.
+    /// ε Σ|K||u| over the supported rows: the rounding the reactions carry.
     pub floor: f64,
+    /// The largest displacement over the body's bounding box diameter.
+    pub motion: f64,
 }
 
 /// The balance of a result: per body, and of the whole problem.
@@ -78,19 +81,21 @@ pub fn balance(
     let bodies = all
         .iter()
         .map(|v| match v.as_slice() {
-            [imbalance, _, floor, ..] => BodyBalance {
+            [imbalance, _, floor, _, _, _, motion] => BodyBalance {
                 imbalance: imbalance / scale,
                 floor: floor / scale,
+                motion: *motion,
             },
             _ => BodyBalance {
                 imbalance: f64::NAN,
                 floor: f64::NAN,
+                motion: f64::NAN,
             },
         })
         .collect();
     let (mut net, mut size) = ([0.0; DIM], 0.0);
     for v in &all {
-        if let [_, _, _, x, y, total] = v[..] {
+        if let [_, _, _, x, y, total, _] = v[..] {
             net = [net[0] + x, net[1] + y];
             size += total;
         } else {
@@ -102,23 +107,15 @@ pub fn balance(
 }
 
 /// One body's [imbalance, force total, rounding floor, net load and reaction x, y, |load| +
-/// |reaction|], absolute: the net force and moment of its loads, contact forces and support
+/// |reaction|, motion], absolute: the net force and moment of its loads, contact forces and support
 /// reactions (the residual `K u − f − f_c` on the prescribed directions), its force total, ε
-/// Σ|K||u| (the rounding that a field of this size carries into its forces), and its load and
-/// reaction resultants. Along a motion no support holds, the net force is that of the loads
+/// Σ|K||u| over the supported rows (the rounding the reactions carry), its load and reaction
+/// resultants, and its largest displacement over its size. Along a motion no support holds, the net force is that of the loads
 /// and contact forces alone, free of the rounding of `K u`.
-pub fn body_forces(body: &ElasticBody, forces: &BodyForces<'_>) -> [f64; 6] {
+pub fn body_forces(body: &ElasticBody, forces: &BodyForces<'_>) -> [f64; 7] {
     let (u, load, contact) = (forces.displacement, &forces.load, &forces.contact);
-    let k = body.stiffness();
-    let mut r: Vec<f64> = (0..u.len()).map(|d| -load[d] - contact[d]).collect();
-    let mut size = vec![0.0; u.len()];
-    let (cp, ri, val) = (k.symbolic().col_ptr(), k.symbolic().row_idx(), k.val());
-    for (j, &uj) in u.iter().enumerate() {
-        for p in cp[j]..cp[j + 1] {
-            r[ri[p]] += val[p] * uj;
-            size[ri[p]] += (val[p] * uj).abs();
-        }
-    }
+    let (ku, size) = held_rows(body, u);
+    let r: Vec<f64> = (0..u.len()).map(|d| ku[d] - load[d] - contact[d]).collect();
     let mut free = r.clone();
     body.constraints.remove_prescribed(&mut free);
     let basis = RigidBasis::new(&body.mesh);
@@ -141,7 +138,37 @@ pub fn body_forces(body: &ElasticBody, forces: &BodyForces<'_>) -> [f64; 6] {
     let imbalance = net.iter().map(|x| x * x).sum::<f64>().sqrt();
     let floor = f64::EPSILON * size.iter().sum::<f64>();
     let [x, y] = [applied[0] + reacted[0], applied[1] + reacted[1]];
-    [imbalance, loads + pairs, floor, x, y, loads]
+    let largest = u.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+    let motion = largest / body.mesh.bounding_box_diameter().max(f64::MIN_POSITIVE);
+    [imbalance, loads + pairs, floor, x, y, loads, motion]
+}
+
+/// `K u` and Σ|K_ij u_j| on the rows of the supported nodes (zero elsewhere), element by element
+/// over the cells that touch such a node: the reactions need no other row, and no matrix.
+fn held_rows(body: &ElasticBody, u: &[f64]) -> (Vec<f64>, Vec<f64>) {
+    let mesh = &body.mesh;
+    let held = |v: usize| (0..DIM).any(|c| body.constraints.holds(dof(v, c)));
+    let d = body.material.elasticity(body.plane);
+    let (mut ku, mut size) = (vec![0.0; u.len()], vec![0.0; u.len()]);
+    for e in 0..mesh.num_cells() {
+        let c = mesh.cell(e);
+        if !c.iter().any(|&v| held(v)) {
+            continue;
+        }
+        let ke = element::stiffness(mesh.order(), &affine(mesh, c), &d);
+        for (a, &i) in c.iter().enumerate() {
+            for ci in 0..DIM {
+                for (b, &j) in c.iter().enumerate() {
+                    for cj in 0..DIM {
+                        let t = ke[dof(a, ci)][dof(b, cj)] * u[dof(j, cj)];
+                        ku[dof(i, ci)] += t;
+                        size[dof(i, ci)] += t.abs();
+                    }
+                }
+            }
+        }
+    }
+    (ku, size)
 }
 
 fn norm(v: [f64; DIM]) -> f64 {

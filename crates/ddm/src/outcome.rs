@@ -87,6 +87,8 @@ pub enum Stop {
         imbalance: f64,
         /// The rounding its reactions can carry, on the same scale.
         floor: f64,
+        /// Its largest displacement over its size.
+        motion: f64,
         /// The tolerance the imbalance exceeds.
         limit: f64,
     },

@@ -375,6 +375,7 @@ pub(crate) fn unbalanced_message(stop: &Stop, model: &Model, remedy: &str) -> Op
         body: b,
         imbalance,
         floor,
+        motion,
         limit,
     } = *stop
     else {
@@ -397,8 +398,8 @@ pub(crate) fn unbalanced_message(stop: &Stop, model: &Model, remedy: &str) -> Op
         });
     let cause = if stiff / soft >= 1e6 {
         format!("the Young's moduli span {:.1e} (from {soft:.3e} to {stiff:.3e}): a floating body that much stiffer than its contact springs loses its rigid motion to rounding in double precision. Lower the stiff bodies' modulus: 1e4 to 1e6 times their partners' already makes them rigid for them", stiff / soft)
-    } else if floor >= 0.1 * imbalance.max(limit) {
-        format!("the rounding of its displacements alone reaches {floor:.1e}: its displacements are so much larger than its strains (a prescribed displacement or a rigid motion far beyond its deformation) that double precision loses the strains: prescribe displacements of the size the linear theory assumes")
+    } else if motion > 1.0 || floor >= 0.1 * imbalance.max(limit) {
+        format!("its displacements reach {motion:.1e} times its size (the rounding of its reactions alone {floor:.1e}): far beyond the small displacements of linear elasticity, so double precision loses the strains beside them: prescribe displacements of the size the linear theory assumes")
     } else if model.pairs.iter().any(|p| p.forces == Forces::OwnSide) {
         "own-side pairs on non-matching meshes let each side integrate its own pressures, so action and reaction differ: use forces = \"balanced\" (the default), or raise balance-tol to accept the difference".to_string()
     } else {

@@ -189,15 +189,18 @@ pub(crate) fn unbalanced(balance: &Balance, limit: f64) -> Option<Stop> {
             body: Some(body),
             imbalance: worst.imbalance,
             floor: worst.floor,
+            motion: worst.motion,
             limit,
         });
     }
     let loads = Some(balance.loads).filter(|&l| key(l) > limit)?;
     let floor = balance.bodies.iter().map(|b| b.floor).fold(0.0, f64::max);
+    let motion = balance.bodies.iter().map(|b| b.motion).fold(0.0, f64::max);
     Some(Stop::Unbalanced {
         body: None,
         imbalance: loads,
         floor,
+        motion,
         limit,
     })
 }

@@ -133,7 +133,13 @@ pub fn summary_json_with(model: &Model, sol: &Solution, reactions: &[BodyReactio
 /// reactions.
 fn balance_json(balance: &contactdd_ddm::force_balance::Balance) -> Value {
     let bodies: Vec<Value> = (balance.bodies.iter())
-        .map(|b| json!({"imbalance": json_number(b.imbalance), "floor": json_number(b.floor)}))
+        .map(|b| {
+            json!({
+                "imbalance": json_number(b.imbalance),
+                "floor": json_number(b.floor),
+                "motion": json_number(b.motion),
+            })
+        })
         .collect();
     json!({"bodies": bodies, "loads": json_number(balance.loads)})
 }
