@@ -56,7 +56,7 @@ fn says_rounding(sol: &Solution) -> bool {
 }
 
 /// The stack of eight blocks with its steel `young` times stiffer: every pair carries 200 where
-/// it converges; at 9.2e18 (4.4e13 times the aluminium) the factorisation of a floating steel
+/// it converges; at 9.2e18 (1.3e14 times the aluminium) the factorisation of a floating steel
 /// block loses its rigid motion, and the solve must not call that a solution.
 #[test]
 fn a_stiff_stack_is_right_or_refused() {
