@@ -2,11 +2,12 @@
 //! interface Newton method (two solvers sharing only the model and the contact geometry), on a
 //! block pressed on a foundation and pushed sideways: the same contact points' gaps, tangential
 //! displacements, pressures, tangential tractions and stick/slip/open statuses, the same fields,
-//! the block's force balance, and a push beyond what friction holds refused as sliding.
+//! the block's force balance, and a push beyond what friction holds refused as sliding; and on
+//! sheared walls of floating blocks, every pair of them frictional.
 
 use contactdd::ddm::*;
 use contactdd::fem::Order;
-use contactdd::frictional::block_on_foundation;
+use contactdd::frictional::{block_on_foundation, sheared_wall};
 
 /// The block of [`block_on_foundation`] with `upper` cells of `order` and the paper's penalty
 /// factor (the model of tests/friction.rs).
@@ -74,7 +75,22 @@ fn compare(
         "{name}: {:?}",
         reference.rigid_modes
     );
-    let (a, b) = (&dd.contact[0], &reference.contact[0]);
+    assert_eq!(dd.contact.len(), reference.contact.len());
+    let mut worst = 0.0f64;
+    for (a, b) in dd.contact.iter().zip(&reference.contact) {
+        worst = worst.max(same_pair(&format!("{name}, {}", a.name), a, b, flags));
+    }
+    for (x, y) in dd.bodies.iter().zip(&reference.bodies) {
+        let err = relative_difference(&x.displacement, &y.displacement);
+        assert!(err <= TOL, "{name} '{}': u off by {err:e}", x.name);
+        worst = worst.max(err);
+    }
+    (worst, reference)
+}
+
+/// Checks that one pair's points agree in both solutions; returns the largest relative
+/// difference.
+fn same_pair(name: &str, a: &solution::PairResult, b: &solution::PairResult, flags: bool) -> f64 {
     assert_eq!(a.node, b.node, "{name}: the same contact points");
     assert_eq!(a.status, b.status, "{name}: stick/slip/open");
     if flags {
@@ -96,12 +112,7 @@ fn compare(
         assert!(err <= TOL, "{name}: {what} off by {err:e}");
         worst = worst.max(err);
     }
-    for (x, y) in dd.bodies.iter().zip(&reference.bodies) {
-        let err = relative_difference(&x.displacement, &y.displacement);
-        assert!(err <= TOL, "{name} '{}': u off by {err:e}", x.name);
-        worst = worst.max(err);
-    }
-    (worst, reference)
+    worst
 }
 
 /// The contact forces on the block balance its loads: 2p down, q along x.
@@ -207,4 +218,52 @@ fn augmented_contact_with_exact_friction_agrees() {
             pair.slip_violation()
         );
     }
+}
+
+/// The Newton steps a frictional solve may take (issue: at most 30 per load step).
+const MAX_STEPS: usize = 30;
+
+#[test]
+fn sheared_walls_agree_and_take_few_newton_steps() {
+    // Walls of n × n floating blocks (matching and non-matching neighbours alternate), every
+    // interface frictional, the top row pushed sideways: partial slip over many pairs at once.
+    for (n, mu, c) in [
+        (2, 0.5, 0.05),
+        (3, 0.3, 0.05),
+        (4, 0.5, 0.05),
+        (4, 0.1, 0.05),
+        (4, 0.1, 0.0005),
+        (4, 1.0, 0.0005),
+    ] {
+        let name = format!("wall {n} x {n}, mu = {mu}, c = {c}");
+        let model = sheared_wall(n, mu, 0.2, c);
+        let dd = decomposition(&model);
+        assert!(
+            dd.iterations <= MAX_STEPS,
+            "{name}: {} steps",
+            dd.iterations
+        );
+        let (worst, _) = compare(&name, &dd, monolithic(&model), true);
+        let slipping: usize = (dd.contact.iter())
+            .map(|p| {
+                p.status
+                    .iter()
+                    .filter(|&&s| s == FrictionStatus::Slip)
+                    .count()
+            })
+            .sum();
+        eprintln!(
+            "{name}: {} Newton steps, {slipping} points slip, largest relative difference \
+             {worst:.1e}",
+            dd.iterations
+        );
+    }
+}
+
+#[test]
+fn the_eight_by_eight_wall_converges_in_few_newton_steps() {
+    let model = sheared_wall(8, 0.5, 0.2, 0.05);
+    let dd = decomposition(&model);
+    assert!(dd.converged, "{:?}", dd.message);
+    assert!(dd.iterations <= MAX_STEPS, "{} steps", dd.iterations);
 }

@@ -439,8 +439,10 @@ fn newton(
         history,
         stop,
     };
+    let mut previous_g = Vec::new(); // g of the state the last step started from
     for k in 1..=settings.max_steps {
-        let (chi, status) = jacobian_set(system, modes, &eval);
+        let (mut chi, mut status) = jacobian_set(system, modes, &eval);
+        friction::step_sets(system, &eval, (k == 1, &previous_g), &mut chi, &mut status);
         let stick: Vec<bool> = status.iter().map(|&s| s == Status::Stick).collect();
         let z = modes::kernel(modes, &chi, &stick).on_x;
         let Some((dx, dlam)) = system.direction((&chi, &status), &z, &eval, &lam) else {
@@ -478,7 +480,7 @@ fn newton(
             f(&record);
         }
         history.push(record);
-        eval = next;
+        previous_g = std::mem::replace(&mut eval, next).g;
         if settled {
             return end(x, eval, k, history, None);
         }

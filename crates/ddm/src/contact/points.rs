@@ -180,6 +180,29 @@ impl Interface {
         }
     }
 
+    /// Makes the slipping points whose trial traction changed sign since the state with the
+    /// tangential displacements `before` stick in a Newton step's statuses `status`; returns
+    /// whether there were any. U is affine along a step, so the trial traction passed through
+    /// zero, inside the disc, on the way: the slip direction of neither end is one the solution
+    /// takes, and a step that slips the point in its new direction swings it back (a cycle of
+    /// period two). Nothing without `before` (the first step).
+    pub fn hold_reversals(&self, status: &mut [Status], before: &[f64], now: &[f64]) -> bool {
+        let mut held = false;
+        if before.is_empty() {
+            return held;
+        }
+        for (j, st) in status.iter_mut().enumerate() {
+            let Some(f) = &self.points[j].friction else {
+                continue;
+            };
+            if *st == Status::Slip && f.trial(before[j]) * f.trial(now[j]) < 0.0 {
+                *st = Status::Stick;
+                held = true;
+            }
+        }
+        held
+    }
+
     /// The contact force along unknown q with friction: [`Interface::force`] plus the
     /// tangential tractions' shares Σ b w_j σ_t,j (the normal force alone without friction).
     pub fn total_force(&self, q: usize, s: &[f64], g: &[f64]) -> f64 {

@@ -88,6 +88,46 @@ fn moves_most(modes: &[Mode], w: &[f64]) -> usize {
         .unwrap_or(0)
 }
 
+/// The step's sets beyond [`super::jacobian_set`]'s, with friction: at the `first` step the
+/// points that touch ([`touching_start`]); afterwards the slipping points whose direction
+/// reversed since the state with the tangential displacements `previous` stick
+/// ([`crate::contact::Interface::hold_reversals`]).
+pub(super) fn step_sets(
+    system: &ReducedSystem,
+    eval: &Evaluation,
+    (first, previous): (bool, &[f64]),
+    chi: &mut [bool],
+    status: &mut [Status],
+) {
+    if first {
+        touching_start(system, eval, chi, status);
+    }
+    (system.interface).hold_reversals(status, previous, &eval.g);
+}
+
+/// With friction, the first step from the unloaded state also closes the points that touch there
+/// (gap d − s ≤ 0), sticking: the statuses of a frictional solution depend on the whole contact
+/// zone, and a first step that leaves a touching interface open loads its neighbours with
+/// tractions far beyond their discs, from which the stick/slip sets take many steps to recover.
+/// (The decomposition's start u⁰ closes them likewise.) Frictionless runs start as before.
+fn touching_start(
+    system: &ReducedSystem,
+    eval: &Evaluation,
+    chi: &mut [bool],
+    status: &mut [Status],
+) {
+    if !system.friction {
+        return;
+    }
+    let points = &system.interface.points;
+    for (j, p) in points.iter().enumerate() {
+        if p.carries() && p.has_partner() && system.spring(j) > 0.0 {
+            chi[j] |= p.penalty_gap() - eval.s[j] <= 0.0;
+        }
+    }
+    stick_where_closed(system, chi, status);
+}
+
 /// Frictional points closed in `chi` but open in `status` stick: J treats them as touching, and
 /// a body that just touches does not slide (J then resists its tangential motions too).
 pub(super) fn stick_where_closed(system: &ReducedSystem, chi: &[bool], status: &mut [Status]) {

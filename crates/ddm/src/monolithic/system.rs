@@ -175,7 +175,7 @@ impl<'a> ReducedSystem<'a> {
     }
 
     /// Penalty stiffness k_j = w_j/θ_j.
-    fn spring(&self, j: usize) -> f64 {
+    pub(super) fn spring(&self, j: usize) -> f64 {
         let p = &self.interface.points[j];
         p.weight / p.theta
     }
@@ -285,6 +285,7 @@ impl<'a> ReducedSystem<'a> {
                 }
             }
         }
+        self.retract_tractions(status, eval, &mut rhs);
         let dx = self.solve((chi, status), z, &eval.g, &rhs)?;
         let dlam = (0..points.len())
             .map(|j| {
@@ -344,6 +345,33 @@ impl<'a> ReducedSystem<'a> {
         let sol = lu.solve(&b);
         let delta: Vec<f64> = (0..n).map(|i| sol[(i, 0)]).collect();
         delta.iter().all(|v| v.is_finite()).then_some(delta)
+    }
+
+    /// Where the step's statuses `status` differ from the state's (points it holds), −F takes
+    /// their tractions under the step's statuses (the trial traction where they stick), so that
+    /// the step solves the linear equations of its own sets, as the decomposition's does.
+    fn retract_tractions(&self, status: &[Status], eval: &Evaluation, rhs: &mut [f64]) {
+        let points = &self.interface.points;
+        for (j, row) in self.g.iter().enumerate() {
+            let (Some(row), Some(f)) = (row, points[j].friction.as_ref()) else {
+                continue;
+            };
+            if status[j] == eval.status[j] {
+                continue;
+            }
+            let traction = match status[j] {
+                Status::Stick => f.trial(eval.g[j]),
+                Status::Slip => f
+                    .law
+                    .bound(-points[j].pressure(eval.s[j]))
+                    .copysign(f.trial(eval.g[j])),
+                Status::Open => 0.0,
+            };
+            let change = points[j].weight * (traction - eval.traction[j]);
+            for &(i, c) in &row.terms {
+                rhs[i] += change * c;
+            }
+        }
     }
 
     /// The friction's part of J for the statuses `status` at the tangential displacements `g`:

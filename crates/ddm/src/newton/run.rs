@@ -39,6 +39,10 @@ pub(super) struct Run<'s, 'a> {
     pulled: Option<usize>,
     /// What the steps keep for the next.
     caches: Caches,
+    /// The tangential displacements of the state the last step started from (empty before the
+    /// first step): [`crate::contact::Interface::hold_reversals`] compares the slip directions
+    /// with them.
+    previous_g: Vec<f64>,
 }
 
 /// The watchdog's reference: the last state whose ‖R̂‖ a step decreased enough, with the closed
@@ -107,6 +111,7 @@ impl<'s, 'a> Run<'s, 'a> {
             history: Vec::new(),
             pulled: None,
             caches: Caches::default(),
+            previous_g: Vec::new(),
         }
     }
 
@@ -119,7 +124,12 @@ impl<'s, 'a> Run<'s, 'a> {
             if let Some(b) = self.system.unresisted(&self.state.free) {
                 return (self.lost(b, k), k);
             }
-            let (chi, status) = self.system.jacobian_set(&self.state);
+            let (chi, mut status) = self.system.jacobian_set(&self.state);
+            let held = (self.system.interface).hold_reversals(
+                &mut status,
+                &self.previous_g,
+                &self.state.g,
+            );
             let found;
             let free = if chi == self.state.closed && status == self.state.status {
                 &self.state.free
@@ -156,10 +166,10 @@ impl<'s, 'a> Run<'s, 'a> {
             if let Some(f) = hooks.on_iteration {
                 f(&record);
             }
-            let converged = self.converged(&step, &record, settled, settings.tol);
+            let converged = !held && self.converged(&step, &record, settled, settings.tol);
             self.history.push(record);
             self.tau = self.along(&step.delta, step.alpha);
-            self.state = step.next;
+            self.previous_g = std::mem::replace(&mut self.state, step.next).g;
             if converged {
                 return (Stop::Converged, k);
             }
