@@ -5,9 +5,7 @@
 //! results are checked against the applied load: the contact carries q · 20 = 2000 on each side.
 
 use contactdd::cases;
-use contactdd::ddm::{
-    prepare, solve, CoarseMode, Gamma, Hooks, Method, Model, Settings, Solution,
-};
+use contactdd::ddm::{prepare, solve, CoarseMode, Gamma, Hooks, Method, Model, Settings, Solution};
 use contactdd::fem::Component;
 
 /// `cases::recess` with the lower block also floating vertically: symmetry on its left side and

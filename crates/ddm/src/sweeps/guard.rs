@@ -51,8 +51,7 @@ impl Run<'_> {
     ) -> Vec<Result<(), Breakdown>> {
         let size = self.update_size();
         let last = self.last_update.replace(size);
-        // `!(a <= b)`: a non-finite update counts as grown.
-        let grown = last.is_some_and(|last| !(size <= GROWTH * last));
+        let grown = last.is_some_and(|last| size > GROWTH * last);
         if !(corrected && grown) {
             return swept;
         }
@@ -68,7 +67,7 @@ impl Run<'_> {
         self.interface.sum_normal(&state.u, &mut state.s);
         let plain = self.sweep();
         let plain_size = self.update_size();
-        if !(size <= plain_size) {
+        if size > plain_size {
             self.coarse = CoarseMode::Off;
             self.last_update = None;
             return plain;
@@ -80,15 +79,23 @@ impl Run<'_> {
         swept
     }
 
-    /// ‖Ũ − U‖ over every body's points, summed body by body in body order (a collective).
+    /// ‖Ũ − U‖ over every body's points, summed body by body in body order (a collective); a
+    /// non-finite size is infinite, so that it counts as grown and as larger than any other.
     fn update_size(&self) -> f64 {
         let (u, tilde) = (&self.state.u, &self.buf.tilde);
         let own = (self.sums.own.iter())
             .map(|range| {
-                let sum = range.clone().map(|j| (tilde[j] - u[j]).powi(2)).sum::<f64>();
+                let sum = range
+                    .clone()
+                    .map(|j| (tilde[j] - u[j]).powi(2))
+                    .sum::<f64>();
                 [sum, 0.0, 0.0, 0.0]
             })
             .collect();
-        self.sums.total(own)[0].sqrt()
+        let size = self.sums.total(own)[0].sqrt();
+        match size.is_finite() {
+            true => size,
+            false => f64::INFINITY,
+        }
     }
 }

@@ -153,7 +153,10 @@ impl<'a> Run<'a> {
         let mut corrected = false;
         if self.coarse != CoarseMode::Off {
             let (u, t) = (&mut state.u, &mut state.t);
-            corrected = prepared.coarse.correct(self.coarse, interface, exchange, u, t) > 0;
+            corrected = prepared
+                .coarse
+                .correct(self.coarse, interface, exchange, u, t)
+                > 0;
             interface.sum_normal(&state.u, &mut state.s);
         }
         let swept = self.sweep();
