@@ -41,9 +41,10 @@ const BALANCE_TOL: f64 = 1e-12;
 pub enum CoarseMode {
     /// No coarse correction (the paper's one-level iteration).
     Off,
-    /// The floating bodies that touch another floating body: chains and clusters of bodies held
-    /// only by each other. A floating body whose partners are all held by supports is balanced by
-    /// its own Robin solve already, so it is left to the sweep.
+    /// The floating bodies that touch another floating body, in a cluster that a held body
+    /// carries: chains and stacks resting on a support. A floating body whose partners are all
+    /// held by supports is balanced by its own Robin solve already, and so is every body of a
+    /// cluster that no support carries; they are left to the sweep.
     Chains,
     /// Every floating body.
     All,
@@ -70,13 +71,7 @@ impl Coarse {
     /// Finds the free rigid modes of every body and their values on the contact points.
     pub fn new(model: &Model, interface: &Interface) -> Coarse {
         let facts: Vec<BodyFacts> = (0..model.bodies.len()).map(|b| model.facts(b)).collect();
-        let mut in_chain = vec![false; facts.len()];
-        for pair in &model.pairs {
-            let [a, b] = pair.bodies;
-            if !facts[a].free.is_empty() && !facts[b].free.is_empty() {
-                (in_chain[a], in_chain[b]) = (true, true);
-            }
-        }
+        let in_chain = chains(model, &facts);
         Coarse {
             chains: FloatingModes::new(model, interface, &facts, |b| in_chain[b]),
             all: FloatingModes::new(model, interface, &facts, |_| true),
@@ -155,6 +150,46 @@ impl Coarse {
             CoarseMode::All => self.all.correct(&shared, un, t),
         }
     }
+}
+
+/// Which bodies [`CoarseMode::Chains`] moves: the floating bodies that touch another floating
+/// body, in a cluster of floating bodies (connected by contact pairs) that touches a body held
+/// by its supports. A cluster that no held body carries is left to the sweeps: its load does not
+/// travel to a support, every body of it balances against its partners in its own Robin solve,
+/// and its coarse problem fixes only the bodies' relative motions (singular along the joint one).
+fn chains(model: &Model, facts: &[BodyFacts]) -> Vec<bool> {
+    let floating = |b: usize| !facts[b].free.is_empty();
+    // Union–find of the floating bodies over their pairs.
+    let mut root: Vec<usize> = (0..facts.len()).collect();
+    fn find(root: &mut [usize], mut b: usize) -> usize {
+        while root[b] != b {
+            root[b] = root[root[b]];
+            b = root[b];
+        }
+        b
+    }
+    let mut touches_floating = vec![false; facts.len()];
+    for pair in &model.pairs {
+        let [a, b] = pair.bodies;
+        if a != b && floating(a) && floating(b) {
+            (touches_floating[a], touches_floating[b]) = (true, true);
+            let (ra, rb) = (find(&mut root, a), find(&mut root, b));
+            root[ra] = rb;
+        }
+    }
+    let mut carried = vec![false; facts.len()];
+    for pair in &model.pairs {
+        let [a, b] = pair.bodies;
+        for (f, h) in [(a, b), (b, a)] {
+            if floating(f) && !floating(h) {
+                let r = find(&mut root, f);
+                carried[r] = true;
+            }
+        }
+    }
+    (0..facts.len())
+        .map(|b| touches_floating[b] && carried[find(&mut root, b)])
+        .collect()
 }
 
 /// The selected bodies' rigid modes on the contact points.

@@ -45,6 +45,11 @@ pub const GAMMA_MIN: f64 = 0.1;
 pub const GAMMA_MAX: f64 = 1.0;
 /// Starting γ of the `auto` rule.
 pub const GAMMA_START: f64 = 0.5;
+/// Growth of the unrelaxed update ‖r^k‖/‖r^{k−1}‖ above which a step counts as too long: the
+/// `auto` rule halves γ, and the two-level sweeps check their coarse correction
+/// (`crate::sweeps`). A contraction shrinks the update; a factor 2 leaves room for the
+/// non-monotone steps of a piecewise-linear map (an active-set change).
+pub const GROWTH: f64 = 2.0;
 
 /// The state of the γ rule during one solve.
 pub struct Relaxation {
@@ -127,7 +132,7 @@ impl Relaxation {
                 })
                 .collect();
             let [rr, pp, dd, pd] = total(partial);
-            let next = if rr.sqrt() > 2.0 * pp.sqrt() {
+            let next = if rr.sqrt() > GROWTH * pp.sqrt() {
                 0.5 * g
             } else if dd > 0.0 {
                 -g * pd / dd

@@ -15,6 +15,7 @@
 //!
 //! `docs/two-level.md` describes the accelerated two-level iteration.
 
+mod guard;
 mod ranks;
 pub mod robin;
 mod update;
@@ -107,6 +108,10 @@ struct Run<'a> {
     update: Update,
     state: State,
     buf: Buffers,
+    /// The coarse mode in use: the settings', until the guard switches it off.
+    coarse: CoarseMode,
+    /// The size of the last sweep's unrelaxed update ‖Ũ − U‖, while the guard watches.
+    last_update: Option<f64>,
 }
 
 /// What one sweep and its update came to.
@@ -133,32 +138,33 @@ impl<'a> Run<'a> {
             update: Update::new(settings),
             state: State::initial(prepared, interface, settings),
             buf: Buffers::new(interface.len()),
+            coarse: settings.coarse,
+            last_update: None,
         }
     }
 
     /// Iteration k: the coarse correction, the sweep, the update and its checks.
     fn iteration(&mut self, k: usize) -> Swept {
         let (prepared, interface, settings) = (self.prepared, self.interface, self.settings);
-        let (exchange, ranges) = (&*prepared.exchange, &interface.body_range);
+        let exchange = &*prepared.exchange;
         let (state, buf) = (&mut self.state, &mut self.buf);
         buf.input.copy_from_slice(&state.u);
         buf.input_t.copy_from_slice(&state.t);
-        if settings.coarse != CoarseMode::Off {
+        let mut corrected = false;
+        if self.coarse != CoarseMode::Off {
             let (u, t) = (&mut state.u, &mut state.t);
-            prepared
+            corrected = prepared
                 .coarse
-                .correct(settings.coarse, interface, exchange, u, t);
+                .correct(self.coarse, interface, exchange, u, t)
+                > 0;
             interface.sum_normal(&state.u, &mut state.s);
         }
-        let swept = self.sweep.apply(
-            &state.u,
-            &state.s,
-            &state.s_prev,
-            &mut buf.tilde,
-            &mut buf.t_tilde,
-        );
-        let swept =
-            (self.sharing).outputs(exchange, ranges, &mut buf.tilde, &mut buf.t_tilde, swept);
+        let swept = self.sweep();
+        let swept = match self.guarded() {
+            true => self.guard(swept, corrected),
+            false => swept,
+        };
+        let (state, buf) = (&mut self.state, &mut self.buf);
         let gamma = self.update.propose(&state.u, buf);
         interface.sum_normal(&buf.next, &mut buf.s_next);
         let (next, before) = (&buf.next, &buf.input);
@@ -176,6 +182,7 @@ impl<'a> Run<'a> {
                 if relax.restart() {
                     // Start over from the initial values with a smaller γ cap.
                     self.state = State::initial(prepared, interface, settings);
+                    self.last_update = None;
                     return Swept::Restart;
                 }
             }
