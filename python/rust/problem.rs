@@ -145,6 +145,11 @@ impl Problem {
     pub fn units(&self) -> Option<&str> {
         self.spec.units.as_deref()
     }
+
+    /// The encoding of the problem's `.vtu` files (`[output] vtu`, binary by default).
+    pub fn vtu(&self) -> contactdd_io::vtu::VtuFormat {
+        self.spec.output.vtu.unwrap_or_default()
+    }
 }
 
 #[pymethods]
@@ -181,6 +186,7 @@ impl Problem {
                 contact: Vec::new(),
                 solver: SolverSpec::default(),
                 steps: Vec::new(),
+                output: Default::default(),
             },
         })
     }

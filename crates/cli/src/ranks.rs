@@ -13,6 +13,7 @@ use contactdd_io::distributed_results::{
 use contactdd_io::reactions::BodyReactions;
 use contactdd_io::setup::Monitor;
 use contactdd_io::steps::HistoryLabels;
+use contactdd_io::vtu::VtuFormat;
 use contactdd_io::Loaded;
 
 use crate::rank_use::peak_mib;
@@ -25,6 +26,8 @@ use contactdd_io::{distributed_setup::estimated_costs, read_problem};
 pub struct Ranks {
     exchange: Arc<dyn Exchange>,
     size: usize,
+    /// The encoding of the `.vtu` files every rank writes.
+    vtu: VtuFormat,
     #[cfg(feature = "mpi")]
     mpi: Option<Arc<crate::mpi_exchange::MpiExchange>>,
 }
@@ -45,6 +48,7 @@ impl Ranks {
                 let ranks = Ranks {
                     exchange: mpi.clone(),
                     size: mpi.size(),
+                    vtu: VtuFormat::default(),
                     mpi: Some(mpi),
                 };
                 if ranks.is_root() {
@@ -70,9 +74,16 @@ impl Ranks {
         Ranks {
             exchange: Arc::new(Local::new(model.bodies.len())),
             size: 1,
+            vtu: VtuFormat::default(),
             #[cfg(feature = "mpi")]
             mpi: None,
         }
+    }
+
+    /// Writes the `.vtu` files in `vtu` (the same on every rank: the problem file's and the
+    /// command line's choice).
+    pub fn set_vtu(&mut self, vtu: VtuFormat) {
+        self.vtu = vtu;
     }
 
     /// The exchange to prepare the model on.
@@ -136,6 +147,7 @@ impl Ranks {
             owns: Box::new(move |b| exchange.owns(b)),
             agree: Box::new(move |error| exchange.agree(error)),
             gather: Box::new(move |own| exchange.gather(own)),
+            vtu: self.vtu,
         }
     }
 
