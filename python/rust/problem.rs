@@ -145,11 +145,6 @@ impl Problem {
     pub fn units(&self) -> Option<&str> {
         self.spec.units.as_deref()
     }
-
-    /// The encoding of the problem's `.vtu` files (`[output] vtu`, binary by default).
-    pub fn vtu(&self) -> contactdd_io::vtu::VtuFormat {
-        self.spec.output.vtu.unwrap_or_default()
-    }
 }
 
 #[pymethods]

@@ -132,7 +132,7 @@ pub fn solve(
     let (model, settings, threads) = p.configured(&options)?;
     let monitor = monitored(&p, monitor, &model)?;
     let units = p.units().map(str::to_string);
-    let vtu = p.vtu();
+    let vtu = p.spec.output.vtu.unwrap_or_default();
     drop(p);
     let model = Arc::new(model);
     let m = model.clone();
@@ -351,7 +351,7 @@ pub fn solve_steps<'py>(
     let (history, factors) = plan(&p, &model, load_steps)?;
     let monitor = monitored(&p, monitor, &model)?;
     let units = p.units().map(str::to_string);
-    let vtu = p.vtu();
+    let vtu = p.spec.output.vtu.unwrap_or_default();
     drop(p);
     if let Some(history) = history {
         let run = HistoryRun {

@@ -36,8 +36,15 @@ impl Ranks {
     /// Reads the problem file `path` for this run: in one process every body is meshed; under
     /// `mpirun` with more than one rank the bodies are partitioned by their estimated
     /// factorisation cost, and each rank meshes only its own and holds the others as their
-    /// contact skins (a collective).
-    pub fn load(path: &Path) -> anyhow::Result<(Loaded, Ranks)> {
+    /// contact skins (a collective). The `.vtu` files are written in `vtu`, or else in the file's `[output] vtu`.
+    pub fn load(path: &Path, vtu: Option<VtuFormat>) -> anyhow::Result<(Loaded, Ranks)> {
+        let (loaded, mut ranks) = Ranks::load_file(path)?;
+        ranks.vtu = vtu.or(loaded.problem.output.vtu).unwrap_or_default();
+        Ok((loaded, ranks))
+    }
+
+    /// [`Ranks::load`] with the `.vtu` files in the default format.
+    fn load_file(path: &Path) -> anyhow::Result<(Loaded, Ranks)> {
         #[cfg(feature = "mpi")]
         {
             let file = read_problem(path).map_err(|e| anyhow::anyhow!("{e}"))?;
@@ -78,12 +85,6 @@ impl Ranks {
             #[cfg(feature = "mpi")]
             mpi: None,
         }
-    }
-
-    /// Writes the `.vtu` files in `vtu` (the same on every rank: the problem file's and the
-    /// command line's choice).
-    pub fn set_vtu(&mut self, vtu: VtuFormat) {
-        self.vtu = vtu;
     }
 
     /// The exchange to prepare the model on.

@@ -170,12 +170,7 @@ fn iterate_shown(
 /// `contactdd solve`.
 pub fn solve(args: SolveArgs) -> Result<Exit> {
     let start = Instant::now();
-    let (loaded, mut ranks) = Ranks::load(&args.file)?;
-    ranks.set_vtu(
-        args.vtu_format
-            .or(loaded.problem.output.vtu)
-            .unwrap_or_default(),
-    );
+    let (loaded, ranks) = Ranks::load(&args.file, args.vtu_format)?;
     let t_load = start.elapsed().as_secs_f64();
     let (settings, threads) = cli_settings(&args, &loaded);
     let mut model = loaded.model;
