@@ -2,9 +2,11 @@
 # Checks that the command line behaves as it did at a reference git revision: runs `contactdd
 # solve` on every examples/*.toml and the paper's γ sweep with both the reference build and the
 # working tree's build, and compares the outputs byte for byte (summary.json without its timings,
-# contact.csv, history.csv, the VTU files, the sweep CSV), the output of `contactdd check` and the
+# contact.csv, history.csv, results.pvd, the sweep CSV), the output of `contactdd check` and the
 # exit codes. Keys that only the working tree's summary.json has (new outputs) are named and left
-# out of the comparison; every other key must match.
+# out of the comparison; every other key must match. The VTU files are compared by their numbers,
+# not their encoding: scripts/vtu_decode.py turns each (ASCII or binary) into its elements,
+# attributes and values (floats as their 64 bits), which must then match exactly.
 #
 # Usage: bash scripts/same_outputs.sh [REV]      (REV defaults to main)
 #
@@ -18,6 +20,8 @@ root=$(pwd)
 rev=${1:-main}
 sha=$(git rev-parse --verify "$rev^{commit}")
 work="$root/target/same-outputs"
+# This tree's own build honours CARGO_TARGET_DIR.
+own_target=${CARGO_TARGET_DIR:-$root/target}
 ref_bin="$work/bin-$sha/contactdd"
 mkdir -p "$work"
 
@@ -31,10 +35,10 @@ trap cleanup EXIT
 
 if [ ! -x "$ref_bin" ]; then
   git worktree add --detach --force "$src" "$sha" >/dev/null
-  if [ ! -d "$work/target" ] && [ -d target/release/deps ]; then
+  if [ ! -d "$work/target" ] && [ -d "$own_target/release/deps" ]; then
     # Seed with this tree's compiled dependencies: the same registry crates need no rebuild.
     mkdir -p "$work/target"
-    cp -a target/release "$work/target/release"
+    cp -a "$own_target/release" "$work/target/release"
   fi
   echo "== building the reference ($rev = ${sha:0:12})"
   cargo build --release --quiet -p contactdd-cli --manifest-path "$src/Cargo.toml" \
@@ -47,7 +51,7 @@ fi
 
 echo "== building the working tree"
 cargo build --release --quiet -p contactdd-cli
-new_bin="$root/target/release/contactdd"
+new_bin="$own_target/release/contactdd"
 
 # Runs every case with binary $2 into folder $1; records the exit codes in $1/exit-codes.
 run_all() {
@@ -80,6 +84,7 @@ echo "== running the reference"
 run_all "$out/reference" "$ref_bin"
 echo "== running the working tree"
 run_all "$out/current" "$new_bin"
+python3 scripts/vtu_decode.py "$out/reference" "$out/current"
 
 # A key that the reference's summary.json lacks is new output, not a changed answer: it is
 # dropped from the current summary (and named), so that every key both have must match byte for
@@ -105,7 +110,7 @@ PY
 )
 files=$(find "$out/reference" -type f | wc -l)
 if diff -r "$out/reference" "$out/current"; then
-  echo "same outputs: $files files identical to $rev (${sha:0:12}), timings ignored${added:+, new summary keys ignored: $added}"
+  echo "same outputs: $files files identical to $rev (${sha:0:12}) (VTU files by their values), timings ignored${added:+, new summary keys ignored: $added}"
 else
   echo "outputs differ from $rev (${sha:0:12})" >&2
   exit 1

@@ -102,5 +102,6 @@ pub fn notch_spec(nx: usize, ny: usize, order: Order) -> Problem {
             ..SolverSpec::default()
         },
         steps: Vec::new(),
+        output: Default::default(),
     }
 }

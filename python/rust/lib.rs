@@ -216,6 +216,7 @@ fn monolithic(
     };
     // The checks of a `[solver]` table for threads and gap_tol.
     let (model, base, threads) = problem.borrow().configured(&options)?;
+    let vtu = problem.borrow().spec.output.vtu.unwrap_or_default();
     let mut settings = MonolithicSettings {
         gap_tol: base.gap_tol,
         ..MonolithicSettings::default()
@@ -240,7 +241,7 @@ fn monolithic(
     })?;
     let sol = out_sol.map_err(setup_error)?;
     if let Some(dir) = out {
-        py.detach(|| contactdd_io::output::write_monolithic_results(&dir, &model, &sol))
+        py.detach(|| contactdd_io::output::write_monolithic_results(&dir, &model, &sol, vtu))
             .map_err(|e| {
                 input_error(format!(
                     "cannot write the results to '{}': {e}",

@@ -181,6 +181,7 @@ impl Problem {
                 contact: Vec::new(),
                 solver: SolverSpec::default(),
                 steps: Vec::new(),
+                output: Default::default(),
             },
         })
     }

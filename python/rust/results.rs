@@ -364,16 +364,31 @@ impl SolveResult {
     /// Writes the VTU files of every body and the summary JSON into ``directory`` (created if
     /// needed), exactly as ``contactdd solve --output`` does.
     ///
+    /// Args:
+    ///     directory: the folder to write.
+    ///     format: the encoding of the VTU files: ``"binary"`` (appended raw binary) or
+    ///         ``"ascii"`` (text).
+    ///
     /// Returns:
     ///     The paths of the files written.
     ///
     /// Raises:
     ///     ContactddError: the result was unpickled or read by :func:`load_results` (it holds no
-    ///         solver data to write from), or a file cannot be written.
-    fn write_vtu(&self, py: Python<'_>, directory: std::path::PathBuf) -> PyResult<Vec<String>> {
+    ///         solver data to write from), ``format`` is neither ``"binary"`` nor ``"ascii"``, or a
+    ///         file cannot be written.
+    #[pyo3(signature = (directory, format = "binary"))]
+    fn write_vtu(
+        &self,
+        py: Python<'_>,
+        directory: std::path::PathBuf,
+        format: &str,
+    ) -> PyResult<Vec<String>> {
+        let vtu = vtu_format(format)?;
         let (model, sol) = self.origin.solved()?;
         let paths = py
-            .detach(move || contactdd_io::output::write_results(&directory, &model, &sol))
+            .detach(move || {
+                contactdd_io::output::write_results_noted(&directory, &model, &sol, None, vtu)
+            })
             .map_err(|e| input_error(format!("cannot write results: {e}")))?;
         Ok(paths.iter().map(|p| p.display().to_string()).collect())
     }
@@ -479,17 +494,29 @@ impl MonolithicResult {
     /// Writes ``summary.json``, ``contact.csv`` and one VTU file per body into ``directory``, as
     /// ``contactdd monolithic --output`` does.
     ///
+    /// Args:
+    ///     directory: the folder to write.
+    ///     format: the encoding of the VTU files: ``"binary"`` (appended raw binary) or
+    ///         ``"ascii"`` (text).
+    ///
     /// Returns:
     ///     The paths of the files written.
     ///
     /// Raises:
-    ///     ContactddError: the result was unpickled or read by :func:`load_results`, or a file
-    ///         cannot be written.
-    fn write_vtu(&self, py: Python<'_>, directory: std::path::PathBuf) -> PyResult<Vec<String>> {
+    ///     ContactddError: the result was unpickled or read by :func:`load_results`, ``format`` is
+    ///         neither ``"binary"`` nor ``"ascii"``, or a file cannot be written.
+    #[pyo3(signature = (directory, format = "binary"))]
+    fn write_vtu(
+        &self,
+        py: Python<'_>,
+        directory: std::path::PathBuf,
+        format: &str,
+    ) -> PyResult<Vec<String>> {
+        let vtu = vtu_format(format)?;
         let (model, sol) = self.origin.solved()?;
         let paths = py
             .detach(move || {
-                contactdd_io::output::write_monolithic_results(&directory, &model, &sol)
+                contactdd_io::output::write_monolithic_results(&directory, &model, &sol, vtu)
             })
             .map_err(|e| input_error(format!("cannot write results: {e}")))?;
         Ok(paths.iter().map(|p| p.display().to_string()).collect())
@@ -535,4 +562,12 @@ impl MonolithicResult {
             self.rigid_modes.join(", ")
         )
     }
+}
+
+/// The VTU encoding named `format` (`write_vtu(format=...)`); another name is a
+/// `ContactddError` naming the two.
+fn vtu_format(format: &str) -> PyResult<contactdd_io::vtu::VtuFormat> {
+    format
+        .parse()
+        .map_err(|e| input_error(format!("write_vtu: {e}")))
 }

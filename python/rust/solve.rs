@@ -14,6 +14,7 @@ use contactdd_ddm::history::{Increment, LoadHistory};
 use contactdd_ddm::{Hooks, Model, Record, SetupError};
 use contactdd_io::setup::Monitor;
 use contactdd_io::steps::{monitored_displacement, HistoryLabels};
+use contactdd_io::vtu::VtuFormat;
 
 use crate::error::{convergence_error, input_error, setup_error};
 use crate::options::{friction_arg, GammaArg, SolverOptions};
@@ -131,6 +132,7 @@ pub fn solve(
     let (model, settings, threads) = p.configured(&options)?;
     let monitor = monitored(&p, monitor, &model)?;
     let units = p.units().map(str::to_string);
+    let vtu = p.spec.output.vtu.unwrap_or_default();
     drop(p);
     let model = Arc::new(model);
     let m = model.clone();
@@ -146,7 +148,7 @@ pub fn solve(
     if let Some(dir) = out {
         let units = units.as_deref();
         written(py, &dir, || {
-            contactdd_io::output::write_results_noted(&dir, &model, &sol, units)
+            contactdd_io::output::write_results_noted(&dir, &model, &sol, units, vtu)
         })?;
     }
     let at = monitor
@@ -349,6 +351,7 @@ pub fn solve_steps<'py>(
     let (history, factors) = plan(&p, &model, load_steps)?;
     let monitor = monitored(&p, monitor, &model)?;
     let units = p.units().map(str::to_string);
+    let vtu = p.spec.output.vtu.unwrap_or_default();
     drop(p);
     if let Some(history) = history {
         let run = HistoryRun {
@@ -357,6 +360,7 @@ pub fn solve_steps<'py>(
             threads,
             monitor,
             units,
+            vtu,
             out,
             check,
         };
@@ -372,7 +376,7 @@ pub fn solve_steps<'py>(
     if let Some(dir) = out {
         let (units, monitor) = (units.as_deref(), monitor.as_ref());
         written(py, &dir, || {
-            contactdd_io::output::write_step_results(&dir, &model, &steps, monitor, units)
+            contactdd_io::output::write_step_results(&dir, &model, &steps, (monitor, units), vtu)
         })?;
     }
     let models = vec![model; steps.len()];
@@ -463,6 +467,8 @@ struct HistoryRun {
     monitor: Option<Monitor>,
     /// The problem's units note.
     units: Option<String>,
+    /// The encoding of the `.vtu` files.
+    vtu: VtuFormat,
     /// The folder to write the results into.
     out: Option<std::path::PathBuf>,
     /// Raise if the last increment does not converge.
@@ -483,6 +489,7 @@ fn solve_history<'py>(
         threads,
         monitor,
         units,
+        vtu,
         out,
         check,
     } = run;
@@ -512,7 +519,8 @@ fn solve_history<'py>(
         let labels = HistoryLabels::new(history, &increments);
         let (units, monitor) = (units.as_deref(), monitor.as_ref());
         written(py, &dir, || {
-            contactdd_io::output::write_history_results(&dir, last, &steps, monitor, units, &labels)
+            let notes = (monitor, units);
+            contactdd_io::output::write_history_results(&dir, last, &steps, notes, &labels, vtu)
         })?;
     }
     step_results(py, models, steps, monitor.as_ref(), check)

@@ -216,3 +216,20 @@ def test_a_manifest_names_only_files_of_the_folder(run):
         with pytest.raises(contactdd.ContactddError, match="not a file name of the folder"):
             contactdd.load_results(run)
         summary["files"] = ["lower.vtu" if f == name else f for f in summary["files"]]
+
+
+def test_a_binary_vtu_that_lies_or_is_cut_is_refused(tmp_path):
+    contactdd.solve(contactdd.notch_benchmark(8, 4)).write_vtu(tmp_path / "run")
+    path = tmp_path / "run" / "lower.vtu"
+    data = path.read_bytes()
+    start = data.index(b"_", data.index(b"<AppendedData")) + 1
+    # The first block's byte count made huge: refused before anything that size is allocated.
+    path.write_bytes(data[:start] + (1 << 62).to_bytes(8, "little") + data[start + 8:])
+    with pytest.raises(contactdd.ContactddError, match="more than the file holds"):
+        contactdd.load_results(tmp_path / "run")
+    # Cut short inside the appended data.
+    path.write_bytes(data[:len(data) - 200])
+    with pytest.raises(contactdd.ContactddError, match="lower.vtu: not a VTU file of contactdd"):
+        contactdd.load_results(tmp_path / "run")
+    path.write_bytes(data)
+    assert contactdd.load_results(tmp_path / "run").bodies[0].name == "lower"

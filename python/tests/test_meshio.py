@@ -33,3 +33,40 @@ def test_meshio_reads_every_vtu_of_the_collection(notch, tmp_path):
         cells = sum(len(block.data) for block in mesh.cells)
         assert cells == len(body.triangles)
         assert sum(len(np.ravel(v)) for v in mesh.cell_data["element_von_mises"]) == cells
+
+
+@pytest.mark.parametrize("order", ["p1", "p2"])
+def test_meshio_reads_binary_files_as_the_ascii_ones(tmp_path, order):
+    """The default binary encoding and ASCII, both read by meshio: the same arrays bit for bit
+    (NaN where the other has NaN), the same cells; load_results reads both to the same result."""
+    result = contactdd.solve(contactdd.notch_benchmark(16, 8, order))
+    result.write_vtu(tmp_path / "binary")
+    result.write_vtu(tmp_path / "ascii", format="ascii")
+    head = (tmp_path / "binary" / "lower.vtu").read_bytes()
+    assert b'<AppendedData encoding="raw">' in head and b'format="ascii"' not in head
+    assert b"<AppendedData" not in (tmp_path / "ascii" / "lower.vtu").read_bytes()
+    for body in result.bodies:
+        a = meshio.read(tmp_path / "ascii" / f"{body.name}.vtu")
+        b = meshio.read(tmp_path / "binary" / f"{body.name}.vtu")
+        assert b.points.tobytes() == a.points.tobytes()
+        assert b.point_data["displacement"].tobytes() == a.point_data["displacement"].tobytes()
+        # Against the result object too (an independent path: the solver's own arrays).
+        assert b.point_data["displacement"][:, :2].tobytes() == body.displacement.tobytes()
+        assert sorted(b.point_data) == sorted(a.point_data)
+        for name, values in a.point_data.items():
+            np.testing.assert_array_equal(b.point_data[name], values, err_msg=name)
+        assert [c.type for c in b.cells] == [c.type for c in a.cells]
+        for cb, ca in zip(b.cells, a.cells):
+            np.testing.assert_array_equal(cb.data, ca.data)
+    loaded = [contactdd.load_results(tmp_path / e) for e in ["ascii", "binary"]]
+    for x, y in zip(loaded[0].bodies, loaded[1].bodies):
+        assert x.displacement.tobytes() == y.displacement.tobytes()
+        assert x.stress.tobytes() == y.stress.tobytes()
+        np.testing.assert_array_equal(x.triangles, y.triangles)
+
+
+def test_write_vtu_refuses_an_unknown_format(tmp_path):
+    result = contactdd.solve(contactdd.notch_benchmark(8, 4))
+    with pytest.raises(contactdd.ContactddError, match="unknown VTU format 'zlib'.*'ascii' or 'binary'"):
+        result.write_vtu(tmp_path, format="zlib")
+    assert not (tmp_path / "summary.json").exists()

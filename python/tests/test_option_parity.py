@@ -30,6 +30,7 @@ RECESS = REPO / "examples" / "recess_steps.toml"
 CLI_ONLY = {
     "file": "the problem file: Python's `problem` argument (Problem.from_toml reads one)",
     "quiet": "Python prints nothing; progress= reports every iteration",
+    "vtu-format": "the .vtu encoding: write_vtu(format=...); out= follows the problem's [output] vtu",
 }
 
 #: [solver] keys that a function does not take, and why.

@@ -8,6 +8,7 @@ use clap::{Args, Parser, Subcommand};
 use contactdd_ddm::settings::ANDERSON_DEPTH;
 use contactdd_ddm::{Accelerator, CoarseMode, Enforcement, Friction, Gamma, Method};
 use contactdd_io::setup::MAX_THREADS;
+use contactdd_io::vtu::VtuFormat;
 
 const EXIT_CODES: &str = "\
 Exit codes:
@@ -98,6 +99,10 @@ pub struct SolveArgs {
     /// force total of a body (overrides solver.balance-tol).
     #[arg(long, value_name = "B", value_parser = parse_positive)]
     pub balance_tol: Option<f64>,
+    /// Encoding of the .vtu files: binary (appended raw binary, the default) or ascii (text, to
+    /// read or diff; overrides output.vtu).
+    #[arg(long, value_name = "E", value_parser = parse_vtu_format)]
+    pub vtu_format: Option<VtuFormat>,
     /// Solver options.
     #[command(flatten)]
     pub common: Common,
@@ -172,6 +177,10 @@ pub struct MonolithicArgs {
     /// (overrides solver.gap-tol).
     #[arg(long, value_name = "L", value_parser = parse_positive)]
     pub gap_tol: Option<f64>,
+    /// Encoding of the .vtu files: binary (appended raw binary, the default) or ascii (text, to
+    /// read or diff; overrides output.vtu).
+    #[arg(long, value_name = "E", value_parser = parse_vtu_format)]
+    pub vtu_format: Option<VtuFormat>,
     /// Print only the final result line (no per-step lines).
     #[arg(long, short)]
     pub quiet: bool,
@@ -253,6 +262,10 @@ fn parse_accelerator(s: &str) -> Result<Accelerator, String> {
             "unknown accelerator '{s}' (expected none, anderson or newton)"
         )),
     }
+}
+
+fn parse_vtu_format(s: &str) -> Result<VtuFormat, String> {
+    s.parse::<VtuFormat>().map_err(|e| e.to_string())
 }
 
 fn parse_coarse(s: &str) -> Result<CoarseMode, String> {

@@ -1,7 +1,7 @@
 //! The deformed bodies of `contactdd plot`, each element coloured by its von Mises stress, over
 //! the undeformed outlines, read back from the bodies' `.vtu` files (the last load step's with
-//! load steps). The reader knows only what `crates/io/src/vtu.rs` writes: ASCII arrays,
-//! triangles (the corners of a quadratic triangle).
+//! load steps). The reader (`contactdd_io::vtu_read`) knows only what `crates/io/src/vtu.rs`
+//! writes, ASCII or binary; the figure draws triangles (the corners of a quadratic triangle).
 
 use std::ops::Range;
 use std::path::{Path, PathBuf};
@@ -11,7 +11,10 @@ use plotters::coord::Shift;
 use plotters::prelude::*;
 
 use crate::args::Format;
-use crate::plot_data::{read_text, Units, VTU_LIMIT};
+use contactdd_io::result_set::read_result_file;
+use contactdd_io::vtu_read::{parse_vtu, Section};
+
+use crate::plot_data::{Units, VTU_LIMIT};
 use crate::plot_draw::{linear, ok, render, span, tick, Figure, Frame};
 
 /// Pixels right of the chart for the colour bar.
@@ -45,8 +48,8 @@ pub fn figures(
             Some(body) => bodies.push(body),
             None => {
                 // Not an error of the folder: a field holding NaN (the iterate of a failed solve)
-                // is written in base64; the other figures are still worth having.
-                eprintln!("note: {name} has binary arrays; the bodies figure is left out");
+                // cannot be drawn; the other figures are still worth having.
+                eprintln!("note: {name} has non-finite values; the bodies figure is left out");
                 return Ok(Vec::new());
             }
         }
@@ -76,56 +79,32 @@ fn last_step(files: &[String]) -> Vec<String> {
     }
 }
 
-/// The numbers of the ASCII `DataArray` whose opening tag holds `key` (e.g. `Name="von_mises"`),
-/// searched after `after`; `None` when the array is binary (base64), which this reader skips.
-fn array(text: &str, path: &Path, after: &str, key: &str) -> Result<Option<Vec<f64>>> {
-    let missing = || anyhow!("'{}' has no array {key}", path.display());
-    let start = text.find(after).ok_or_else(missing)?;
-    let rest = &text[start..];
-    let tag_at = rest
-        .match_indices("<DataArray")
-        .map(|(i, _)| i)
-        .find(|&i| {
-            rest[i..]
-                .split('>')
-                .next()
-                .is_some_and(|tag| tag.contains(key))
-        })
-        .ok_or_else(missing)?;
-    let rest = &rest[tag_at..];
-    let tag_end = rest.find('>').ok_or_else(missing)?;
-    if !rest[..tag_end].contains("format=\"ascii\"") {
+/// A body's mesh and stress, or `None` when an array it draws holds a non-finite value (the
+/// iterate of a failed solve).
+fn read_body(path: &Path) -> Result<Option<Body>> {
+    let bytes = read_result_file(path, VTU_LIMIT)?;
+    let file = parse_vtu(&bytes).map_err(|e| anyhow!("'{}': {e}", path.display()))?;
+    let arrays = [
+        (Section::Points, ""),
+        (Section::PointData, "displacement"),
+        (Section::Cells, "connectivity"),
+        (Section::Cells, "offsets"),
+        (Section::CellData, "element_von_mises"),
+    ]
+    .map(|(section, name)| {
+        let missing = || anyhow!("'{}' has no array {name:?}", path.display());
+        file.array(section, name)
+            .map(|a| &a.values)
+            .ok_or_else(missing)
+    });
+    let [xyz, u, conn, offsets, stress] = arrays;
+    let (xyz, u, conn, offsets, stress) = (xyz?, u?, conn?, offsets?, stress?.clone());
+    if [xyz, u, &stress]
+        .iter()
+        .any(|a| a.iter().any(|v| !v.is_finite()))
+    {
         return Ok(None);
     }
-    let body = &rest[tag_end + 1..];
-    let end = body.find("</DataArray>").ok_or_else(missing)?;
-    let values = body[..end]
-        .split_whitespace()
-        .map(|v| {
-            v.parse::<f64>()
-                .map_err(|_| anyhow!("'{}': array {key}: '{v}' is not a number", path.display()))
-        })
-        .collect::<Result<Vec<f64>>>()?;
-    Ok(Some(values))
-}
-
-/// A body's mesh and stress, or `None` when an array it needs is binary.
-fn read_body(path: &Path) -> Result<Option<Body>> {
-    let text = read_text(path, VTU_LIMIT)?;
-    let arrays = [
-        ("<Points>", "NumberOfComponents=\"3\""),
-        ("<PointData", "Name=\"displacement\""),
-        ("<Cells>", "Name=\"connectivity\""),
-        ("<Cells>", "Name=\"offsets\""),
-        ("<CellData", "Name=\"element_von_mises\""),
-    ]
-    .map(|(after, key)| array(&text, path, after, key));
-    let [xyz, u, conn, offsets, stress] = arrays;
-    let (Some(xyz), Some(u), Some(conn), Some(offsets), Some(stress)) =
-        (xyz?, u?, conn?, offsets?, stress?)
-    else {
-        return Ok(None);
-    };
     let points: Vec<(f64, f64)> = xyz.chunks_exact(3).map(|p| (p[0], p[1])).collect();
     let displacement: Vec<(f64, f64)> = u.chunks_exact(3).map(|p| (p[0], p[1])).collect();
     let bad = || anyhow!("'{}': cells do not fit the points", path.display());
@@ -134,7 +113,7 @@ fn read_body(path: &Path) -> Result<Option<Body>> {
     }
     let mut cells = Vec::with_capacity(offsets.len());
     let mut begin = 0usize;
-    for &end in &offsets {
+    for &end in offsets {
         // The first three nodes of a (linear or quadratic) triangle are its corners.
         let corner = |k: usize| -> Result<usize> {
             let v = *conn.get(begin + k).ok_or_else(bad)?;

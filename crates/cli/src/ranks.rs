@@ -13,6 +13,7 @@ use contactdd_io::distributed_results::{
 use contactdd_io::reactions::BodyReactions;
 use contactdd_io::setup::Monitor;
 use contactdd_io::steps::HistoryLabels;
+use contactdd_io::vtu::VtuFormat;
 use contactdd_io::Loaded;
 
 use crate::rank_use::peak_mib;
@@ -25,6 +26,8 @@ use contactdd_io::{distributed_setup::estimated_costs, read_problem};
 pub struct Ranks {
     exchange: Arc<dyn Exchange>,
     size: usize,
+    /// The encoding of the `.vtu` files every rank writes.
+    vtu: VtuFormat,
     #[cfg(feature = "mpi")]
     mpi: Option<Arc<crate::mpi_exchange::MpiExchange>>,
 }
@@ -33,8 +36,15 @@ impl Ranks {
     /// Reads the problem file `path` for this run: in one process every body is meshed; under
     /// `mpirun` with more than one rank the bodies are partitioned by their estimated
     /// factorisation cost, and each rank meshes only its own and holds the others as their
-    /// contact skins (a collective).
-    pub fn load(path: &Path) -> anyhow::Result<(Loaded, Ranks)> {
+    /// contact skins (a collective). The `.vtu` files are written in `vtu`, or else in the file's `[output] vtu`.
+    pub fn load(path: &Path, vtu: Option<VtuFormat>) -> anyhow::Result<(Loaded, Ranks)> {
+        let (loaded, mut ranks) = Ranks::load_file(path)?;
+        ranks.vtu = vtu.or(loaded.problem.output.vtu).unwrap_or_default();
+        Ok((loaded, ranks))
+    }
+
+    /// [`Ranks::load`] with the `.vtu` files in the default format.
+    fn load_file(path: &Path) -> anyhow::Result<(Loaded, Ranks)> {
         #[cfg(feature = "mpi")]
         {
             let file = read_problem(path).map_err(|e| anyhow::anyhow!("{e}"))?;
@@ -45,6 +55,7 @@ impl Ranks {
                 let ranks = Ranks {
                     exchange: mpi.clone(),
                     size: mpi.size(),
+                    vtu: VtuFormat::default(),
                     mpi: Some(mpi),
                 };
                 if ranks.is_root() {
@@ -70,6 +81,7 @@ impl Ranks {
         Ranks {
             exchange: Arc::new(Local::new(model.bodies.len())),
             size: 1,
+            vtu: VtuFormat::default(),
             #[cfg(feature = "mpi")]
             mpi: None,
         }
@@ -136,6 +148,7 @@ impl Ranks {
             owns: Box::new(move |b| exchange.owns(b)),
             agree: Box::new(move |error| exchange.agree(error)),
             gather: Box::new(move |own| exchange.gather(own)),
+            vtu: self.vtu,
         }
     }
 

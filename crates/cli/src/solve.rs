@@ -170,7 +170,7 @@ fn iterate_shown(
 /// `contactdd solve`.
 pub fn solve(args: SolveArgs) -> Result<Exit> {
     let start = Instant::now();
-    let (loaded, ranks) = Ranks::load(&args.file)?;
+    let (loaded, ranks) = Ranks::load(&args.file, args.vtu_format)?;
     let t_load = start.elapsed().as_secs_f64();
     let (settings, threads) = cli_settings(&args, &loaded);
     let mut model = loaded.model;
@@ -398,6 +398,10 @@ fn monolithic_model(args: &MonolithicArgs, mut model: Model) -> Result<Model> {
 pub fn monolithic(args: MonolithicArgs) -> Result<Exit> {
     let start = Instant::now();
     let loaded = load(&args.file)?;
+    let vtu = args
+        .vtu_format
+        .or(loaded.problem.output.vtu)
+        .unwrap_or_default();
     let (settings, threads) = monolithic_settings(&args, &loaded);
     let model = &monolithic_model(&args, loaded.model)?;
     let out = args
@@ -440,7 +444,7 @@ pub fn monolithic(args: MonolithicArgs) -> Result<Exit> {
         // A model that cannot be solved is an input error (exit 1), with the message of `solve`.
         let sol =
             solve_monolithic_with(model, &settings, hook).map_err(|e| anyhow::anyhow!("{e}"))?;
-        let written = write_monolithic_results(&out, model, &sol)
+        let written = write_monolithic_results(&out, model, &sol, vtu)
             .with_context(|| format!("cannot write the results to '{}'", out.display()))?;
         let outcome = monolithic_outcome(&sol);
         if quiet {

@@ -351,7 +351,12 @@ fn out_quiet_and_a_summary_path_work_as_in_the_other_commands() {
 #[test]
 fn a_narrow_stress_range_is_drawn_from_zero_and_the_outline_is_drawn() {
     let dir = temp("uniform");
-    let out = solved_notch(&dir);
+    let out = dir.join("out");
+    let file = example("notch.toml");
+    let args = ["solve", path(&file), "--out", path(&out), "--quiet"];
+    succeeded(&contactdd(
+        &[&args[..], &["--vtu-format", "ascii"]].concat(),
+    ));
     // Every element of lower at 88.3 to 88.9: a range of 0.6 next to values near 89.
     let lower = out.join("lower.vtu");
     let text = read(&lower);
@@ -492,19 +497,24 @@ fn a_malformed_file_is_named() {
 }
 
 #[test]
-fn the_bodies_figure_reads_only_sound_ascii_vtu() {
+fn the_bodies_figure_reads_only_sound_vtu() {
     let dir = temp("vtu");
-    let out = solved_notch(&dir);
+    let out = dir.join("ascii");
+    let file = example("notch.toml");
+    let args = ["solve", path(&file), "--out", path(&out), "--quiet"];
+    succeeded(&contactdd(
+        &[&args[..], &["--vtu-format", "ascii"]].concat(),
+    ));
     let lower = out.join("lower.vtu");
     let text = read(&lower);
-    let ascii = "Name=\"element_von_mises\" NumberOfComponents=\"1\" format=\"ascii\"";
-    assert!(text.contains(ascii), "the writer changed: update this test");
-    // A binary array (as a NaN makes) leaves the figure out, not the command.
-    std::fs::write(
-        &lower,
-        text.replace(ascii, &ascii.replace("ascii", "binary")),
-    )
-    .expect("write");
+    let ascii = "Name=\"element_von_mises\" NumberOfComponents=\"1\" format=\"ascii\">";
+    let at = text
+        .find(ascii)
+        .expect("the writer changed: update this test")
+        + ascii.len();
+    // A NaN in a drawn array (the iterate of a failed solve) leaves the figure out, not the
+    // command.
+    std::fs::write(&lower, format!("{} NaN{}", &text[..at], &text[at..])).expect("write");
     let o = contactdd(&["plot", path(&out), "--format", "svg"]);
     succeeded(&o);
     assert!(String::from_utf8_lossy(&o.stderr).contains("bodies figure is left out"));
@@ -522,6 +532,35 @@ fn the_bodies_figure_reads_only_sound_ascii_vtu() {
         err.contains("lower.vtu") && err.contains("cells do not fit"),
         "{err}"
     );
+}
+
+/// The default binary files draw the same figure as ASCII ones; a binary file cut short is an
+/// error naming it.
+#[test]
+fn the_bodies_figure_reads_binary_vtu() {
+    let dir = temp("vtu-binary");
+    let file = example("notch.toml");
+    let mut figures = Vec::new();
+    for encoding in ["ascii", "binary"] {
+        let out = dir.join(encoding);
+        let args = ["solve", path(&file), "--out", path(&out), "--quiet"];
+        succeeded(&contactdd(
+            &[&args[..], &["--vtu-format", encoding]].concat(),
+        ));
+        let head = std::fs::read(out.join("lower.vtu")).expect("lower.vtu");
+        let appended = head.windows(13).any(|w| w == b"<AppendedData");
+        assert_eq!(appended, encoding == "binary", "{encoding}");
+        succeeded(&contactdd(&["plot", path(&out), "--format", "svg"]));
+        figures.push(svg(&out.join("plots/bodies.svg")));
+    }
+    assert_eq!(figures[0], figures[1]);
+    let lower = dir.join("binary/lower.vtu");
+    let bytes = std::fs::read(&lower).expect("lower.vtu");
+    std::fs::write(&lower, &bytes[..bytes.len() - 100]).expect("write");
+    let o = contactdd(&["plot", path(&dir.join("binary")), "--format", "svg"]);
+    assert_eq!(o.status.code(), Some(1));
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(err.contains("lower.vtu") && err.contains("bytes"), "{err}");
 }
 
 #[test]

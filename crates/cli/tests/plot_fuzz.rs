@@ -2,11 +2,11 @@
 //! folder is refused with exit 1 or plotted with exit 0, never a panic (exit 101), a signal or a
 //! hang (a run is killed after [`TIMEOUT`]).
 //!
-//! **Seed corpus** (generated, not stored): the binary solves two shipped examples into a
-//! temporary folder each,
+//! **Seed corpus** (generated, not stored): the binary solves two shipped examples into three
+//! temporary folders,
 //!
-//! - `examples/notch.toml`: `summary.json`, `contact.csv`, `history.csv`, `lower.vtu`,
-//!   `upper.vtu` (frictionless, one load);
+//! - `examples/notch.toml`, twice, with binary and with ASCII `.vtu` files: `summary.json`,
+//!   `contact.csv`, `history.csv`, `lower.vtu`, `upper.vtu` (frictionless, one load);
 //! - `examples/friction_block.toml` with `[solver] load-steps = 2` and a monitor added:
 //!   `summary.json` with a Coulomb law, `contact.csv` with the friction columns, `history.csv`,
 //!   `steps.csv` and the VTU files of both steps (the second step's are the ones drawn),
@@ -209,17 +209,20 @@ fn run(args: &[&str]) -> Result<(Option<i32>, String), String> {
     Ok((status.code(), reader.join().expect("stderr reader")))
 }
 
-/// Solves `file` into `out`; panics unless it converges.
-fn solve(file: &Path, out: &Path) {
-    let (code, err) = run(&["solve", path(file), "--out", path(out), "--quiet"]).expect("solve");
+/// Solves `file` into `out` with the `.vtu` files in `encoding`; panics unless it converges.
+fn solve(file: &Path, out: &Path, encoding: &str) {
+    let args = ["solve", path(file), "--out", path(out), "--quiet"];
+    let (code, err) = run(&[&args[..], &["--vtu-format", encoding]].concat()).expect("solve");
     assert_eq!(code, Some(0), "{}: {err}", file.display());
 }
 
-/// The two seed folders (see the module comment) under `dir`.
+/// The three seed folders (see the module comment) under `dir`.
 fn seeds(dir: &Path) -> Vec<PathBuf> {
     let examples = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples");
     let notch = dir.join("notch");
-    solve(&examples.join("notch.toml"), &notch);
+    solve(&examples.join("notch.toml"), &notch, "binary");
+    let ascii = dir.join("notch-ascii");
+    solve(&examples.join("notch.toml"), &ascii, "ascii");
     let block = std::fs::read_to_string(examples.join("friction_block.toml")).expect("example");
     assert!(
         !block.contains("[solver]"),
@@ -229,8 +232,8 @@ fn seeds(dir: &Path) -> Vec<PathBuf> {
     let solver = "\n[solver]\nload-steps = 2\nmonitor = { body = \"block\", boundary = \"top\" }\n";
     std::fs::write(&steps, format!("{block}{solver}")).expect("write");
     let friction = dir.join("friction");
-    solve(&steps, &friction);
-    vec![notch, friction]
+    solve(&steps, &friction, "binary");
+    vec![notch, ascii, friction]
 }
 
 /// The files of `folder` that `plot` reads, sorted: every `.csv`, `.vtu` and `.json`.

@@ -14,20 +14,20 @@ use crate::fields::{
     nodal_contact_pressure, principal, tensor, ContactPointData,
 };
 use crate::result_set::ResultSet;
-use crate::vtu::{write_vtu, Field, VtuData};
+use crate::vtu::{write_vtu_as, Field, VtuData, VtuFormat};
 
 /// Writes `<body>.vtu` per body into `dir` with the nodal fields of the results alone:
 /// `displacement` (vector), `stress` (3×3 tensor), `principal_stress_1` ≥ `_2` ≥ `_3`,
 /// `sigma_xx`, `sigma_yy`, `sigma_xy`, `sigma_zz`, `von_mises` and `sigma_n` (scalars, which
 /// ParaView colours by directly; `sigma_n` is [`BodyResult::contact_pressure`], ≤ 0). File names
 /// are [`safe_file_name`]s of the body names, made unique. [`write_solution_vtus`] adds the
-/// contact pressure p ≥ 0, the contact point data and the element von Mises.
+/// contact pressure p ≥ 0, the contact point data and the element von Mises. The files are in
+/// the default [`VtuFormat`].
 pub fn write_body_vtus(dir: &Path, bodies: &[BodyResult]) -> std::io::Result<Vec<PathBuf>> {
     let mut written = Vec::with_capacity(bodies.len());
     let all = |_| true;
     write_vtus(
-        dir,
-        "",
+        (dir, "", VtuFormat::default()),
         bodies,
         &all,
         |_, _| Ok(Extra::default()),
@@ -43,33 +43,33 @@ pub fn write_body_vtus(dir: &Path, bodies: &[BodyResult]) -> std::io::Result<Vec
 /// 2 slip; both 0 off the contact points), and the cell data `element_von_mises` (at each
 /// element's centroid). `bodies` are in the
 /// order of `model.bodies`. Each file joins the set as soon as it is written, so that a failure
-/// part way removes it with the set ([`ResultSet::abandon`]).
+/// part way removes it with the set ([`ResultSet::abandon`]). The files are in the default
+/// [`VtuFormat`].
 pub fn write_solution_vtus(
     set: &mut ResultSet,
     model: &Model,
     bodies: &[BodyResult],
     contact: &[PairResult],
 ) -> std::io::Result<()> {
-    write_solution_vtus_as(set, model, bodies, contact, "")
+    write_solution_vtus_as(set, model, bodies, contact, "", VtuFormat::default())
 }
 
 /// [`write_solution_vtus`] with `suffix` after each body's file name (`<body><suffix>.vtu`, e.g.
-/// the `-step3` of a load step).
+/// the `-step3` of a load step), in `format`.
 pub fn write_solution_vtus_as(
     set: &mut ResultSet,
     model: &Model,
     bodies: &[BodyResult],
     contact: &[PairResult],
     suffix: &str,
+    format: VtuFormat,
 ) -> std::io::Result<()> {
     let mut written = Vec::with_capacity(bodies.len());
     let dir = set.dir().to_path_buf();
     let result = write_solution_vtus_of(
-        &dir,
+        (&dir, suffix, format),
         model,
-        bodies,
-        contact,
-        suffix,
+        (bodies, contact),
         &|_| true,
         &mut written,
     );
@@ -77,23 +77,21 @@ pub fn write_solution_vtus_as(
     result
 }
 
-/// [`write_solution_vtus_as`] into `dir` for the bodies `owns` selects only (a process of a
-/// distributed solve writes its own); each path joins `written` once its file is there. The
-/// file names are those of all bodies: the same as when one process writes them all.
+/// [`write_solution_vtus_as`] into `dir` (with `suffix` and `format`: `to`) for the bodies
+/// `owns` selects only (a process of a distributed solve writes its own); each path joins
+/// `written` once its file is there. The file names are those of all bodies: the same as when
+/// one process writes them all.
 pub(crate) fn write_solution_vtus_of(
-    dir: &Path,
+    to: (&Path, &str, VtuFormat),
     model: &Model,
-    bodies: &[BodyResult],
-    contact: &[PairResult],
-    suffix: &str,
+    (bodies, contact): (&[BodyResult], &[PairResult]),
     owns: &dyn Fn(usize) -> bool,
     written: &mut Vec<PathBuf>,
 ) -> std::io::Result<()> {
     let pressures = contact_pressures(contact, bodies);
     let friction = has_friction(model);
     write_vtus(
-        dir,
-        suffix,
+        to,
         bodies,
         owns,
         |b, body| {
@@ -152,11 +150,10 @@ pub(crate) fn vtu_paths(dir: &Path, suffix: &str, bodies: &[BodyResult]) -> Vec<
     paths
 }
 
-/// Writes the `.vtu` of each body that `owns` selects, pushing each path to `written` once the
-/// file is there.
+/// Writes the `.vtu` of each body that `owns` selects into `dir` (file names with `suffix`, in
+/// `format`), pushing each path to `written` once the file is there.
 fn write_vtus(
-    dir: &Path,
-    suffix: &str,
+    (dir, suffix, format): (&Path, &str, VtuFormat),
     bodies: &[BodyResult],
     owns: &dyn Fn(usize) -> bool,
     extra: impl Fn(usize, &BodyResult) -> std::io::Result<Extra>,
@@ -213,7 +210,7 @@ fn write_vtus(
             points: &points,
             cells: &cells,
         };
-        write_vtu(&path, &body.mesh, data)?;
+        write_vtu_as(&path, &body.mesh, data, format)?;
         written.push(path);
     }
     Ok(())

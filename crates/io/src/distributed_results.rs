@@ -24,6 +24,7 @@ use crate::reactions::{body_reactions, BodyReactions};
 use crate::result_set::{staging_dir, ResultSet};
 use crate::steps::{monitored_displacement, pvd, steps_csv, steps_json, HistoryLabels};
 use crate::summary::summary_json_with;
+use crate::vtu::VtuFormat;
 
 /// How this process takes part in writing a shared result folder.
 pub struct Part<'a> {
@@ -36,16 +37,24 @@ pub struct Part<'a> {
     /// The collective that hands every process every body's values, given this process's own
     /// bodies' in body order (`contactdd_ddm::exchange::Exchange::gather`).
     pub gather: Box<dyn Fn(Vec<Vec<f64>>) -> Vec<Vec<f64>> + 'a>,
+    /// The encoding of the `.vtu` files (the same on every process).
+    pub vtu: VtuFormat,
 }
 
 impl Part<'static> {
-    /// A single process: it writes everything.
+    /// A single process: it writes everything, the `.vtu` files in the default [`VtuFormat`].
     pub fn alone() -> Part<'static> {
+        Part::alone_as(VtuFormat::default())
+    }
+
+    /// A single process writing the `.vtu` files in `vtu`.
+    pub fn alone_as(vtu: VtuFormat) -> Part<'static> {
         Part {
             root: true,
             owns: Box::new(|_| true),
             agree: Box::new(|error| error),
             gather: Box::new(|own| own),
+            vtu,
         }
     }
 }
@@ -178,11 +187,9 @@ fn write_shared(
     let mut own = Vec::new();
     let written = contents.vtus.iter().try_for_each(|(_, suffix, sol)| {
         write_solution_vtus_of(
-            &staging,
+            (&staging, suffix, part.vtu),
             model,
-            &sol.bodies,
-            &sol.contact,
-            suffix,
+            (&sol.bodies, &sol.contact),
             &*part.owns,
             &mut own,
         )

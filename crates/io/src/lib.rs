@@ -10,9 +10,9 @@
 //! [`solver_settings`] and [`load_steps`] for the `[solver]` table, [`history`] for `[[steps]]`) → the solver of
 //! `contactdd-ddm` → [`output`] (`summary.json` from [`summary`], `contact.csv`, `history.csv`
 //! and the sweep CSV from [`csv_tables`], the load-step tables of [`steps`]) and [`vtu`] (one
-//! `.vtu` per body, written by [`body_vtus`], with the derived [`fields`] and the support
-//! [`reactions`]). [`atomic`] writes every file without ever leaving a half-written one,
-//! [`result_set`] a result folder so that `summary.json` exists only for a complete one;
+//! `.vtu` per body, ASCII or binary, written by [`body_vtus`] and read back by [`vtu_read`],
+//! with the derived [`fields`] and the support [`reactions`]). [`atomic`] writes every file
+//! without ever leaving a half-written one, [`result_set`] a result folder so that `summary.json` exists only for a complete one;
 //! [`number`] is the one float format of the text files. The processes of a distributed solve
 //! share the resolve step through [`distributed_setup`] and the result folder through
 //! [`distributed_results`] ([`packed`] carries their data). docs/outputs.md describes the results.
@@ -47,6 +47,7 @@ pub mod solver_settings;
 pub mod steps;
 pub mod summary;
 pub mod vtu;
+pub mod vtu_read;
 pub mod write_problem;
 
 pub use error::LoadError;

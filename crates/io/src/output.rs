@@ -36,6 +36,7 @@ pub use crate::summary::{
     json_number, monolithic_summary_json, point_status, reactions_json, stop_name, summary_json,
     summary_json_with,
 };
+pub use crate::vtu::VtuFormat;
 pub use contactdd_core::loads::applied_load;
 
 /// Writes a solve's result folder (created if needed) as a set ([`write_set`]): `contact.csv`,
@@ -43,29 +44,31 @@ pub use contactdd_core::loads::applied_load;
 /// then `summary.json` with the manifest of those files.
 /// The previous set in `dir` is removed first. Returns the paths written, `summary.json` last.
 pub fn write_results(dir: &Path, model: &Model, sol: &Solution) -> std::io::Result<Vec<PathBuf>> {
-    write_results_noted(dir, model, sol, None)
+    write_results_noted(dir, model, sol, None, VtuFormat::default())
 }
 
 /// [`write_results`] with the problem's units note (`units` of the problem file) in
-/// `summary.json`, for the axes of `contactdd plot`.
+/// `summary.json`, for the axes of `contactdd plot`, and the `.vtu` files in `vtu`.
 pub fn write_results_noted(
     dir: &Path,
     model: &Model,
     sol: &Solution,
     units: Option<&str>,
+    vtu: VtuFormat,
 ) -> std::io::Result<Vec<PathBuf>> {
     let reactions = reactions(model, &sol.bodies, &sol.contact);
-    write_results_shared(dir, model, sol, &reactions, units, &Part::alone())
+    write_results_shared(dir, model, sol, &reactions, units, &Part::alone_as(vtu))
 }
 
 /// Writes a monolithic solve's result folder as a set, like [`write_results`]: `contact.csv`
 /// (frictionless: the monolithic reference refuses friction) and
 /// `<body>.vtu` per body, then `summary.json` ([`monolithic_summary_json`] with the reactions and
-/// the manifest) last. Returns the paths written, `summary.json` last.
+/// the manifest) last, the `.vtu` files in `vtu`. Returns the paths written, `summary.json` last.
 pub fn write_monolithic_results(
     dir: &Path,
     model: &Model,
     sol: &MonolithicSolution,
+    vtu: VtuFormat,
 ) -> std::io::Result<Vec<PathBuf>> {
     let mut summary = monolithic_summary_json(model, sol);
     summary["reactions"] = reactions_json(model, &sol.bodies, &sol.contact);
@@ -74,20 +77,22 @@ pub fn write_monolithic_results(
             "contact.csv",
             pairs_csv(&sol.contact, &sol.bodies, false).as_bytes(),
         )?;
-        write_solution_vtus(set, model, &sol.bodies, &sol.contact)
+        write_solution_vtus_as(set, model, &sol.bodies, &sol.contact, "", vtu)
     })
 }
 
 /// Writes the result folder of a load-step run as a set (see [`crate::steps`]), with the problem's
-/// `units` note in `summary.json`. Returns the paths written, `summary.json` last.
+/// `units` note in `summary.json` and the `.vtu` files in `vtu`. Returns the paths written,
+/// `summary.json` last.
 pub fn write_step_results(
     dir: &Path,
     model: &Model,
     steps: &[(f64, Solution)],
-    monitor: Option<&Monitor>,
-    units: Option<&str>,
+    (monitor, units): (Option<&Monitor>, Option<&str>),
+    vtu: VtuFormat,
 ) -> std::io::Result<Vec<PathBuf>> {
-    write_step_results_shared(dir, model, steps, monitor, units, None, &Part::alone())
+    let part = Part::alone_as(vtu);
+    write_step_results_shared(dir, model, steps, monitor, units, None, &part)
 }
 
 /// [`write_step_results`] for a load history: `steps` are the increments (with their
@@ -96,17 +101,10 @@ pub fn write_history_results(
     dir: &Path,
     model: &Model,
     steps: &[(f64, Solution)],
-    monitor: Option<&Monitor>,
-    units: Option<&str>,
+    (monitor, units): (Option<&Monitor>, Option<&str>),
     labels: &HistoryLabels,
+    vtu: VtuFormat,
 ) -> std::io::Result<Vec<PathBuf>> {
-    write_step_results_shared(
-        dir,
-        model,
-        steps,
-        monitor,
-        units,
-        Some(labels),
-        &Part::alone(),
-    )
+    let part = Part::alone_as(vtu);
+    write_step_results_shared(dir, model, steps, monitor, units, Some(labels), &part)
 }

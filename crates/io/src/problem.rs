@@ -47,6 +47,8 @@ use contactdd_core::{Component, Diagonal, Load, Order, Plane, Vector};
 use contactdd_ddm::contact::gap_profile::Along;
 use contactdd_ddm::{Gamma, Method};
 
+use crate::vtu::VtuFormat;
+
 /// A whole problem file.
 #[derive(Clone, Debug, PartialEq, Deserialize, Serialize)]
 #[serde(deny_unknown_fields, rename_all = "kebab-case")]
@@ -73,6 +75,26 @@ pub struct Problem {
     /// A load history (`[[steps]]`): the load groups' factors, step by step.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub steps: Vec<StepSpec>,
+    /// Output settings (`[output]`); every key is optional.
+    #[serde(default, skip_serializing_if = "OutputSpec::is_default")]
+    pub output: OutputSpec,
+}
+
+/// The `[output]` table: how the result files are written.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Deserialize, Serialize)]
+#[serde(deny_unknown_fields, rename_all = "kebab-case")]
+pub struct OutputSpec {
+    /// The encoding of the `.vtu` files: `"binary"` (appended raw binary, the default) or
+    /// `"ascii"`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub vtu: Option<VtuFormat>,
+}
+
+impl OutputSpec {
+    /// Whether no key is set (the table is then left out of a written problem file).
+    pub fn is_default(&self) -> bool {
+        *self == OutputSpec::default()
+    }
 }
 
 /// One step of a load history (`[[steps]]`): every group it names is ramped linearly, in

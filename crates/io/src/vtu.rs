@@ -12,15 +12,26 @@
 //! A 9-component array is a 3×3 tensor, row-major (`xx xy xz yx yy yz zx zy zz`), which ParaView
 //! shows as a tensor (its components, eigenvalues and von Mises in the calculator).
 //!
-//! Arrays are written as ASCII text. The one exception is a data array holding a non-finite value
-//! (NaN or ±infinity): older VTK readers (ParaView before VTK 9.3 or so) parse ASCII numbers with
-//! C++ streams, which reject `nan` and `inf` and then report the array as too short. Such an array
-//! is therefore written as inline base64 binary (`format="binary"`, little-endian `Float64`
-//! preceded by a `UInt64` byte count, as declared by `header_type="UInt64"`), which every VTK
-//! reader and `meshio` accept, NaN and infinities included.
+//! Arrays are written in one of two [`VtuFormat`]s. [`VtuFormat::Binary`] stores every array as
+//! little-endian raw bytes in one `<AppendedData encoding="raw">` section after the XML, after an
+//! underscore: each `DataArray` element is empty and carries `format="appended"` and the `offset`
+//! of its block (from the byte after the underscore); a block is the `UInt64` byte count of the
+//! data (`header_type="UInt64"`) followed by the data (`Float64`, `Int64` or `UInt8`).
+//!
+//! [`VtuFormat::Ascii`] writes arrays as text, with one exception: a data array holding a
+//! non-finite value (NaN or ±infinity). Older VTK readers (ParaView before VTK 9.3 or so) parse
+//! ASCII numbers with C++ streams, which reject `nan` and `inf` and then report the array as too
+//! short. Such an array is therefore written as inline base64 binary (`format="binary"`,
+//! little-endian `Float64` preceded by a `UInt64` byte count, as declared by
+//! `header_type="UInt64"`), which every VTK reader and `meshio` accept, NaN and infinities
+//! included.
+//!
+//! [`crate::vtu_read`] reads both back.
 
 use std::fmt::Write as _;
 use std::io::{Error, ErrorKind};
+
+use serde::{Deserialize, Serialize};
 use std::path::Path;
 
 use contactdd_core::mesh::{Mesh, Order};
@@ -53,20 +64,110 @@ pub struct VtuData<'a> {
     pub cells: &'a [Field<'a>],
 }
 
-/// Writes `mesh` as a `.vtu` file at `path` with the arrays of `data`.
-///
-/// The file is written by [`write_atomic`], so that a reader never sees a half-written file.
-/// Mismatched field lengths are [`ErrorKind::InvalidInput`] errors; see [`vtu_string`].
-pub fn write_vtu(path: &Path, mesh: &Mesh, data: VtuData<'_>) -> std::io::Result<()> {
-    let text = vtu_string(mesh, data)?;
-    write_atomic(path, text.as_bytes())
+/// How the data arrays of a `.vtu` file are stored.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Deserialize, Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum VtuFormat {
+    /// Every array as text inside its `DataArray` element (the non-finite exception above), for
+    /// those who read or diff the files.
+    Ascii,
+    /// Every array as little-endian raw bytes in one `<AppendedData encoding="raw">` section at
+    /// the end of the file, each preceded by its `UInt64` byte count (the default: about a third
+    /// of the size of ASCII and written several times faster).
+    #[default]
+    Binary,
 }
 
-/// The text of the `.vtu` file that [`write_vtu`] writes.
+impl VtuFormat {
+    /// The name of the format in problem files and on the command line.
+    pub fn name(self) -> &'static str {
+        match self {
+            VtuFormat::Ascii => "ascii",
+            VtuFormat::Binary => "binary",
+        }
+    }
+}
+
+impl std::fmt::Display for VtuFormat {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+/// A VTU format name that is neither `ascii` nor `binary`.
+#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
+#[error("unknown VTU format '{0}': expected 'ascii' or 'binary'")]
+pub struct UnknownVtuFormat(pub String);
+
+impl std::str::FromStr for VtuFormat {
+    type Err = UnknownVtuFormat;
+
+    fn from_str(s: &str) -> Result<VtuFormat, UnknownVtuFormat> {
+        match s {
+            "ascii" => Ok(VtuFormat::Ascii),
+            "binary" => Ok(VtuFormat::Binary),
+            other => Err(UnknownVtuFormat(other.to_string())),
+        }
+    }
+}
+
+/// Writes `mesh` as an ASCII `.vtu` file at `path` with the arrays of `data`
+/// ([`write_vtu_as`] with [`VtuFormat::Ascii`]).
+pub fn write_vtu(path: &Path, mesh: &Mesh, data: VtuData<'_>) -> std::io::Result<()> {
+    write_vtu_as(path, mesh, data, VtuFormat::Ascii)
+}
+
+/// Writes `mesh` as a `.vtu` file at `path` with the arrays of `data`, encoded as `format`.
+///
+/// The file is written by [`write_atomic`], so that a reader never sees a half-written file.
+/// Mismatched field lengths are [`ErrorKind::InvalidInput`] errors; see [`vtu_bytes`].
+pub fn write_vtu_as(
+    path: &Path,
+    mesh: &Mesh,
+    data: VtuData<'_>,
+    format: VtuFormat,
+) -> std::io::Result<()> {
+    write_atomic(path, &vtu_bytes(mesh, data, format)?)
+}
+
+/// The text of the ASCII `.vtu` file that [`write_vtu`] writes.
 ///
 /// Errors ([`ErrorKind::InvalidInput`]) if the displacement does not hold 2 values per node, or a
 /// field has zero components or not `components` values per node (per cell).
 pub fn vtu_string(mesh: &Mesh, data: VtuData<'_>) -> std::io::Result<String> {
+    let out = document(mesh, data, Arrays::new(VtuFormat::Ascii, 0))?;
+    Ok(out.text)
+}
+
+/// The bytes of the `.vtu` file that [`write_vtu_as`] writes: [`vtu_string`] for
+/// [`VtuFormat::Ascii`]; for [`VtuFormat::Binary`] the same XML with every `DataArray` empty
+/// (`format="appended"` and the `offset` of its block), followed by the appended section.
+pub fn vtu_bytes(mesh: &Mesh, data: VtuData<'_>, format: VtuFormat) -> std::io::Result<Vec<u8>> {
+    // The appended bytes: per node the points and the fields, per cell its connectivity.
+    let per_node = 3
+        + data
+            .points
+            .iter()
+            .map(|f| f.components.max(3))
+            .sum::<usize>()
+        + 3;
+    let per_cell = 2 + mesh.order().nodes_per_cell() + data.cells.len();
+    let capacity = 8 * (per_node * mesh.num_nodes() + per_cell * mesh.num_cells());
+    let out = document(mesh, data, Arrays::new(format, capacity))?;
+    let Some(appended) = out.appended else {
+        return Ok(out.text.into_bytes());
+    };
+    let mut bytes = out.text.into_bytes();
+    bytes.reserve(appended.len() + 64);
+    bytes.extend_from_slice(b"  <AppendedData encoding=\"raw\">\n   _");
+    bytes.extend_from_slice(&appended);
+    bytes.extend_from_slice(b"\n  </AppendedData>\n</VTKFile>\n");
+    Ok(bytes)
+}
+
+/// The XML of the file through `</UnstructuredGrid>` (and `</VTKFile>` for ASCII), with the
+/// appended bytes of a binary file.
+fn document(mesh: &Mesh, data: VtuData<'_>, mut out: Arrays) -> std::io::Result<Arrays> {
     let n = mesh.num_nodes();
     let mut arrays: Vec<Field<'_>> = Vec::with_capacity(data.points.len() + 1);
     if let Some(values) = data.displacement {
@@ -80,69 +181,70 @@ pub fn vtu_string(mesh: &Mesh, data: VtuData<'_>) -> std::io::Result<String> {
     check_lengths(&arrays, n, "nodes")?;
     check_lengths(data.cells, mesh.num_cells(), "cells")?;
 
-    let mut out = String::new();
-    out.push_str("<?xml version=\"1.0\"?>\n");
-    out.push_str(
+    out.text.push_str("<?xml version=\"1.0\"?>\n");
+    out.text.push_str(
         "<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"LittleEndian\" \
          header_type=\"UInt64\">\n",
     );
-    out.push_str("  <UnstructuredGrid>\n");
+    out.text.push_str("  <UnstructuredGrid>\n");
     let _ = writeln!(
-        out,
+        out.text,
         "    <Piece NumberOfPoints=\"{n}\" NumberOfCells=\"{}\">",
         mesh.num_cells()
     );
 
     // Marking the displacement as the active vectors lets ParaView's "Warp By Vector" use it.
     if data.displacement.is_some() {
-        out.push_str("      <PointData Vectors=\"displacement\">\n");
+        out.text
+            .push_str("      <PointData Vectors=\"displacement\">\n");
     } else {
-        out.push_str("      <PointData>\n");
+        out.text.push_str("      <PointData>\n");
     }
     field_arrays(&mut out, &arrays);
-    out.push_str("      </PointData>\n");
+    out.text.push_str("      </PointData>\n");
     if !data.cells.is_empty() {
-        out.push_str("      <CellData>\n");
+        out.text.push_str("      <CellData>\n");
         field_arrays(&mut out, data.cells);
-        out.push_str("      </CellData>\n");
+        out.text.push_str("      </CellData>\n");
     }
 
-    out.push_str("      <Points>\n");
+    out.text.push_str("      <Points>\n");
     let points = mesh.nodes().iter().flat_map(|p| [p[0], p[1], 0.0]);
-    float_array(&mut out, None, 3, points);
-    out.push_str("      </Points>\n");
+    out.float_array(None, 3, points);
+    out.text.push_str("      </Points>\n");
 
     let npc = mesh.order().nodes_per_cell();
     let cell_type = match mesh.order() {
         Order::P1 => 5,
         Order::P2 => 22,
     };
-    out.push_str("      <Cells>\n");
-    out.push_str("        <DataArray type=\"Int64\" Name=\"connectivity\" format=\"ascii\">\n");
+    out.text.push_str("      <Cells>\n");
     // One cell per line.
-    write_rows(&mut out, mesh.cells().iter().copied(), npc, push_int);
-    out.push_str("        </DataArray>\n");
-    out.push_str("        <DataArray type=\"Int64\" Name=\"offsets\" format=\"ascii\">\n");
-    write_rows(
-        &mut out,
-        (1..=mesh.num_cells()).map(|e| e * npc),
+    out.int_array(
+        Int::Int64,
+        "connectivity",
+        npc,
+        mesh.cells().iter().copied(),
+    );
+    out.int_array(
+        Int::Int64,
+        "offsets",
         12,
-        push_int,
+        (1..=mesh.num_cells()).map(|e| e * npc),
     );
-    out.push_str("        </DataArray>\n");
-    out.push_str("        <DataArray type=\"UInt8\" Name=\"types\" format=\"ascii\">\n");
-    write_rows(
-        &mut out,
-        (0..mesh.num_cells()).map(|_| cell_type),
+    out.int_array(
+        Int::UInt8,
+        "types",
         24,
-        push_int,
+        (0..mesh.num_cells()).map(|_| cell_type),
     );
-    out.push_str("        </DataArray>\n");
-    out.push_str("      </Cells>\n");
+    out.text.push_str("      </Cells>\n");
 
-    out.push_str("    </Piece>\n");
-    out.push_str("  </UnstructuredGrid>\n");
-    out.push_str("</VTKFile>\n");
+    out.text.push_str("    </Piece>\n");
+    out.text.push_str("  </UnstructuredGrid>\n");
+    if out.appended.is_none() {
+        out.text.push_str("</VTKFile>\n");
+    }
     Ok(out)
 }
 
@@ -167,7 +269,7 @@ fn check_lengths(fields: &[Field<'_>], count: usize, items: &str) -> std::io::Re
 
 /// Writes one data array per field; 2D vectors are padded with z = 0 so that ParaView treats
 /// them as vectors.
-fn field_arrays(out: &mut String, fields: &[Field<'_>]) {
+fn field_arrays(out: &mut Arrays, fields: &[Field<'_>]) {
     for field in fields {
         let padded = if field.components == 2 {
             3
@@ -179,7 +281,108 @@ fn field_arrays(out: &mut String, fields: &[Field<'_>]) {
                 .copied()
                 .chain(std::iter::repeat(0.0).take(padded - field.components))
         });
-        float_array(out, Some(field.name), padded, values);
+        out.float_array(Some(field.name), padded, values);
+    }
+}
+
+/// The integer types of the `Cells` arrays.
+#[derive(Clone, Copy)]
+enum Int {
+    Int64,
+    UInt8,
+}
+
+/// The XML text being written and, for [`VtuFormat::Binary`], the appended bytes.
+struct Arrays {
+    text: String,
+    appended: Option<Vec<u8>>,
+}
+
+impl Arrays {
+    fn new(format: VtuFormat, capacity: usize) -> Arrays {
+        Arrays {
+            text: String::new(),
+            appended: match format {
+                VtuFormat::Ascii => None,
+                VtuFormat::Binary => Some(Vec::with_capacity(capacity)),
+            },
+        }
+    }
+
+    /// Opens an appended block: the empty element with its offset and a byte count to fill in
+    /// ([`Arrays::close_block`]). Returns where the count is.
+    fn open_block(&mut self, attributes: std::fmt::Arguments<'_>) -> Option<usize> {
+        let appended = self.appended.as_mut()?;
+        let _ = writeln!(
+            self.text,
+            "        <DataArray {attributes} format=\"appended\" offset=\"{}\"/>",
+            appended.len()
+        );
+        let at = appended.len();
+        appended.extend_from_slice(&[0; 8]);
+        Some(at)
+    }
+
+    /// Writes the byte count of the block opened at `at`.
+    fn close_block(&mut self, at: usize) {
+        if let Some(appended) = self.appended.as_mut() {
+            let len = (appended.len() - at - 8) as u64;
+            appended[at..at + 8].copy_from_slice(&len.to_le_bytes());
+        }
+    }
+
+    /// Writes a `Float64` data array: appended for a binary file; else ASCII if all values are
+    /// finite, base64 binary otherwise.
+    fn float_array(
+        &mut self,
+        name: Option<&str>,
+        components: usize,
+        values: impl Iterator<Item = f64> + Clone,
+    ) {
+        let named = name.map_or(String::new(), |n| format!(" Name=\"{}\"", xml_escape(n)));
+        let tag = format_args!("type=\"Float64\"{named} NumberOfComponents=\"{components}\"");
+        if let Some(at) = self.open_block(tag) {
+            if let Some(appended) = self.appended.as_mut() {
+                values.for_each(|x| appended.extend_from_slice(&x.to_le_bytes()));
+            }
+            self.close_block(at);
+            return;
+        }
+        float_array(&mut self.text, name, components, values);
+    }
+
+    /// Writes an integer array of the `Cells`: appended for a binary file, else ASCII with
+    /// `per_row` values per line.
+    fn int_array(
+        &mut self,
+        int: Int,
+        name: &str,
+        per_row: usize,
+        values: impl Iterator<Item = usize>,
+    ) {
+        let ty = match int {
+            Int::Int64 => "Int64",
+            Int::UInt8 => "UInt8",
+        };
+        if let Some(at) = self.open_block(format_args!("type=\"{ty}\" Name=\"{name}\"")) {
+            if let Some(appended) = self.appended.as_mut() {
+                match int {
+                    // Indices and offsets fit: a mesh holds fewer than 2^63 of anything.
+                    Int::Int64 => {
+                        values.for_each(|v| appended.extend_from_slice(&(v as i64).to_le_bytes()))
+                    }
+                    Int::UInt8 => values.for_each(|v| appended.push(v as u8)),
+                }
+            }
+            self.close_block(at);
+            return;
+        }
+        let _ = writeln!(
+            self.text,
+            "        <DataArray type=\"{ty}\" Name=\"{name}\" format=\"ascii\">"
+        );
+        write_rows(&mut self.text, values, per_row, push_int);
+        self.text.push_str("        </DataArray>\n");
     }
 }
 

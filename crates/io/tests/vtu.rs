@@ -296,7 +296,9 @@ fn write_solution_vtus(
     contact: &[contactdd_ddm::solution::PairResult],
 ) {
     let mut set = contactdd_io::result_set::ResultSet::begin(dir).expect("a folder");
-    contactdd_io::output::write_solution_vtus(&mut set, model, bodies, contact).expect("written");
+    let ascii = contactdd_io::vtu::VtuFormat::Ascii;
+    contactdd_io::output::write_solution_vtus_as(&mut set, model, bodies, contact, "", ascii)
+        .expect("written");
     set.finish(serde_json::json!({})).expect("swapped in");
 }
 

@@ -376,9 +376,9 @@ class Result:
     @property
     def monitor(self) -> Optional[Tuple[float, float]]:
         """The mean displacement (ux, uy) of the monitored boundary, or None without one."""
-    def write_vtu(self, directory: _StrPath) -> list[str]:
-        """Writes summary.json, contact.csv, history.csv and one VTU file per body (not for a
-        result unpickled or read by load_results: ContactddError)."""
+    def write_vtu(self, directory: _StrPath, format: Literal["binary", "ascii"] = "binary") -> list[str]:
+        """Writes summary.json, contact.csv, history.csv and one VTU file per body, encoded as
+        format (not for a result unpickled or read by load_results: ContactddError)."""
     def summary(self) -> dict[str, Any]:
         """The content of the summary.json file the command line writes."""
 
@@ -396,8 +396,8 @@ class MonolithicResult:
     def contact(self) -> list[Contact]: ...
     @property
     def seconds(self) -> float: ...
-    def write_vtu(self, directory: _StrPath) -> list[str]:
-        """Writes summary.json, contact.csv and one VTU file per body."""
+    def write_vtu(self, directory: _StrPath, format: Literal["binary", "ascii"] = "binary") -> list[str]:
+        """Writes summary.json, contact.csv and one VTU file per body, encoded as format."""
     def summary(self) -> dict[str, Any]:
         """The summary.json of a monolithic solve."""
 

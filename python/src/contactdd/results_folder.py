@@ -178,14 +178,50 @@ def _number(v: Any) -> float:
     return float("nan") if v is None else float(v)
 
 
-def _data_array(element: ET.Element) -> np.ndarray:
-    """The values of a VTU ``DataArray`` (ASCII, or base64 binary with a UInt64 byte count)."""
+def _split_appended(data: bytes) -> tuple[str, Union[bytes, None]]:
+    """The XML of a VTU file and the raw bytes of its ``<AppendedData encoding="raw">`` section
+    (after the ``_``), or ``None`` when it has none."""
+    at = data.find(b"<AppendedData")
+    if at < 0:
+        return data.decode("utf-8"), None
+    end = data.find(b">", at)
+    if end < 0:
+        raise ValueError("the AppendedData tag is not closed")
+    if b'encoding="raw"' not in data[at:end]:
+        raise ValueError('appended data is not raw (only encoding="raw" is read)')
+    rest = data[end + 1:].lstrip()
+    if not rest.startswith(b"_"):
+        raise ValueError("the appended data does not start with '_'")
+    # The XML before the section, closed, parses alone.
+    return data[:at].decode("utf-8") + "</VTKFile>", rest[1:]
+
+
+def _block(raw: bytes, offset: int) -> bytes:
+    """The data of the block at ``offset``: a UInt64 byte count, then that many bytes, all of
+    which must be there (a count or offset past the end of the file is an error, so no
+    allocation exceeds the file)."""
+    if offset < 0 or offset + 8 > len(raw):
+        raise ValueError(f"block at {offset}: past the end of the data")
+    count = int.from_bytes(raw[offset:offset + 8], "little")
+    if count > len(raw) - offset - 8:
+        raise ValueError(f"block at {offset}: {count} bytes declared, more than the file holds")
+    return raw[offset + 8:offset + 8 + count]
+
+
+def _data_array(element: ET.Element, raw: Union[bytes, None] = None) -> np.ndarray:
+    """The values of a VTU ``DataArray``: ASCII, base64 binary with a UInt64 byte count, or a
+    block of the raw appended data ``raw``."""
     dtype = np.dtype(_DTYPES[element.get("type", "Float64")]).newbyteorder("<")
     text = element.text or ""
-    if element.get("format") == "binary":
-        raw = base64.b64decode("".join(text.split()))
-        count = int(np.frombuffer(raw[:8], dtype="<u8")[0])
-        values = np.frombuffer(raw[8:8 + count], dtype=dtype).astype(dtype.newbyteorder("="))
+    form = element.get("format")
+    if form == "binary":
+        data = _block(base64.b64decode("".join(text.split()), validate=True), 0)
+        values = np.frombuffer(data, dtype=dtype).astype(dtype.newbyteorder("="))
+    elif form == "appended":
+        if raw is None:
+            raise ValueError(f"{element.get('Name')}: appended, but the file has no AppendedData")
+        data = _block(raw, int(element.get("offset", "")))
+        values = np.frombuffer(data, dtype=dtype).astype(dtype.newbyteorder("="))
     else:
         floats = np.array([float(v) for v in text.split()])
         if dtype.kind in "iu" and not np.all(np.isfinite(floats) & (floats == np.round(floats))
@@ -197,16 +233,17 @@ def _data_array(element: ET.Element) -> np.ndarray:
 
 
 def _body(path: Path, info: dict[str, Any]) -> Body:
-    text = _read_text(path, "vtu")
+    data = _read_result_file(os.fspath(path), "vtu")
     try:
-        return _parse_body(text, info)
+        return _parse_body(data, info)
     except (ET.ParseError, KeyError, ValueError, IndexError, TypeError) as e:
         raise ContactddError(f"{path}: not a VTU file of contactdd ({type(e).__name__}: {e})") from e
 
 
-def _parse_body(text: str, info: dict[str, Any]) -> Body:
+def _parse_body(data: bytes, info: dict[str, Any]) -> Body:
+    text, raw = _split_appended(data)
     root = ET.fromstring(text)
-    arrays = {a.get("Name"): _data_array(a) for a in root.iter("DataArray")}
+    arrays = {a.get("Name"): _data_array(a, raw) for a in root.iter("DataArray")}
     points = root.find(".//Points/DataArray")
     if points is None:
         raise ValueError("no Points")
@@ -217,7 +254,7 @@ def _parse_body(text: str, info: dict[str, Any]) -> Body:
         "name": info["name"],
         "order": info["order"],
         "condensation": info.get("condensation"),
-        "nodes": np.ascontiguousarray(_data_array(points)[:, :2]),
+        "nodes": np.ascontiguousarray(_data_array(points, raw)[:, :2]),
         "triangles": arrays["connectivity"].reshape(-1, per_cell),
         "displacement": np.ascontiguousarray(arrays["displacement"][:, :2]),
         "stress": stress,

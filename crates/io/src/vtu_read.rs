@@ -1,0 +1,324 @@
+//! Reader of the `.vtu` files [`crate::vtu`] writes, in either [`crate::vtu::VtuFormat`]: ASCII
+//! arrays, inline base64 arrays (`format="binary"`) and appended raw arrays
+//! (`format="appended"`, `<AppendedData encoding="raw">`), each `Float64`, `Int64` or `UInt8`
+//! with `UInt64` byte counts, little-endian.
+//!
+//! The file is untrusted (a reader of a result folder): every length and offset it declares is
+//! checked against the bytes actually there before anything is allocated, so a truncated or
+//! lying file is an error ([`VtuReadError`]), never a panic or an allocation larger than the
+//! file.
+
+/// The part of a `Piece` an array belongs to.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Section {
+    /// `PointData`: one item per node.
+    PointData,
+    /// `CellData`: one item per cell.
+    CellData,
+    /// `Points`: the node coordinates.
+    Points,
+    /// `Cells`: `connectivity`, `offsets`, `types`.
+    Cells,
+}
+
+/// One data array, its values as `f64` (integers are exact up to 2^53).
+#[derive(Clone, Debug, PartialEq)]
+pub struct VtuArray {
+    /// Where the array is.
+    pub section: Section,
+    /// Its `Name` (empty for the unnamed `Points` array).
+    pub name: String,
+    /// `NumberOfComponents` (1 when absent).
+    pub components: usize,
+    /// The values, item-major.
+    pub values: Vec<f64>,
+}
+
+/// A `.vtu` file that is not one [`crate::vtu`] writes, or is damaged.
+#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
+#[error("{0}")]
+pub struct VtuReadError(pub String);
+
+fn bad<T>(message: impl Into<String>) -> Result<T, VtuReadError> {
+    Err(VtuReadError(message.into()))
+}
+
+/// The arrays of a `.vtu` file, in file order.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct VtuFile {
+    /// Every `DataArray`.
+    pub arrays: Vec<VtuArray>,
+}
+
+impl VtuFile {
+    /// The array named `name` in `section` (`""` for the `Points` array).
+    pub fn array(&self, section: Section, name: &str) -> Option<&VtuArray> {
+        (self.arrays.iter()).find(|a| a.section == section && a.name == name)
+    }
+}
+
+/// Reads the arrays of the `.vtu` file `bytes`.
+pub fn parse_vtu(bytes: &[u8]) -> Result<VtuFile, VtuReadError> {
+    let head_end = find(bytes, b"<AppendedData").unwrap_or(bytes.len());
+    let Ok(head) = std::str::from_utf8(&bytes[..head_end]) else {
+        return bad("the XML part is not UTF-8 text");
+    };
+    let appended = appended_data(&bytes[head_end..])?;
+    let mut file = VtuFile::default();
+    let mut section = None;
+    let mut rest = head;
+    while let Some(at) = rest.find('<') {
+        rest = &rest[at..];
+        let Some(end) = rest.find('>') else {
+            return bad("an XML tag is not closed");
+        };
+        let tag = &rest[1..end];
+        let name = tag.split(|c: char| c.is_whitespace() || c == '/').next();
+        match name {
+            Some("PointData") => section = Some(Section::PointData),
+            Some("CellData") => section = Some(Section::CellData),
+            Some("Points") => section = Some(Section::Points),
+            Some("Cells") => section = Some(Section::Cells),
+            Some("DataArray") => {
+                let Some(section) = section else {
+                    return bad("a DataArray outside PointData, CellData, Points and Cells");
+                };
+                let body = &rest[end + 1..];
+                let (array, used) = data_array(section, tag, body, appended)?;
+                file.arrays.push(array);
+                rest = &body[used..];
+                continue;
+            }
+            _ => {}
+        }
+        rest = &rest[end + 1..];
+    }
+    Ok(file)
+}
+
+/// The raw bytes after the underscore of an `<AppendedData encoding="raw">` section at the start
+/// of `tail` (none when `tail` is empty).
+fn appended_data(tail: &[u8]) -> Result<Option<&[u8]>, VtuReadError> {
+    if tail.is_empty() {
+        return Ok(None);
+    }
+    let Some(end) = tail.iter().position(|&b| b == b'>') else {
+        return bad("the AppendedData tag is not closed");
+    };
+    let tag = String::from_utf8_lossy(&tail[..end]);
+    if attribute(&tag, "encoding") != Some("raw") {
+        return bad("appended data is not raw (only encoding=\"raw\" is read)");
+    }
+    let after = &tail[end + 1..];
+    match after.iter().position(|b| !b.is_ascii_whitespace()) {
+        Some(u) if after[u] == b'_' => Ok(Some(&after[u + 1..])),
+        _ => bad("the appended data does not start with '_'"),
+    }
+}
+
+/// The array of the `DataArray` tag `tag` (its text between `<` and `>`), whose content starts
+/// `body`, and how many bytes of `body` it used (through its end tag).
+fn data_array(
+    section: Section,
+    tag: &str,
+    body: &str,
+    appended: Option<&[u8]>,
+) -> Result<(VtuArray, usize), VtuReadError> {
+    let name = unescape(attribute(tag, "Name").unwrap_or(""));
+    let what = |m: &str| VtuReadError(format!("array '{name}': {m}"));
+    let components = match attribute(tag, "NumberOfComponents") {
+        None => 1,
+        Some(c) => c
+            .parse::<usize>()
+            .ok()
+            .filter(|&c| c > 0)
+            .ok_or_else(|| what("bad NumberOfComponents"))?,
+    };
+    let ty = attribute(tag, "type").unwrap_or("");
+    let size = match ty {
+        "Float64" | "Int64" => 8,
+        "UInt8" => 1,
+        _ => return Err(what(&format!("type '{ty}' is not Float64, Int64 or UInt8"))),
+    };
+    let closed = tag.ends_with('/');
+    let (text, used) = if closed {
+        ("", 0)
+    } else {
+        let end = body
+            .find("</DataArray>")
+            .ok_or_else(|| what("no </DataArray>"))?;
+        (&body[..end], end + "</DataArray>".len())
+    };
+    let values = match attribute(tag, "format") {
+        Some("ascii") => text
+            .split_whitespace()
+            .map(|v| {
+                v.parse::<f64>()
+                    .map_err(|_| what(&format!("'{v}' is not a number")))
+            })
+            .collect::<Result<Vec<f64>, VtuReadError>>()?,
+        Some("binary") => {
+            let bytes = base64_decode(text).ok_or_else(|| what("bad base64"))?;
+            decode(block(&bytes, 0).map_err(|m| what(&m))?, ty, size).map_err(|m| what(&m))?
+        }
+        Some("appended") => {
+            let raw = appended.ok_or_else(|| what("appended, but the file has no AppendedData"))?;
+            let offset = attribute(tag, "offset")
+                .and_then(|o| o.parse::<usize>().ok())
+                .ok_or_else(|| what("no offset"))?;
+            decode(block(raw, offset).map_err(|m| what(&m))?, ty, size).map_err(|m| what(&m))?
+        }
+        _ => return Err(what("format is not ascii, binary or appended")),
+    };
+    let array = VtuArray {
+        section,
+        name,
+        components,
+        values,
+    };
+    Ok((array, used))
+}
+
+/// The data of the block at `offset` of `bytes`: a `UInt64` byte count, then that many bytes,
+/// all of which must be there.
+fn block(bytes: &[u8], offset: usize) -> Result<&[u8], String> {
+    let header = offset
+        .checked_add(8)
+        .and_then(|end| bytes.get(offset..end))
+        .ok_or("the block's byte count is past the end of the file")?;
+    let mut count = [0u8; 8];
+    count.copy_from_slice(header);
+    let count = u64::from_le_bytes(count);
+    let start = offset + 8;
+    usize::try_from(count)
+        .ok()
+        .and_then(|n| start.checked_add(n))
+        .and_then(|end| bytes.get(start..end))
+        .ok_or_else(|| format!("the block declares {count} bytes, more than the file holds"))
+}
+
+/// The little-endian values of type `ty` (`size` bytes each) in `data`.
+fn decode(data: &[u8], ty: &str, size: usize) -> Result<Vec<f64>, String> {
+    if data.len() % size != 0 {
+        return Err(format!(
+            "{} bytes is not a whole number of {ty}",
+            data.len()
+        ));
+    }
+    let word = |c: &[u8]| {
+        let mut w = [0u8; 8];
+        w.copy_from_slice(c);
+        w
+    };
+    Ok(match ty {
+        "Float64" => data
+            .chunks_exact(8)
+            .map(|c| f64::from_le_bytes(word(c)))
+            .collect(),
+        "Int64" => data
+            .chunks_exact(8)
+            .map(|c| i64::from_le_bytes(word(c)) as f64)
+            .collect(),
+        _ => data.iter().map(|&b| f64::from(b)).collect(),
+    })
+}
+
+/// The value of the attribute `key` of the tag text `tag` (`key="value"`).
+fn attribute<'a>(tag: &'a str, key: &str) -> Option<&'a str> {
+    let mut rest = tag;
+    while let Some(at) = rest.find(key) {
+        let before = rest[..at].chars().next_back();
+        let after = &rest[at + key.len()..];
+        if before.is_some_and(char::is_whitespace) {
+            if let Some(value) = after.strip_prefix("=\"") {
+                return value.split('"').next();
+            }
+        }
+        rest = after;
+    }
+    None
+}
+
+/// `text` with the XML entities [`crate::vtu`] writes in names replaced by their characters.
+fn unescape(text: &str) -> String {
+    (text
+        .replace("&lt;", "<")
+        .replace("&gt;", ">")
+        .replace("&quot;", "\""))
+    .replace("&apos;", "'")
+    .replace("&amp;", "&")
+}
+
+/// The first position of `needle` in `haystack`.
+fn find(haystack: &[u8], needle: &[u8]) -> Option<usize> {
+    haystack.windows(needle.len()).position(|w| w == needle)
+}
+
+/// The bytes of the standard (padded) base64 text `text`, whitespace ignored; `None` if it is
+/// not base64.
+fn base64_decode(text: &str) -> Option<Vec<u8>> {
+    let value = |c: u8| -> Option<u32> {
+        Some(match c {
+            b'A'..=b'Z' => c - b'A',
+            b'a'..=b'z' => c - b'a' + 26,
+            b'0'..=b'9' => c - b'0' + 52,
+            b'+' => 62,
+            b'/' => 63,
+            _ => return None,
+        } as u32)
+    };
+    let symbols: Vec<u8> = text.bytes().filter(|b| !b.is_ascii_whitespace()).collect();
+    if symbols.len() % 4 != 0 {
+        return None;
+    }
+    let mut out = Vec::with_capacity(symbols.len() / 4 * 3);
+    let groups = symbols.len() / 4;
+    for (g, chunk) in symbols.chunks(4).enumerate() {
+        let pad = chunk.iter().rev().take_while(|&&c| c == b'=').count();
+        if pad > 2 || (pad > 0 && g + 1 != groups) {
+            return None;
+        }
+        let mut word = 0u32;
+        for &c in &chunk[..4 - pad] {
+            word = (word << 6) | value(c)?;
+        }
+        word <<= 6 * pad as u32;
+        let bytes = [(word >> 16) as u8, (word >> 8) as u8, word as u8];
+        out.extend_from_slice(&bytes[..3 - pad]);
+    }
+    Some(out)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn base64_round_trips() {
+        assert_eq!(base64_decode("Zm9vYmE=").as_deref(), Some(&b"fooba"[..]));
+        assert_eq!(base64_decode("Zm9v YmFy").as_deref(), Some(&b"foobar"[..]));
+        assert_eq!(base64_decode("Zg=="), Some(b"f".to_vec()));
+        for wrong in ["Zg=", "Z===", "Zg==Zm9v", "Zm9*"] {
+            assert_eq!(base64_decode(wrong), None, "{wrong}");
+        }
+    }
+
+    #[test]
+    fn attributes_match_whole_keys() {
+        let tag = "DataArray type=\"Float64\" Name=\"offset\" offset=\"16\"";
+        assert_eq!(attribute(tag, "offset"), Some("16"));
+        assert_eq!(attribute(tag, "Name"), Some("offset"));
+        assert_eq!(attribute(tag, "format"), None);
+    }
+
+    #[test]
+    fn blocks_are_bounded_by_the_bytes_there() {
+        let mut bytes = 16u64.to_le_bytes().to_vec();
+        bytes.extend_from_slice(&[0; 16]);
+        assert_eq!(block(&bytes, 0).map(<[u8]>::len), Ok(16));
+        assert!(block(&bytes[..20], 0).is_err());
+        assert!(block(&bytes, usize::MAX - 3).is_err());
+        let lying = u64::MAX.to_le_bytes();
+        assert!(block(&lying, 0).is_err());
+    }
+}
