@@ -29,13 +29,29 @@ fn scaled(s: f64, y: [f64; 2], a: &'static str, b: &'static str) -> String {
     .toml()
 }
 
+/// A scratch folder, removed when dropped (also when a test fails).
+struct Scratch(PathBuf);
+
+impl std::ops::Deref for Scratch {
+    type Target = Path;
+    fn deref(&self) -> &Path {
+        &self.0
+    }
+}
+
+impl Drop for Scratch {
+    fn drop(&mut self) {
+        let _ = std::fs::remove_dir_all(&self.0);
+    }
+}
+
 /// A fresh folder holding `problem.toml` with `text`.
-fn write(name: &str, text: &str) -> PathBuf {
+fn write(name: &str, text: &str) -> Scratch {
     let dir = std::env::temp_dir().join(format!("contactdd-check-{}-{name}", std::process::id()));
     let _ = std::fs::remove_dir_all(&dir);
     std::fs::create_dir_all(&dir).unwrap();
     std::fs::write(dir.join("problem.toml"), text).unwrap();
-    dir
+    Scratch(dir)
 }
 
 fn contactdd(dir: &Path, args: &[&str]) -> Output {
