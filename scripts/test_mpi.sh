@@ -109,6 +109,9 @@ same hertz examples/hertz.toml
 # every pair (exact Coulomb by the augmented Lagrangian).
 same friction-block examples/friction_block.toml
 same stack-friction examples/stack.toml --friction coulomb:0.3 --enforcement augmented
+# The Robin sweeps with friction (one-level): the tangential displacements from the shared state.
+same stack-friction-sweeps examples/stack.toml --friction coulomb:0.3 --method active-set \
+  --gamma auto --coarse off --max-iter 3000
 # The sparse condensation: forced on the notch and the column, and chosen by the cost model for
 # a long contact zone (1000 × 16 cells per body, 1001 contact points).
 sparse() { sed "s/^\[solver\]/[solver]\ncondensation = \"$2\"/" "$1"; }

@@ -6,6 +6,8 @@
 //!   threshold Q = μN of sliding);
 //! - [`sheared_wall`]: the wall of [`crate::cases::wall`] with Coulomb friction on every pair and
 //!   its top row pushed sideways;
+//! - [`sheared_block`]: the same block held by its top, pressed and sheared by prescribed
+//!   displacements;
 //! - [`cattaneo_mindlin`]: two mirror-image cylindrical blocks pressed together, then sheared
 //!   (the Cattaneo–Mindlin partial slip), as a load history.
 //!
@@ -80,6 +82,21 @@ pub fn block_on_foundation(
         }],
         remote: Vec::new(),
     }
+}
+
+/// The block of [`block_on_foundation`] held by its top instead of loaded: the top moved by
+/// `down` towards the foundation and by `along` sideways (prescribed displacements), so that
+/// both bodies are held and friction decides how the base sticks and slips.
+pub fn sheared_block(friction: Friction, (down, along): (f64, f64)) -> Model {
+    let mut model = block_on_foundation(0.0, 0.0, friction, (8, Order::P1), 0.05);
+    let block = &mut model.bodies[1];
+    for (component, value) in [(Component::X, along), (Component::Y, -down)] {
+        (block.constraints)
+            .fix(&block.mesh, "top", component, value)
+            .expect("the block has a top");
+    }
+    model.name = "sheared-block".into();
+    model
 }
 
 /// Adds the traction [q, 0] on `boundary` to the load vector `load`.

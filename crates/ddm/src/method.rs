@@ -3,6 +3,8 @@
 use std::fmt;
 use std::str::FromStr;
 
+use crate::contact::Status;
+
 /// A domain decomposition method, named as in docs/method.md.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, serde::Serialize, serde::Deserialize)]
 #[serde(rename_all = "kebab-case")]
@@ -66,6 +68,21 @@ impl Method {
                     (-(g(2.0 * s - s_prev) - g(s_prev)) / (2.0 * ds)).clamp(0.0, 1.0)
                 }
             }
+        }
+    }
+}
+
+impl Method {
+    /// The tangential Robin coefficient φ_t of a frictional point with status `status` (the
+    /// tangential law's slope in units of the tangential penalty, as φ is the normal law's):
+    /// `neumann` 0, `robin` 1, and the other methods the slope of the law's branch, 1 where the
+    /// point sticks and 0 where it slips (the bound does not move with the slip) or is open.
+    pub fn phi_tangential(self, status: Status) -> f64 {
+        match self {
+            Method::Neumann => 0.0,
+            Method::Robin => 1.0,
+            _ if status == Status::Stick => 1.0,
+            _ => 0.0,
         }
     }
 }

@@ -8,6 +8,7 @@ use std::time::Instant;
 
 use rayon::prelude::*;
 
+use crate::coarse::CoarseMode;
 use crate::contact::Interface;
 use crate::equilibrium::equilibrium;
 use crate::error::SetupError;
@@ -205,14 +206,18 @@ pub(crate) fn unbalanced(balance: &Balance, limit: f64) -> Option<Stop> {
     })
 }
 
-/// Friction needs the interface Newton method: the Robin sweeps treat frictionless contact only.
+/// The Robin sweeps with friction run one-level: the coarse correction balances floating bodies
+/// by their normal contact forces only, and would move a body that friction holds.
 fn check_friction(prepared: &Prepared, settings: &Settings) -> Result<(), SetupError> {
-    if prepared.interface.has_friction() && settings.accelerator != Accelerator::Newton {
-        return Err(SetupError::Solver(
-            "friction needs the interface Newton method (accelerator = \"newton\", the \
-             default): the Robin sweeps treat frictionless contact only"
-                .into(),
-        ));
+    let sweeps = settings.accelerator != Accelerator::Newton;
+    if prepared.interface.has_friction() && sweeps && settings.coarse != CoarseMode::Off {
+        return Err(SetupError::Solver(format!(
+            "friction with the Robin sweeps needs coarse = \"off\": their coarse correction \
+             (here \"{}\", the sweeps' default unless told otherwise) balances floating bodies by \
+             their normal contact forces only; set coarse = \"off\" (--coarse off), or use the \
+             interface Newton method (accelerator = \"newton\", the default)",
+            settings.coarse
+        )));
     }
     Ok(())
 }

@@ -78,6 +78,11 @@ impl<'a> RobinSweep<'a> {
     ) -> Vec<Result<(), Breakdown>> {
         let (interface, bodies, method, safeguard) =
             (self.interface, self.bodies, self.method, self.safeguard);
+        // The frictional points' tangential displacements at U^k (empty without friction).
+        let g = match interface.has_friction() {
+            true => interface.slip_sums(un),
+            false => Vec::new(),
+        };
         let outputs = split(interface, &mut *un_out, &mut *t_out);
         self.scratch
             .par_iter_mut()
@@ -94,6 +99,7 @@ impl<'a> RobinSweep<'a> {
                     un: &un[range.clone()],
                     s,
                     s_prev,
+                    g: &g,
                 };
                 input.coefficients(method, scratch);
                 let solved =
@@ -130,6 +136,8 @@ struct BodyInput<'s> {
     un: &'s [f64],
     s: &'s [f64],
     s_prev: &'s [f64],
+    /// The frictional points' tangential displacements g^k (empty without friction).
+    g: &'s [f64],
 }
 
 impl BodyInput<'_> {
@@ -171,13 +179,34 @@ impl BodyInput<'_> {
                 spring += a.abs() * k * phi;
             }
         }
+        let mut force = self.interface.force(q, self.s);
+        if !self.g.is_empty() {
+            let (tangential_spring, traction) = self.tangential(method, q);
+            spring += tangential_spring;
+            force += traction;
+        }
         let phi = if p.spring > 0.0 {
             (spring / p.spring).min(1.0)
         } else {
             0.0
         };
-        let force = self.interface.force(q, self.s);
         (phi, phi * p.spring * self.un[q - self.start] + force)
+    }
+
+    /// The tangential Robin term of unknown q: the springs Σ |b| w_j φ_t,j/θ_t,j and the forces
+    /// Σ b w_j σ_t,j of the frictional points whose tractions load it, σ_t,j the return mapping
+    /// at the state (with Coulomb's law the slip bound μ p of the state's pressure: the sweep
+    /// solves a Tresca problem, and the bound follows the pressure from sweep to sweep).
+    fn tangential(&self, method: Method, q: usize) -> (f64, f64) {
+        let (mut spring, mut force) = (0.0, 0.0);
+        for &(j, b) in &self.interface.carried_tangential[q] {
+            let p = &self.interface.points[j];
+            let Some(f) = &p.friction else { continue };
+            let (traction, status) = self.interface.traction(j, self.s, self.g);
+            spring += b.abs() * p.weight / f.theta * method.phi_tangential(status);
+            force += b * p.weight * traction;
+        }
+        (spring, force)
     }
 }
 
