@@ -6,6 +6,7 @@ use anyhow::Result;
 use contactdd_core::{num_dofs, Component, ElasticBody, Load, Order};
 use contactdd_ddm::contact::check as contact_check;
 use contactdd_ddm::contact::{Interface, Role};
+use contactdd_ddm::solver::check_friction;
 use contactdd_ddm::{Enforcement, Model, Penalty};
 use contactdd_io::fields::has_friction;
 use contactdd_io::problem::{BodySpec, MeshSpec};
@@ -26,6 +27,7 @@ pub fn check(args: CheckArgs) -> Result<Exit> {
     let findings = contact_check::check(&loaded.model, &interface);
     let file = args.file.display();
     contact_check::refuse(&findings).map_err(|e| anyhow::anyhow!("{file}: {e}"))?;
+    check_friction(&interface, &loaded.settings).map_err(|e| anyhow::anyhow!("{file}: {e}"))?;
     say!("{}", describe(&loaded, &interface).trim_end());
     for f in &findings {
         eprintln!("warning: {file}: {f}");

@@ -156,3 +156,37 @@ fn friction_flag_overrides_every_pair() {
     }
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// The Robin sweeps with friction need `coarse = "off"`: `check` and `solve` refuse the default
+/// coarse correction of the sweeps alike, naming the fix, and both accept it switched off.
+#[test]
+fn check_and_solve_agree_on_friction_with_the_sweeps() {
+    let dir = std::env::temp_dir().join(format!("contactdd-sweeps-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).expect("a scratch folder");
+    let text = std::fs::read_to_string(example("friction_block.toml")).expect("the example");
+    let os = |s: &str| std::ffi::OsString::from(s);
+    for (coarse, accepted) in [("", false), ("coarse = \"off\"\n", true)] {
+        let file = dir.join("block.toml");
+        let solver = format!("\n[solver]\nmethod = \"active-set\"\n{coarse}");
+        std::fs::write(&file, format!("{text}{solver}")).expect("written");
+        let out = dir.join("out");
+        for args in [
+            vec![os("check"), file.clone().into()],
+            vec![
+                os("solve"),
+                file.clone().into(),
+                os("-q"),
+                os("-o"),
+                out.into(),
+            ],
+        ] {
+            let args: Vec<&std::ffi::OsStr> = args.iter().map(|a| a.as_os_str()).collect();
+            let run = contactdd(&args);
+            let err = String::from_utf8_lossy(&run.stderr).into_owned();
+            assert_eq!(run.status.success(), accepted, "{args:?}: {err}");
+            assert_eq!(err.contains("needs coarse = \"off\""), !accepted, "{err}");
+        }
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}

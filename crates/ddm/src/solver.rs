@@ -58,7 +58,7 @@ pub fn solve_from(
     warm: Option<&[f64]>,
 ) -> Result<Solution, SetupError> {
     settings.validate()?;
-    check_friction(prepared, settings)?;
+    check_friction(&prepared.interface, settings)?;
     let iteration = iteration_for(settings);
     let (outcome, interface, updates, gap_tol) = if model.is_augmented() {
         let a = crate::augmented::solve(model, prepared, &*iteration, settings, hooks, warm);
@@ -206,11 +206,12 @@ pub(crate) fn unbalanced(balance: &Balance, limit: f64) -> Option<Stop> {
     })
 }
 
-/// The Robin sweeps with friction run one-level: the coarse correction balances floating bodies
-/// by their normal contact forces only, and would move a body that friction holds.
-fn check_friction(prepared: &Prepared, settings: &Settings) -> Result<(), SetupError> {
+/// Refuses the settings that cannot solve the friction of `interface`: the Robin sweeps with
+/// friction run one-level, since the coarse correction balances floating bodies by their normal
+/// contact forces only and would move a body that friction holds. `contactdd check` asks it too.
+pub fn check_friction(interface: &Interface, settings: &Settings) -> Result<(), SetupError> {
     let sweeps = settings.accelerator != Accelerator::Newton;
-    if prepared.interface.has_friction() && sweeps && settings.coarse != CoarseMode::Off {
+    if interface.has_friction() && sweeps && settings.coarse != CoarseMode::Off {
         return Err(SetupError::Solver(format!(
             "friction with the Robin sweeps needs coarse = \"off\": their coarse correction \
              (here \"{}\", the sweeps' default unless told otherwise) balances floating bodies by \
