@@ -1,7 +1,8 @@
 //! The press fit of `contactdd::press_fit` (a quarter shaft of radius 1.005 in a quarter ring of
 //! radius 1 to 2, steel, plane strain, both bodies held by symmetry supports) solved by the
 //! interface Newton method with the default settings, P1 and P2, penalty and augmented, against
-//! the monolithic reference and Lamé's pressure. `cargo run --release --example press_fit`.
+//! the monolithic reference and Lamé's pressure. `cargo run --release --example press_fit [ARCS SHAFT_ARCS RADIAL]` (default 32 32 8;
+//! `32 40 8`: non-matching arcs).
 
 use contactdd::ddm::monolithic::solve_monolithic;
 use contactdd::ddm::{prepare_with, solve, Enforcement, Hooks, Penalty, Settings};
@@ -29,21 +30,6 @@ fn arg(i: usize, default: usize) -> usize {
 
 fn main() {
     let lame = lame_pressure(0.005, RING_INNER, RING_OUTER);
-    if std::env::var("DETAIL").is_ok() {
-        let model = press_fit(&PressFit {
-            p2: std::env::var("P2").is_ok(),
-            penalty: Penalty::Theta(arg(1, 8) as f64 * 1e-9),
-            ..PressFit::default()
-        })
-        .unwrap();
-        let s = Settings::default();
-        let prepared = prepare_with(&model, &s).unwrap();
-        let sol = solve(&model, &prepared, &s, Hooks::default()).unwrap();
-        detail(&sol);
-        println!("{:?} {}", sol.message, sol.iterations);
-        return;
-    }
-    println!("Lamé pressure {lame:.2}");
     println!("order enforcement penalty        shift    converged its  mono  |Δu|/|u|   p/Lamé−1 (min..max, 5°–85°)");
     let penalties = [
         ("c = 0.05", Penalty::RodModel { c: 0.05, h: 1.0 }),
@@ -99,24 +85,5 @@ fn main() {
                 }
             }
         }
-    }
-}
-
-/// Prints the pairs' points (scratch).
-#[allow(dead_code)]
-pub fn detail(sol: &contactdd::ddm::Solution) {
-    let pair = &sol.contact[0];
-    for i in 0..pair.x.len() {
-        println!(
-            "{} {:3} phi {:7.3} p {:10.3} gap {:10.3e} w {:8.5} closed {} enforced {}",
-            pair.side[i],
-            pair.node[i],
-            pair.y[i].atan2(pair.x[i]).to_degrees(),
-            pair.pressure[i],
-            pair.gap[i],
-            pair.weight[i],
-            pair.closed[i],
-            pair.enforced[i]
-        );
     }
 }
