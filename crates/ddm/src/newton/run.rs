@@ -7,7 +7,7 @@ use super::algebra::norm;
 use super::step::Caches;
 use super::system::{Evaluation, System};
 use crate::contact::Status;
-use crate::exchange::share_slices;
+use crate::exchange::{share_slices, share_vectors};
 use crate::measures::{contact_summary, largest, relative_change, starting_values};
 use crate::outcome::{Breakdown, Hooks, Record, Stop};
 use crate::prepared::Prepared;
@@ -97,11 +97,14 @@ impl<'s, 'a> Run<'s, 'a> {
         if warm.is_none() {
             share_slices(system.exchange, &system.interface.body_range, &mut t);
         }
-        let tau: Vec<f64> = t
+        let mut tau: Vec<f64> = t
             .iter()
             .zip(&system.d0)
             .map(|(t, &d)| if d > 0.0 { t / d } else { 0.0 })
             .collect();
+        if warm.is_none() {
+            unload_unbounded(system, &prepared.scale, &mut tau);
+        }
         let state = system.evaluate(&tau);
         Run {
             system,
@@ -116,6 +119,9 @@ impl<'s, 'a> Run<'s, 'a> {
     }
 
     pub(super) fn solve(&mut self, settings: &Settings, hooks: Hooks<'_>) -> (Stop, usize) {
+        if unloaded(self.system) {
+            return self.zero(hooks);
+        }
         let mut watchdog: Option<Checkpoint> = None;
         for k in 1..=settings.max_iter {
             if hooks.cancel.is_some_and(|c| c.load(Ordering::Relaxed)) {
@@ -179,6 +185,28 @@ impl<'s, 'a> Run<'s, 'a> {
             Some(b) => (diverged(b, k, Breakdown::Slides), k),
             None => (Stop::MaxIterations, k),
         }
+    }
+
+    /// The solution of a problem without data ([`unloaded`]): τ = 0 and U = 0 solve it exactly
+    /// (every point open or just touching, every residual zero; a floating body that nothing
+    /// holds has nothing to move it either). One iteration records it, with a zero residual.
+    fn zero(&mut self, hooks: Hooks<'_>) -> (Stop, usize) {
+        let (n, bodies) = (self.system.len(), self.system.bodies.len());
+        self.tau = vec![0.0; n];
+        self.state = self.system.evaluation(&self.tau, vec![0.0; n]);
+        let record = Record {
+            k: 1,
+            gamma: 1.0,
+            measure: 0.0,
+            rel_change: vec![0.0; bodies],
+            active: vec![0; bodies],
+            contact_force: vec![0.0; bodies],
+        };
+        if let Some(f) = hooks.on_iteration {
+            f(&record);
+        }
+        self.history.push(record);
+        (Stop::Converged, 1)
     }
 
     /// The watchdog's step `k` along `delta` (with closed set `chi` and kernel `z`): the full
@@ -309,13 +337,19 @@ impl<'s, 'a> Run<'s, 'a> {
         None
     }
 
-    /// The first body with non-finite or too large normal displacements.
+    /// The first body with non-finite normal displacements, or with displacements beyond its
+    /// scale along a free rigid motion: only a body that supports do not hold can move without
+    /// bound. A held body's displacements are bounded by what its loads, its supports and the
+    /// interface loads produce; a large step there (a stiff penalty, an interference fit) is a
+    /// step for the watchdog and the line search to judge, not a body that is not held.
     fn check(&self, u: &[f64]) -> Option<(usize, Breakdown)> {
         (0..self.system.bodies.len()).find_map(|b| {
             let v = &u[self.system.range(b)];
             if !v.iter().all(|x| x.is_finite()) {
                 Some((b, Breakdown::NonFinite))
-            } else if v.iter().any(|x| x.abs() > self.scale[b]) {
+            } else if !self.system.mode_range[b].is_empty()
+                && v.iter().any(|x| x.abs() > self.scale[b])
+            {
                 Some((b, Breakdown::Growth))
             } else {
                 None
@@ -391,4 +425,50 @@ fn diverged(body: usize, k: usize, reason: Breakdown) -> Stop {
 /// state that nothing holds (infinite ‖R̂‖) never does.
 fn decreases(f: f64, reference: f64, alpha: f64) -> bool {
     f.is_finite() && f <= (1.0 - ARMIJO * alpha) * reference
+}
+
+/// Starts every body whose starting interface loads `tau` (displacement units) exceed its
+/// blow-up size `scale` unloaded. The paper's u⁰ gives each body the load that moves all its
+/// contact points by u⁰; where a support holds a point's direction (the tangential unknown of a
+/// point on a symmetry line) no load moves it, that solve is singular, and rounding leaves loads
+/// of 1e17 and more along the held direction. They move nothing, but the first Newton step has
+/// to cancel them, and the rounding of that cancellation is larger than the solution.
+fn unload_unbounded(system: &System<'_>, scale: &[f64], tau: &mut [f64]) {
+    for (b, &limit) in scale.iter().enumerate() {
+        let range = system.range(b);
+        if tau[range.clone()]
+            .iter()
+            .any(|t| !t.is_finite() || t.abs() > limit)
+        {
+            tau[range].iter_mut().for_each(|t| *t = 0.0);
+        }
+    }
+}
+
+/// Whether the problem has no data: no body's loads or prescribed displacements move its
+/// contact points (f₀ = 0 on every body), no load does work along a free rigid motion, no pair
+/// starts overlapping (d ≥ 0), and no friction state or multiplier carries over from an earlier
+/// solve. Then τ = 0 solves the interface problem exactly.
+fn unloaded(system: &System<'_>) -> bool {
+    let own = (system.bodies.iter())
+        .map(|b| match b {
+            Some(body) if body.free_response().iter().any(|&f| f != 0.0) => vec![1.0],
+            _ => vec![0.0],
+        })
+        .collect();
+    let moved = share_vectors(system.exchange, own)
+        .iter()
+        .any(|v| v.first() != Some(&0.0));
+    let loaded = |p: &crate::contact::ContactPoint| {
+        let carried = p
+            .friction
+            .as_ref()
+            .is_some_and(|f| f.multiplier != 0.0 || f.reference != 0.0);
+        carried
+            || p.multiplier != 0.0
+            || (p.is_contact() && p.has_partner() && p.penalty_gap() < 0.0)
+    };
+    !moved
+        && !system.interface.points.iter().any(loaded)
+        && system.mode_load.iter().all(|&w| w == 0.0)
 }
