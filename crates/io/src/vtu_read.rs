@@ -16,7 +16,7 @@
 /// little more for tiny blocks).
 pub const MAX_EXPANSION: usize = 1040;
 
-/// The largest uncompressed size of one zlib block read (VTK writes 32 KiB, contactdd 64 KiB).
+/// The largest uncompressed size of one zlib block read (VTK and contactdd write 32 KiB).
 pub const MAX_BLOCK: usize = 1 << 30;
 
 /// The part of a `Piece` an array belongs to.
