@@ -81,12 +81,13 @@ pub enum VtuFormat {
     Ascii,
     /// Every array as little-endian raw bytes in one `<AppendedData encoding="raw">` section at
     /// the end of the file, each preceded by its `UInt64` byte count (0.58 of the ASCII size on
-    /// the notch, written in about half the time).
+    /// the notch at 1000 × 500 cells per body, written in about half the time of ASCII).
     Binary,
     /// The appended section of [`VtuFormat::Binary`] with every array cut into blocks of
     /// [`ZLIB_BLOCK`] bytes, each compressed by zlib at level [`ZLIB_LEVEL`], as VTK's
-    /// `vtkZLibDataCompressor` writes it (the default: about 0.3 of the ASCII size on the notch
-    /// and written faster than ASCII; docs/outputs.md has the measured table).
+    /// `vtkZLibDataCompressor` writes it (the default: 0.27 of the ASCII size on the notch at
+    /// 1000 × 500 cells per body, written in three quarters of the time of ASCII;
+    /// `scripts/vtu_encodings.py` measures it, docs/outputs.md has the table).
     #[default]
     Zlib,
 }
