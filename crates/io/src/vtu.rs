@@ -93,8 +93,8 @@ pub enum VtuFormat {
 }
 
 /// The uncompressed size of the blocks of a [`VtuFormat::Zlib`] array (the last one may be
-/// shorter): 32 KiB, VTK's own. Larger blocks compress no better than 0.2 % on the notch and
-/// leave fewer pieces to share between threads.
+/// shorter): 32 KiB, VTK's own. Blocks of up to 1 MiB save less than 0.3 % of the raw bytes on
+/// the notch and leave fewer pieces to share between threads.
 pub const ZLIB_BLOCK: usize = 1 << 15;
 
 /// The zlib compression level of [`VtuFormat::Zlib`]. Level 1 of the zlib-rs back end codes
@@ -185,27 +185,27 @@ pub fn vtu_bytes(mesh: &Mesh, data: VtuData<'_>, format: VtuFormat) -> std::io::
     let Some(appended) = out.appended else {
         return Ok(out.text.into_bytes());
     };
-    let (text, appended) = if format == VtuFormat::Zlib {
-        compress_arrays(&out.text, &appended, &out.pending)?
-    } else {
-        (out.text, appended)
-    };
-    let mut bytes = text.into_bytes();
+    if format == VtuFormat::Zlib {
+        return zlib_file(&out.text, appended, &out.pending);
+    }
+    let mut bytes = out.text.into_bytes();
     bytes.reserve(appended.len() + 64);
-    bytes.extend_from_slice(b"  <AppendedData encoding=\"raw\">\n   _");
+    bytes.extend_from_slice(APPENDED_OPEN);
     bytes.extend_from_slice(&appended);
-    bytes.extend_from_slice(b"\n  </AppendedData>\n</VTKFile>\n");
+    bytes.extend_from_slice(APPENDED_CLOSE);
     Ok(bytes)
 }
 
-/// The XML `text` with the offset of each array of `pending` filled in, and the appended section
-/// of [`VtuFormat::Zlib`]: per array its header and its compressed blocks. `raw` holds the
-/// arrays' bytes back to back.
-fn compress_arrays(
-    text: &str,
-    raw: &[u8],
-    pending: &[Pending],
-) -> std::io::Result<(String, Vec<u8>)> {
+/// The start of the appended section, through the underscore.
+const APPENDED_OPEN: &[u8] = b"  <AppendedData encoding=\"raw\">\n   _";
+/// The end of the appended section and of the file.
+const APPENDED_CLOSE: &[u8] = b"\n  </AppendedData>\n</VTKFile>\n";
+
+/// The [`VtuFormat::Zlib`] file: the XML `text` with the offset of each array of `pending`
+/// filled in, then the appended section: per array its header and its compressed blocks. `raw`
+/// holds the arrays' bytes back to back; it is dropped once compressed, so that the file is
+/// assembled from the compressed blocks alone.
+fn zlib_file(text: &str, raw: Vec<u8>, pending: &[Pending]) -> std::io::Result<Vec<u8>> {
     use rayon::prelude::*;
     let blocks: Vec<&[u8]> = pending
         .iter()
@@ -215,30 +215,41 @@ fn compress_arrays(
         .par_iter()
         .map(|block| compress_block(block))
         .collect::<std::io::Result<Vec<Vec<u8>>>>()?;
-    let total: usize = compressed.iter().map(Vec::len).sum();
-    let mut appended = Vec::with_capacity(total + 8 * (3 * pending.len() + blocks.len()));
+    drop(blocks);
+    drop(raw);
+    // The offsets: each array's header and blocks follow the previous array's.
+    let counts: Vec<usize> = pending
+        .iter()
+        .map(|p| p.data.len().div_ceil(ZLIB_BLOCK))
+        .collect();
     let mut filled = String::with_capacity(text.len() + 12 * pending.len());
-    let mut copied = 0;
-    let mut next = compressed.iter();
-    for p in pending {
+    let (mut copied, mut offset, mut first) = (0, 0, 0);
+    for (p, &count) in pending.iter().zip(&counts) {
         filled.push_str(&text[copied..p.at]);
         copied = p.at;
-        let _ = write!(filled, "{}", appended.len());
-        let len = p.data.len();
-        let count = len.div_ceil(ZLIB_BLOCK);
-        let header = [count, ZLIB_BLOCK, len % ZLIB_BLOCK];
-        for word in header {
-            appended.extend_from_slice(&(word as u64).to_le_bytes());
-        }
-        let mine: Vec<&Vec<u8>> = next.by_ref().take(count).collect();
-        for block in &mine {
-            appended.extend_from_slice(&(block.len() as u64).to_le_bytes());
-        }
-        mine.iter()
-            .for_each(|block| appended.extend_from_slice(block));
+        let _ = write!(filled, "{offset}");
+        let packed: usize = compressed[first..first + count].iter().map(Vec::len).sum();
+        offset += 8 * (3 + count) + packed;
+        first += count;
     }
     filled.push_str(&text[copied..]);
-    Ok((filled, appended))
+    let mut bytes = filled.into_bytes();
+    bytes.reserve(offset + APPENDED_OPEN.len() + APPENDED_CLOSE.len());
+    bytes.extend_from_slice(APPENDED_OPEN);
+    let mut next = compressed.into_iter();
+    for (p, &count) in pending.iter().zip(&counts) {
+        let len = p.data.len();
+        for word in [count, ZLIB_BLOCK, len % ZLIB_BLOCK] {
+            bytes.extend_from_slice(&(word as u64).to_le_bytes());
+        }
+        let mine: Vec<Vec<u8>> = next.by_ref().take(count).collect();
+        for block in &mine {
+            bytes.extend_from_slice(&(block.len() as u64).to_le_bytes());
+        }
+        mine.iter().for_each(|block| bytes.extend_from_slice(block));
+    }
+    bytes.extend_from_slice(APPENDED_CLOSE);
+    Ok(bytes)
 }
 
 /// `bytes` as one zlib stream at [`ZLIB_LEVEL`].
