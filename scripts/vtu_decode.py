@@ -5,7 +5,9 @@ ASCII and the same written in binary decode to the same text exactly when they h
 values bit for bit, so `diff` compares the numbers, not the encoding (scripts/same_outputs.sh).
 
 Reads the encodings crates/io/src/vtu.rs writes: ASCII, inline base64 (`format="binary"`) and
-appended raw data, Float64, Int64 or UInt8 with UInt64 byte counts. Standard library only.
+appended raw data, uncompressed or in zlib blocks (`compressor="vtkZLibDataCompressor"`, which is
+left out of the decoded text like `format`), Float64, Int64 or UInt8 with UInt64 byte counts.
+Standard library only.
 
 Usage: python3 scripts/vtu_decode.py FOLDER...
 """
@@ -13,6 +15,7 @@ import base64
 import struct
 import sys
 import xml.etree.ElementTree as ET
+import zlib
 from pathlib import Path
 
 TYPES = {"Float64": "d", "Int64": "q", "UInt8": "B"}
@@ -36,7 +39,22 @@ def block(raw: bytes, offset: int) -> bytes:
     return data
 
 
-def values(element, raw) -> list[str]:
+def zlib_block(raw: bytes, offset: int) -> bytes:
+    """The data of the vtkZLibDataCompressor block at `offset`: the number of blocks, the block
+    size, the last block's size, each block's compressed size (UInt64), then the zlib streams."""
+    count, size, last = struct.unpack_from("<3Q", raw, offset)
+    sizes = struct.unpack_from(f"<{count}Q", raw, offset + 24)
+    start = offset + 24 + 8 * count
+    parts = []
+    for k, packed in enumerate(sizes):
+        part = zlib.decompress(raw[start:start + packed])
+        assert len(part) == (last if k + 1 == count and last else size), f"block at {offset}: size"
+        parts.append(part)
+        start += packed
+    return b"".join(parts)
+
+
+def values(element, raw, compressed) -> list[str]:
     ty = element.get("type")
     code = TYPES[ty]
     form = element.get("format")
@@ -47,6 +65,8 @@ def values(element, raw) -> list[str]:
         return [str(int(v)) for v in numbers]
     if form == "binary":
         data = block(base64.b64decode("".join((element.text or "").split())), 0)
+    elif compressed:
+        data = zlib_block(raw, int(element.get("offset")))
     else:
         data = block(raw, int(element.get("offset")))
     size = struct.calcsize(code)
@@ -58,16 +78,19 @@ def values(element, raw) -> list[str]:
 def decoded(path: Path) -> str:
     text, raw = split(path.read_bytes())
     lines = []
+    root = ET.fromstring(text)
+    compressed = root.get("compressor") == "vtkZLibDataCompressor"
+    encoding = ("format", "offset", "compressor")
 
     def walk(element, depth):
-        attributes = {k: v for k, v in element.attrib.items() if k not in ("format", "offset")}
+        attributes = {k: v for k, v in element.attrib.items() if k not in encoding}
         lines.append("  " * depth + element.tag + " " + repr(sorted(attributes.items())))
         if element.tag == "DataArray":
-            lines.extend(values(element, raw))
+            lines.extend(values(element, raw, compressed))
         for child in element:
             walk(child, depth + 1)
 
-    walk(ET.fromstring(text), 0)
+    walk(root, 0)
     return "\n".join(lines) + "\n"
 
 

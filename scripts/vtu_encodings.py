@@ -5,6 +5,7 @@ writes the result folder with each encoding `--repeat` times, alternating the en
 prints, per encoding, the total size of the .vtu files and the median and range of the folder's
 write time (Result.write_vtu: every .vtu file plus summary.json, contact.csv, history.csv and
 results.pvd, which are the same for every encoding and small). Needs the contactdd Python module.
+The last lines are the rows of the table in docs/outputs.md ("VTU encodings").
 
     python scripts/vtu_encodings.py [--nx 1000] [--ny 500] [--repeat 3]
 """
@@ -18,7 +19,7 @@ from pathlib import Path
 
 import contactdd
 
-ENCODINGS = ["ascii", "binary"]
+ENCODINGS = ["ascii", "binary", "zlib"]
 ROOT = Path(__file__).resolve().parent.parent
 
 
@@ -55,6 +56,11 @@ def main() -> None:
         t = times[encoding]
         print(f"{encoding:<10} {sizes[encoding]:>14,} {sizes[encoding] / ascii_size:>9.3f} "
               f"{statistics.median(t):>17.2f} {min(t):>7.2f} {max(t):>7.2f}")
+    print()
+    for encoding in ENCODINGS:
+        t = times[encoding]
+        print(f"| `{encoding}` | {sizes[encoding]:,} | {sizes[encoding] / ascii_size:.3f} | "
+              f"{statistics.median(t):.2f} s ({min(t):.2f}–{max(t):.2f}) |")
 
 
 if __name__ == "__main__":

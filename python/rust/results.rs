@@ -366,17 +366,17 @@ impl SolveResult {
     ///
     /// Args:
     ///     directory: the folder to write.
-    ///     format: the encoding of the VTU files: ``"binary"`` (appended raw binary) or
-    ///         ``"ascii"`` (text).
+    ///     format: the encoding of the VTU files: ``"zlib"`` (appended binary in zlib blocks,
+    ///         the smallest), ``"binary"`` (appended raw binary) or ``"ascii"`` (text).
     ///
     /// Returns:
     ///     The paths of the files written.
     ///
     /// Raises:
     ///     ContactddError: the result was unpickled or read by :func:`load_results` (it holds no
-    ///         solver data to write from), ``format`` is neither ``"binary"`` nor ``"ascii"``, or a
-    ///         file cannot be written.
-    #[pyo3(signature = (directory, format = "binary"))]
+    ///         solver data to write from), ``format`` is not ``"zlib"``, ``"binary"`` or ``"ascii"``,
+    ///         or a file cannot be written.
+    #[pyo3(signature = (directory, format = "zlib"))]
     fn write_vtu(
         &self,
         py: Python<'_>,
@@ -496,16 +496,16 @@ impl MonolithicResult {
     ///
     /// Args:
     ///     directory: the folder to write.
-    ///     format: the encoding of the VTU files: ``"binary"`` (appended raw binary) or
-    ///         ``"ascii"`` (text).
+    ///     format: the encoding of the VTU files: ``"zlib"`` (appended binary in zlib blocks,
+    ///         the smallest), ``"binary"`` (appended raw binary) or ``"ascii"`` (text).
     ///
     /// Returns:
     ///     The paths of the files written.
     ///
     /// Raises:
     ///     ContactddError: the result was unpickled or read by :func:`load_results`, ``format`` is
-    ///         neither ``"binary"`` nor ``"ascii"``, or a file cannot be written.
-    #[pyo3(signature = (directory, format = "binary"))]
+    ///         not ``"zlib"``, ``"binary"`` or ``"ascii"``, or a file cannot be written.
+    #[pyo3(signature = (directory, format = "zlib"))]
     fn write_vtu(
         &self,
         py: Python<'_>,
@@ -565,7 +565,7 @@ impl MonolithicResult {
 }
 
 /// The VTU encoding named `format` (`write_vtu(format=...)`); another name is a
-/// `ContactddError` naming the two.
+/// `ContactddError` naming the three.
 fn vtu_format(format: &str) -> PyResult<contactdd_io::vtu::VtuFormat> {
     format
         .parse()

@@ -218,15 +218,34 @@ def test_a_manifest_names_only_files_of_the_folder(run):
         summary["files"] = ["lower.vtu" if f == name else f for f in summary["files"]]
 
 
-def test_a_binary_vtu_that_lies_or_is_cut_is_refused(tmp_path):
-    contactdd.solve(contactdd.notch_benchmark(8, 4)).write_vtu(tmp_path / "run")
+@pytest.mark.parametrize("encoding", ["binary", "zlib"])
+def test_a_binary_vtu_that_lies_or_is_cut_is_refused(tmp_path, encoding):
+    contactdd.solve(contactdd.notch_benchmark(8, 4)).write_vtu(tmp_path / "run", format=encoding)
     path = tmp_path / "run" / "lower.vtu"
     data = path.read_bytes()
     start = data.index(b"_", data.index(b"<AppendedData")) + 1
-    # The first block's byte count made huge: refused before anything that size is allocated.
-    path.write_bytes(data[:start] + (1 << 62).to_bytes(8, "little") + data[start + 8:])
-    with pytest.raises(contactdd.ContactddError, match="more than the file holds"):
-        contactdd.load_results(tmp_path / "run")
+
+    def lie(at, value, message):
+        word = value.to_bytes(8, "little")
+        path.write_bytes(data[:start + at] + word + data[start + at + 8:])
+        with pytest.raises(contactdd.ContactddError, match=message):
+            contactdd.load_results(tmp_path / "run")
+
+    # The first block's byte count (binary) or block count (zlib) made huge: refused before
+    # anything that size is allocated.
+    lie(0, 1 << 62, "more than the file holds")
+    if encoding == "zlib":
+        # The displacement is one block: its sizes made to lie.
+        assert int.from_bytes(data[start:start + 8], "little") == 1
+        packed = int.from_bytes(data[start + 24:start + 32], "little")
+        lie(8, 1 << 40, "bad sizes")
+        lie(16, 1 << 20, "bad sizes")
+        lie(24, 1, "more than zlib can expand")
+        lie(24, packed - 1, "not one zlib stream")
+        lie(24, 1 << 62, "past the end of the file")
+        last = int.from_bytes(data[start + 16:start + 24], "little")
+        lie(16, last + 8, "not one zlib stream")
+        lie(16, last - 8, "not one zlib stream")
     # Cut short inside the appended data.
     path.write_bytes(data[:len(data) - 200])
     with pytest.raises(contactdd.ContactddError, match="lower.vtu: not a VTU file of contactdd"):

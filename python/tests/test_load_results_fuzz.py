@@ -1,7 +1,7 @@
 """load_results on damaged result folders: a real folder's summary.json, contact.csv,
-history.csv and VTU files (binary and ASCII) mutated with a seeded generator (bytes flipped, files cut short,
-numbers replaced by nan, 1e300 or -1). Every call returns a result or raises ContactddError:
-never another exception type, never a crash, never a hang."""
+history.csv and VTU files (zlib, binary and ASCII) mutated with a seeded generator (bytes
+flipped, files cut short, numbers replaced by nan, 1e300 or -1). Every call returns a result or
+raises ContactddError: never another exception type, never a crash, never a hang."""
 
 import random
 import re
@@ -41,7 +41,7 @@ def numbers(data, rng):
 MUTATIONS = [flip, cut, numbers]
 
 
-@pytest.fixture(scope="module", params=["binary", "ascii"])
+@pytest.fixture(scope="module", params=["zlib", "binary", "ascii"])
 def original(tmp_path_factory, request):
     folder = tmp_path_factory.mktemp("fuzz") / "original"
     contactdd.solve(contactdd.notch_benchmark(8, 4)).write_vtu(folder, format=request.param)

@@ -36,18 +36,20 @@ def test_meshio_reads_every_vtu_of_the_collection(notch, tmp_path):
 
 
 @pytest.mark.parametrize("order", ["p1", "p2"])
-def test_meshio_reads_binary_files_as_the_ascii_ones(tmp_path, order):
-    """The default binary encoding and ASCII, both read by meshio: the same arrays bit for bit
-    (NaN where the other has NaN), the same cells; load_results reads both to the same result."""
+@pytest.mark.parametrize("encoding", ["binary", "zlib"])
+def test_meshio_reads_binary_files_as_the_ascii_ones(tmp_path, order, encoding):
+    """The binary and zlib encodings and ASCII, all read by meshio: the same arrays bit for bit
+    (NaN where the other has NaN), the same cells; load_results reads them to the same result."""
     result = contactdd.solve(contactdd.notch_benchmark(16, 8, order))
-    result.write_vtu(tmp_path / "binary")
+    result.write_vtu(tmp_path / encoding, format=encoding)
     result.write_vtu(tmp_path / "ascii", format="ascii")
-    head = (tmp_path / "binary" / "lower.vtu").read_bytes()
+    head = (tmp_path / encoding / "lower.vtu").read_bytes()
     assert b'<AppendedData encoding="raw">' in head and b'format="ascii"' not in head
+    assert (b'compressor="vtkZLibDataCompressor"' in head) == (encoding == "zlib")
     assert b"<AppendedData" not in (tmp_path / "ascii" / "lower.vtu").read_bytes()
     for body in result.bodies:
         a = meshio.read(tmp_path / "ascii" / f"{body.name}.vtu")
-        b = meshio.read(tmp_path / "binary" / f"{body.name}.vtu")
+        b = meshio.read(tmp_path / encoding / f"{body.name}.vtu")
         assert b.points.tobytes() == a.points.tobytes()
         assert b.point_data["displacement"].tobytes() == a.point_data["displacement"].tobytes()
         # Against the result object too (an independent path: the solver's own arrays).
@@ -58,15 +60,30 @@ def test_meshio_reads_binary_files_as_the_ascii_ones(tmp_path, order):
         assert [c.type for c in b.cells] == [c.type for c in a.cells]
         for cb, ca in zip(b.cells, a.cells):
             np.testing.assert_array_equal(cb.data, ca.data)
-    loaded = [contactdd.load_results(tmp_path / e) for e in ["ascii", "binary"]]
+    loaded = [contactdd.load_results(tmp_path / e) for e in ["ascii", encoding]]
     for x, y in zip(loaded[0].bodies, loaded[1].bodies):
         assert x.displacement.tobytes() == y.displacement.tobytes()
         assert x.stress.tobytes() == y.stress.tobytes()
         np.testing.assert_array_equal(x.triangles, y.triangles)
 
 
+def test_meshio_reads_zlib_arrays_of_several_blocks(tmp_path):
+    """A body large enough that its arrays span several 32 KiB zlib blocks (the stress tensor:
+    72 bytes per node), read by meshio against the result object."""
+    result = contactdd.solve(contactdd.notch_benchmark(64, 32))
+    result.write_vtu(tmp_path, format="zlib")
+    for body in result.bodies:
+        assert 72 * len(body.nodes) > 3 * 32768
+        mesh = meshio.read(tmp_path / f"{body.name}.vtu")
+        np.testing.assert_array_equal(mesh.points[:, :2], body.nodes)
+        assert mesh.point_data["displacement"][:, :2].tobytes() == body.displacement.tobytes()
+        np.testing.assert_array_equal(np.ravel(mesh.point_data["von_mises"]), body.von_mises)
+        np.testing.assert_array_equal(mesh.cells[0].data, body.triangles)
+
+
 def test_write_vtu_refuses_an_unknown_format(tmp_path):
     result = contactdd.solve(contactdd.notch_benchmark(8, 4))
-    with pytest.raises(contactdd.ContactddError, match="unknown VTU format 'zlib'.*'ascii' or 'binary'"):
-        result.write_vtu(tmp_path, format="zlib")
+    with pytest.raises(contactdd.ContactddError,
+                       match="unknown VTU format 'lzma'.*'zlib', 'binary' or 'ascii'"):
+        result.write_vtu(tmp_path, format="lzma")
     assert not (tmp_path / "summary.json").exists()

@@ -99,8 +99,8 @@ pub struct SolveArgs {
     /// force total of a body (overrides solver.balance-tol).
     #[arg(long, value_name = "B", value_parser = parse_positive)]
     pub balance_tol: Option<f64>,
-    /// Encoding of the .vtu files: binary (appended raw binary, the default) or ascii (text, to
-    /// read or diff; overrides output.vtu).
+    /// Encoding of the .vtu files: zlib (appended binary in zlib blocks, the default), binary
+    /// (appended raw binary) or ascii (text, to read or diff); overrides output.vtu.
     #[arg(long, value_name = "E", value_parser = parse_vtu_format)]
     pub vtu_format: Option<VtuFormat>,
     /// Solver options.
@@ -177,8 +177,8 @@ pub struct MonolithicArgs {
     /// (overrides solver.gap-tol).
     #[arg(long, value_name = "L", value_parser = parse_positive)]
     pub gap_tol: Option<f64>,
-    /// Encoding of the .vtu files: binary (appended raw binary, the default) or ascii (text, to
-    /// read or diff; overrides output.vtu).
+    /// Encoding of the .vtu files: zlib (appended binary in zlib blocks, the default), binary
+    /// (appended raw binary) or ascii (text, to read or diff); overrides output.vtu.
     #[arg(long, value_name = "E", value_parser = parse_vtu_format)]
     pub vtu_format: Option<VtuFormat>,
     /// Print only the final result line (no per-step lines).

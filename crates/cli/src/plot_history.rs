@@ -71,11 +71,12 @@ pub fn figures(history: &History, out: &Path, formats: &[Format]) -> Result<Vec<
 }
 
 /// The points (k, v) of a column; a log scale has no place for 0, NaN or infinity, so those
-/// iterations are left out.
+/// iterations are left out, as are those whose number k is not finite (a damaged file: the
+/// iteration axis would have no end).
 fn positive(k: &[f64], values: Vec<f64>) -> Vec<(f64, f64)> {
     k.iter()
         .zip(values)
-        .filter(|(_, v)| v.is_finite() && *v > 0.0)
+        .filter(|(k, v)| k.is_finite() && v.is_finite() && *v > 0.0)
         .map(|(&k, v)| (k, v))
         .collect()
 }

@@ -534,14 +534,14 @@ fn the_bodies_figure_reads_only_sound_vtu() {
     );
 }
 
-/// The default binary files draw the same figure as ASCII ones; a binary file cut short is an
-/// error naming it.
+/// Binary and zlib files draw the same figure as ASCII ones; a binary or zlib file cut short is
+/// an error naming it.
 #[test]
 fn the_bodies_figure_reads_binary_vtu() {
     let dir = temp("vtu-binary");
     let file = example("notch.toml");
     let mut figures = Vec::new();
-    for encoding in ["ascii", "binary"] {
+    for encoding in ["ascii", "binary", "zlib"] {
         let out = dir.join(encoding);
         let args = ["solve", path(&file), "--out", path(&out), "--quiet"];
         succeeded(&contactdd(
@@ -549,18 +549,23 @@ fn the_bodies_figure_reads_binary_vtu() {
         ));
         let head = std::fs::read(out.join("lower.vtu")).expect("lower.vtu");
         let appended = head.windows(13).any(|w| w == b"<AppendedData");
-        assert_eq!(appended, encoding == "binary", "{encoding}");
+        assert_eq!(appended, encoding != "ascii", "{encoding}");
+        let zlib = head.windows(21).any(|w| w == b"vtkZLibDataCompressor");
+        assert_eq!(zlib, encoding == "zlib", "{encoding}");
         succeeded(&contactdd(&["plot", path(&out), "--format", "svg"]));
         figures.push(svg(&out.join("plots/bodies.svg")));
     }
     assert_eq!(figures[0], figures[1]);
-    let lower = dir.join("binary/lower.vtu");
-    let bytes = std::fs::read(&lower).expect("lower.vtu");
-    std::fs::write(&lower, &bytes[..bytes.len() - 100]).expect("write");
-    let o = contactdd(&["plot", path(&dir.join("binary")), "--format", "svg"]);
-    assert_eq!(o.status.code(), Some(1));
-    let err = String::from_utf8_lossy(&o.stderr);
-    assert!(err.contains("lower.vtu") && err.contains("bytes"), "{err}");
+    assert_eq!(figures[0], figures[2]);
+    for encoding in ["binary", "zlib"] {
+        let lower = dir.join(encoding).join("lower.vtu");
+        let bytes = std::fs::read(&lower).expect("lower.vtu");
+        std::fs::write(&lower, &bytes[..bytes.len() - 100]).expect("write");
+        let o = contactdd(&["plot", path(&dir.join(encoding)), "--format", "svg"]);
+        assert_eq!(o.status.code(), Some(1));
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert!(err.contains("lower.vtu") && err.contains("bytes"), "{err}");
+    }
 }
 
 #[test]

@@ -2,11 +2,12 @@
 //! folder is refused with exit 1 or plotted with exit 0, never a panic (exit 101), a signal or a
 //! hang (a run is killed after [`TIMEOUT`]).
 //!
-//! **Seed corpus** (generated, not stored): the binary solves two shipped examples into three
+//! **Seed corpus** (generated, not stored): the binary solves two shipped examples into four
 //! temporary folders,
 //!
-//! - `examples/notch.toml`, twice, with binary and with ASCII `.vtu` files: `summary.json`,
-//!   `contact.csv`, `history.csv`, `lower.vtu`, `upper.vtu` (frictionless, one load);
+//! - `examples/notch.toml`, three times, with zlib, binary and ASCII `.vtu` files:
+//!   `summary.json`, `contact.csv`, `history.csv`, `lower.vtu`, `upper.vtu` (frictionless, one
+//!   load);
 //! - `examples/friction_block.toml` with `[solver] load-steps = 2` and a monitor added:
 //!   `summary.json` with a Coulomb law, `contact.csv` with the friction columns, `history.csv`,
 //!   `steps.csv` and the VTU files of both steps (the second step's are the ones drawn),
@@ -64,6 +65,8 @@ const WORDS: &[&str] = &[
     "none",
     "ascii",
     "binary",
+    "zlib",
+    "vtkZLibDataCompressor",
     ",",
     "\"",
     "\n",
@@ -216,11 +219,13 @@ fn solve(file: &Path, out: &Path, encoding: &str) {
     assert_eq!(code, Some(0), "{}: {err}", file.display());
 }
 
-/// The three seed folders (see the module comment) under `dir`.
+/// The four seed folders (see the module comment) under `dir`.
 fn seeds(dir: &Path) -> Vec<PathBuf> {
     let examples = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples");
     let notch = dir.join("notch");
-    solve(&examples.join("notch.toml"), &notch, "binary");
+    solve(&examples.join("notch.toml"), &notch, "zlib");
+    let binary = dir.join("notch-binary");
+    solve(&examples.join("notch.toml"), &binary, "binary");
     let ascii = dir.join("notch-ascii");
     solve(&examples.join("notch.toml"), &ascii, "ascii");
     let block = std::fs::read_to_string(examples.join("friction_block.toml")).expect("example");
@@ -232,8 +237,8 @@ fn seeds(dir: &Path) -> Vec<PathBuf> {
     let solver = "\n[solver]\nload-steps = 2\nmonitor = { body = \"block\", boundary = \"top\" }\n";
     std::fs::write(&steps, format!("{block}{solver}")).expect("write");
     let friction = dir.join("friction");
-    solve(&steps, &friction, "binary");
-    vec![notch, ascii, friction]
+    solve(&steps, &friction, "zlib");
+    vec![notch, binary, ascii, friction]
 }
 
 /// The files of `folder` that `plot` reads, sorted: every `.csv`, `.vtu` and `.json`.

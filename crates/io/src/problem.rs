@@ -84,8 +84,8 @@ pub struct Problem {
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Deserialize, Serialize)]
 #[serde(deny_unknown_fields, rename_all = "kebab-case")]
 pub struct OutputSpec {
-    /// The encoding of the `.vtu` files: `"binary"` (appended raw binary, the default) or
-    /// `"ascii"`.
+    /// The encoding of the `.vtu` files: `"zlib"` (appended binary in zlib blocks, the
+    /// default), `"binary"` (appended raw binary) or `"ascii"`.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub vtu: Option<VtuFormat>,
 }

@@ -1,12 +1,23 @@
-//! Reader of the `.vtu` files [`crate::vtu`] writes, in either [`crate::vtu::VtuFormat`]: ASCII
+//! Reader of the `.vtu` files [`crate::vtu`] writes, in any [`crate::vtu::VtuFormat`]: ASCII
 //! arrays, inline base64 arrays (`format="binary"`) and appended raw arrays
-//! (`format="appended"`, `<AppendedData encoding="raw">`), each `Float64`, `Int64` or `UInt8`
-//! with `UInt64` byte counts, little-endian.
+//! (`format="appended"`, `<AppendedData encoding="raw">`), uncompressed or, with
+//! `compressor="vtkZLibDataCompressor"`, in zlib-compressed blocks; each `Float64`, `Int64` or
+//! `UInt8` with `UInt64` byte counts, little-endian.
 //!
 //! The file is untrusted (a reader of a result folder): every length and offset it declares is
 //! checked against the bytes actually there before anything is allocated, so a truncated or
 //! lying file is an error ([`VtuReadError`]), never a panic or an allocation larger than the
-//! file.
+//! file. A compressed block may expand to at most [`MAX_EXPANSION`] times its compressed size
+//! (zlib's own limit is 1032) and at most [`MAX_BLOCK`] bytes, and must expand to exactly the
+//! size its header declares: the output of the decompression is bounded before it starts.
+
+/// The largest uncompressed size of a zlib block read, relative to its compressed size (deflate
+/// cannot expand data by more than 1032 times, and the stream's few bytes of framing allow a
+/// little more for tiny blocks).
+pub const MAX_EXPANSION: usize = 1040;
+
+/// The largest uncompressed size of one zlib block read (VTK and contactdd write 32 KiB).
+pub const MAX_BLOCK: usize = 1 << 30;
 
 /// The part of a `Piece` an array belongs to.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -66,6 +77,7 @@ pub fn parse_vtu(bytes: &[u8]) -> Result<VtuFile, VtuReadError> {
     let appended = appended_data(&bytes[head_end..])?;
     let mut file = VtuFile::default();
     let mut section = None;
+    let mut zlib = false;
     let mut rest = head;
     while let Some(at) = rest.find('<') {
         rest = &rest[at..];
@@ -75,6 +87,7 @@ pub fn parse_vtu(bytes: &[u8]) -> Result<VtuFile, VtuReadError> {
         let tag = &rest[1..end];
         let name = tag.split(|c: char| c.is_whitespace() || c == '/').next();
         match name {
+            Some("VTKFile") => zlib = compressed(tag)?,
             Some("PointData") => section = Some(Section::PointData),
             Some("CellData") => section = Some(Section::CellData),
             Some("Points") => section = Some(Section::Points),
@@ -84,6 +97,7 @@ pub fn parse_vtu(bytes: &[u8]) -> Result<VtuFile, VtuReadError> {
                     return bad("a DataArray outside PointData, CellData, Points and Cells");
                 };
                 let body = &rest[end + 1..];
+                let appended = appended.map(|raw| (raw, zlib));
                 let (array, used) = data_array(section, tag, body, appended)?;
                 file.arrays.push(array);
                 rest = &body[used..];
@@ -94,6 +108,21 @@ pub fn parse_vtu(bytes: &[u8]) -> Result<VtuFile, VtuReadError> {
         rest = &rest[end + 1..];
     }
     Ok(file)
+}
+
+/// Whether the arrays of the file whose `VTKFile` tag is `tag` are zlib-compressed: an error
+/// for another compressor, or for compressed arrays whose headers are not `UInt64`.
+fn compressed(tag: &str) -> Result<bool, VtuReadError> {
+    match attribute(tag, "compressor") {
+        None => Ok(false),
+        Some("vtkZLibDataCompressor") if attribute(tag, "header_type") == Some("UInt64") => {
+            Ok(true)
+        }
+        Some("vtkZLibDataCompressor") => bad("zlib-compressed arrays need header_type=\"UInt64\""),
+        Some(other) => bad(format!(
+            "compressor '{other}' is not read (only vtkZLibDataCompressor)"
+        )),
+    }
 }
 
 /// The raw bytes after the underscore of an `<AppendedData encoding="raw">` section at the start
@@ -117,12 +146,13 @@ fn appended_data(tail: &[u8]) -> Result<Option<&[u8]>, VtuReadError> {
 }
 
 /// The array of the `DataArray` tag `tag` (its text between `<` and `>`), whose content starts
-/// `body`, and how many bytes of `body` it used (through its end tag).
+/// `body`, and how many bytes of `body` it used (through its end tag). `appended` is the raw
+/// appended data, if any, and whether its blocks are zlib-compressed.
 fn data_array(
     section: Section,
     tag: &str,
     body: &str,
-    appended: Option<&[u8]>,
+    appended: Option<(&[u8], bool)>,
 ) -> Result<(VtuArray, usize), VtuReadError> {
     let name = unescape(attribute(tag, "Name").unwrap_or(""));
     let what = |m: &str| VtuReadError(format!("array '{name}': {m}"));
@@ -157,16 +187,25 @@ fn data_array(
                     .map_err(|_| what(&format!("'{v}' is not a number")))
             })
             .collect::<Result<Vec<f64>, VtuReadError>>()?,
+        Some("binary") if matches!(appended, Some((_, true))) => {
+            return Err(what("compressed inline base64 arrays are not read"))
+        }
         Some("binary") => {
             let bytes = base64_decode(text).ok_or_else(|| what("bad base64"))?;
             decode(block(&bytes, 0).map_err(|m| what(&m))?, ty, size).map_err(|m| what(&m))?
         }
         Some("appended") => {
-            let raw = appended.ok_or_else(|| what("appended, but the file has no AppendedData"))?;
+            let (raw, zlib) =
+                appended.ok_or_else(|| what("appended, but the file has no AppendedData"))?;
             let offset = attribute(tag, "offset")
                 .and_then(|o| o.parse::<usize>().ok())
                 .ok_or_else(|| what("no offset"))?;
-            decode(block(raw, offset).map_err(|m| what(&m))?, ty, size).map_err(|m| what(&m))?
+            if zlib {
+                let data = zlib_block(raw, offset).map_err(|m| what(&m))?;
+                decode(&data, ty, size).map_err(|m| what(&m))?
+            } else {
+                decode(block(raw, offset).map_err(|m| what(&m))?, ty, size).map_err(|m| what(&m))?
+            }
         }
         _ => return Err(what("format is not ascii, binary or appended")),
     };
@@ -195,6 +234,94 @@ fn block(bytes: &[u8], offset: usize) -> Result<&[u8], String> {
         .and_then(|n| start.checked_add(n))
         .and_then(|end| bytes.get(start..end))
         .ok_or_else(|| format!("the block declares {count} bytes, more than the file holds"))
+}
+
+/// The `UInt64` at `at` of `bytes`, if it is there.
+fn word_at(bytes: &[u8], at: usize) -> Option<u64> {
+    let mut w = [0u8; 8];
+    w.copy_from_slice(bytes.get(at..at.checked_add(8)?)?);
+    Some(u64::from_le_bytes(w))
+}
+
+/// The uncompressed data of the zlib-compressed block at `offset` of `bytes`: a header of
+/// `UInt64`s (the number of blocks n, the uncompressed block size, the uncompressed size of a
+/// shorter last block or 0, the n compressed sizes), then the n compressed blocks. Every size is
+/// checked against the bytes there, [`MAX_EXPANSION`] and [`MAX_BLOCK`] before the output is
+/// allocated, and each block must expand to exactly its declared size.
+fn zlib_block(bytes: &[u8], offset: usize) -> Result<Vec<u8>, String> {
+    use rayon::prelude::*;
+    let past = || "the block's header is past the end of the file".to_string();
+    let word = |k: usize| -> Result<usize, String> {
+        let at = k.checked_mul(8).and_then(|b| offset.checked_add(b));
+        let w = at.and_then(|at| word_at(bytes, at)).ok_or_else(past)?;
+        usize::try_from(w).map_err(|_| past())
+    };
+    let (count, size, last) = (word(0)?, word(1)?, word(2)?);
+    // The n sizes must be in the file: n is at most the bytes there over 8.
+    if count > bytes.len() / 8 {
+        return Err(format!(
+            "the block declares {count} compressed blocks, more than the file holds"
+        ));
+    }
+    if count > 0 && (size == 0 || size > MAX_BLOCK || last > size) {
+        return Err(format!(
+            "bad zlib block sizes: {size} bytes per block, {last} in the last"
+        ));
+    }
+    let mut start = offset + 8 * (3 + count);
+    let mut blocks = Vec::with_capacity(count);
+    let mut total = 0usize;
+    for k in 0..count {
+        let packed = word(3 + k)?;
+        let end = start
+            .checked_add(packed)
+            .filter(|&end| end <= bytes.len())
+            .ok_or_else(|| {
+                format!("compressed block {k} ({packed} bytes) is past the end of the file")
+            })?;
+        let unpacked = if k + 1 == count && last != 0 {
+            last
+        } else {
+            size
+        };
+        if unpacked > packed.saturating_mul(MAX_EXPANSION) {
+            return Err(format!(
+                "compressed block {k} declares {unpacked} bytes from {packed}: more than zlib can expand"
+            ));
+        }
+        blocks.push((&bytes[start..end], total..total + unpacked));
+        total += unpacked;
+        start = end;
+    }
+    let mut out = vec![0u8; total];
+    let mut pieces: Vec<(&[u8], &mut [u8])> = Vec::with_capacity(count);
+    let mut rest = out.as_mut_slice();
+    for (packed, range) in &blocks {
+        let (piece, tail) = std::mem::take(&mut rest).split_at_mut(range.len());
+        pieces.push((packed, piece));
+        rest = tail;
+    }
+    pieces
+        .into_par_iter()
+        .enumerate()
+        .try_for_each(|(k, (packed, piece))| {
+            let mut inflate = flate2::Decompress::new(true);
+            let status = inflate.decompress(packed, piece, flate2::FlushDecompress::Finish);
+            match status {
+                Ok(flate2::Status::StreamEnd)
+                    if inflate.total_out() == piece.len() as u64
+                        && inflate.total_in() == packed.len() as u64 =>
+                {
+                    Ok(())
+                }
+                Ok(_) => Err(format!(
+                "compressed block {k} is not one zlib stream of the {} bytes its header declares",
+                piece.len()
+            )),
+                Err(e) => Err(format!("compressed block {k} is not zlib data: {e}")),
+            }
+        })?;
+    Ok(out)
 }
 
 /// The little-endian values of type `ty` (`size` bytes each) in `data`.

@@ -197,19 +197,26 @@ fn the_output_table_chooses_the_encoding() {
     let ascii = format!("{notch}\n[output]\nvtu = \"ascii\"\n");
     let loaded = contactdd_io::load_str(&ascii, "notch.toml", &dir).expect("notch, ascii");
     assert_eq!(loaded.problem.output.vtu, Some(VtuFormat::Ascii));
-    let wrong = format!("{notch}\n[output]\nvtu = \"zlib\"\n");
+    let zlib = format!("{notch}\n[output]\nvtu = \"zlib\"\n");
+    let loaded = contactdd_io::load_str(&zlib, "notch.toml", &dir).expect("notch, zlib");
+    assert_eq!(loaded.problem.output.vtu, Some(VtuFormat::Zlib));
+    let wrong = format!("{notch}\n[output]\nvtu = \"lzma\"\n");
     let err = contactdd_io::load_str(&wrong, "notch.toml", &dir).expect_err("unknown format");
     let text = err.to_string();
     assert!(
-        text.contains("zlib") && text.contains("ascii") && text.contains("binary"),
+        text.contains("lzma")
+            && text.contains("ascii")
+            && text.contains("binary")
+            && text.contains("zlib"),
         "{text}"
     );
     let unknown = format!("{notch}\n[output]\nvtus = \"ascii\"\n");
     assert!(contactdd_io::load_str(&unknown, "notch.toml", &dir).is_err());
     assert_eq!("binary".parse(), Ok(VtuFormat::Binary));
+    assert_eq!("zlib".parse(), Ok(VtuFormat::Zlib));
     let err = "Binary".parse::<VtuFormat>().expect_err("case matters");
     assert_eq!(
         err.to_string(),
-        "unknown VTU format 'Binary': expected 'ascii' or 'binary'"
+        "unknown VTU format 'Binary': expected 'zlib', 'binary' or 'ascii'"
     );
 }

@@ -22,6 +22,7 @@ import errno as errno_codes
 import json
 import os
 import xml.etree.ElementTree as ET
+import zlib
 from pathlib import Path
 from typing import Any, Union
 
@@ -42,6 +43,10 @@ __all__ = ["load_results"]
 #: VTK cell types of the meshes contactdd writes: nodes per cell.
 _CELL_NODES = {5: 3, 22: 6}
 _DTYPES = {"Float64": np.float64, "Float32": np.float32, "Int64": np.int64, "UInt8": np.uint8}
+#: The largest uncompressed size of a zlib block read, relative to its compressed size (deflate
+#: expands by at most 1032 times), and in bytes: the bounds of crates/io/src/vtu_read.rs.
+_MAX_EXPANSION = 1040
+_MAX_BLOCK = 1 << 30
 
 
 def load_results(directory: Union[str, "os.PathLike[str]"]) -> Union[Result, MonolithicResult]:
@@ -208,19 +213,64 @@ def _block(raw: bytes, offset: int) -> bytes:
     return raw[offset + 8:offset + 8 + count]
 
 
-def _data_array(element: ET.Element, raw: Union[bytes, None] = None) -> np.ndarray:
+def _word(raw: bytes, at: int) -> int:
+    if at < 0 or at + 8 > len(raw):
+        raise ValueError(f"header word at {at}: past the end of the data")
+    return int.from_bytes(raw[at:at + 8], "little")
+
+
+def _zlib_block(raw: bytes, offset: int) -> bytes:
+    """The uncompressed data of the zlib-compressed block at ``offset`` (VTK's
+    vtkZLibDataCompressor layout): UInt64 words (the number of blocks n, the uncompressed block
+    size, the size of a shorter last block or 0, the n compressed sizes), then the n zlib
+    streams. Every size is checked against the file and the bounds above before anything is
+    decompressed, and each stream is decompressed to at most its declared size, which it must
+    fill exactly."""
+    count, size, last = (_word(raw, offset + 8 * k) for k in range(3))
+    if count > len(raw) // 8:
+        raise ValueError(f"block at {offset}: {count} compressed blocks, more than the file holds")
+    if count and (size == 0 or size > _MAX_BLOCK or last > size):
+        raise ValueError(f"block at {offset}: bad sizes ({size} per block, {last} in the last)")
+    start = offset + 8 * (3 + count)
+    parts = []
+    for k in range(count):
+        packed = _word(raw, offset + 8 * (3 + k))
+        if packed > len(raw) - start:
+            raise ValueError(f"block at {offset}: compressed block {k} past the end of the file")
+        unpacked = last if k + 1 == count and last else size
+        if unpacked > packed * _MAX_EXPANSION:
+            raise ValueError(f"block at {offset}: block {k} declares more than zlib can expand")
+        inflate = zlib.decompressobj()
+        try:
+            data = inflate.decompress(raw[start:start + packed], unpacked)
+        except zlib.error as e:
+            raise ValueError(f"block at {offset}: compressed block {k}: {e}") from e
+        if (len(data) != unpacked or not inflate.eof or inflate.unconsumed_tail
+                or inflate.unused_data):
+            raise ValueError(f"block at {offset}: compressed block {k} is not one zlib stream "
+                             f"of the {unpacked} bytes declared")
+        parts.append(data)
+        start += packed
+    return b"".join(parts)
+
+
+def _data_array(element: ET.Element, raw: Union[bytes, None] = None,
+                compressed: bool = False) -> np.ndarray:
     """The values of a VTU ``DataArray``: ASCII, base64 binary with a UInt64 byte count, or a
-    block of the raw appended data ``raw``."""
+    block of the raw appended data ``raw``, zlib-compressed when ``compressed``."""
     dtype = np.dtype(_DTYPES[element.get("type", "Float64")]).newbyteorder("<")
     text = element.text or ""
     form = element.get("format")
     if form == "binary":
+        if compressed:
+            raise ValueError(f"{element.get('Name')}: compressed inline base64 is not read")
         data = _block(base64.b64decode("".join(text.split()), validate=True), 0)
         values = np.frombuffer(data, dtype=dtype).astype(dtype.newbyteorder("="))
     elif form == "appended":
         if raw is None:
             raise ValueError(f"{element.get('Name')}: appended, but the file has no AppendedData")
-        data = _block(raw, int(element.get("offset", "")))
+        offset = int(element.get("offset", ""))
+        data = _zlib_block(raw, offset) if compressed else _block(raw, offset)
         values = np.frombuffer(data, dtype=dtype).astype(dtype.newbyteorder("="))
     else:
         floats = np.array([float(v) for v in text.split()])
@@ -243,7 +293,13 @@ def _body(path: Path, info: dict[str, Any]) -> Body:
 def _parse_body(data: bytes, info: dict[str, Any]) -> Body:
     text, raw = _split_appended(data)
     root = ET.fromstring(text)
-    arrays = {a.get("Name"): _data_array(a, raw) for a in root.iter("DataArray")}
+    compressor = root.get("compressor")
+    if compressor not in (None, "vtkZLibDataCompressor"):
+        raise ValueError(f"compressor {compressor!r} is not read (only vtkZLibDataCompressor)")
+    compressed = compressor is not None
+    if compressed and root.get("header_type") != "UInt64":
+        raise ValueError('zlib-compressed arrays need header_type="UInt64"')
+    arrays = {a.get("Name"): _data_array(a, raw, compressed) for a in root.iter("DataArray")}
     points = root.find(".//Points/DataArray")
     if points is None:
         raise ValueError("no Points")
@@ -254,7 +310,7 @@ def _parse_body(data: bytes, info: dict[str, Any]) -> Body:
         "name": info["name"],
         "order": info["order"],
         "condensation": info.get("condensation"),
-        "nodes": np.ascontiguousarray(_data_array(points, raw)[:, :2]),
+        "nodes": np.ascontiguousarray(_data_array(points, raw, compressed)[:, :2]),
         "triangles": arrays["connectivity"].reshape(-1, per_cell),
         "displacement": np.ascontiguousarray(arrays["displacement"][:, :2]),
         "stress": stress,
