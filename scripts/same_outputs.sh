@@ -5,7 +5,7 @@
 # contact.csv, history.csv, results.pvd, the sweep CSV), the output of `contactdd check` and the
 # exit codes. Keys that only the working tree's summary.json has (new outputs) are named and left
 # out of the comparison; every other key must match. The VTU files are compared by their numbers,
-# not their encoding: scripts/vtu_decode.py turns each (ASCII or binary) into its elements,
+# not their encoding: scripts/vtu_decode.py turns each (ASCII, binary or zlib) into its elements,
 # attributes and values (floats as their 64 bits), which must then match exactly.
 #
 # Usage: bash scripts/same_outputs.sh [REV]      (REV defaults to main)
