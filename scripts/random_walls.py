@@ -9,6 +9,7 @@ floating blocks held only by contact, notched gaps).
     python3 scripts/random_walls.py 1 50 --keep /tmp/w  # keep the problem files and results
     CONTACTDD_BIN=/path/to/contactdd python3 scripts/random_walls.py 1 400   # another build
     python3 scripts/random_walls.py 1 100 --condensation sparse    # every block on the sparse path
+    python3 scripts/random_walls.py 1 200 --friction coulomb:0.3   # Coulomb friction on every pair
 
 A seed's wall has 2 to 4 rows of 1 to 3 blocks on a clamped base row; each block has its own
 mesh size, diagonal and material, the last block of a row is pushed sideways or held, and the
@@ -126,14 +127,15 @@ def stop(out):
     return shown + ")"
 
 
-def run(seed, work, enforcement, condensation):
+def run(seed, work, enforcement, condensation, friction=()):
     problem = work / f"wall{seed}.toml"
     problem.write_text(wall(seed) + (f'condensation = "{condensation}"\n' if condensation else ""))
     codes = []
     for command in ("solve", "monolithic"):
         out = work / f"{command}{seed}"
         result = subprocess.run([str(BINARY), command, str(problem), "--quiet", "--out", str(out),
-                                 "--enforcement", enforcement], capture_output=True, text=True)
+                                 "--enforcement", enforcement, *friction], capture_output=True,
+                                text=True)
         codes.append(result.returncode)
     solve_stop = stop(work / f"solve{seed}") if codes[0] != 0 else ""
     difference = None
@@ -161,13 +163,18 @@ def main():
     if "--condensation" in args:
         condensation = args.pop(args.index("--condensation") + 1)
         args.remove("--condensation")
+    friction = ()
+    if "--friction" in args:
+        friction = ("--friction", args.pop(args.index("--friction") + 1))
+        args.remove("--friction")
     first, last = int(args[0]), int(args[1])
     with tempfile.TemporaryDirectory() as tmp:
         work = keep or Path(tmp)
         work.mkdir(parents=True, exist_ok=True)
         failures, both = [], 0
         for seed in range(first, last + 1):
-            codes, solve_stop, difference, failed = run(seed, work, enforcement, condensation)
+            codes, solve_stop, difference, failed = run(seed, work, enforcement, condensation,
+                                                        friction)
             both += codes == [0, 0]
             shown = "" if difference is None else f" difference {difference:.1e}"
             print(f"seed {seed}: solve exit {codes[0]}{solve_stop}, monolithic exit {codes[1]}{shown}"
