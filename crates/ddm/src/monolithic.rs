@@ -473,8 +473,7 @@ fn newton(
         // the same set refines the round-off, until the residual stops falling.
         let before = merits.last().copied().unwrap_or(0.0) / scale;
         let settled = alpha == 1.0
-            && next.closed == chi
-            && next.status == status
+            && friction::kept_sets(system, (&eval, &next), &chi, &status)
             && (record.residual <= ROUND_OFF || record.residual > 0.1 * before);
         if let Some(f) = on_step {
             f(&record);

@@ -128,6 +128,19 @@ fn touching_start(
     stick_where_closed(system, chi, status);
 }
 
+/// Whether the step from `eval` to `next` kept the closed set `chi` and the statuses `status` it
+/// assumed, so that it solved their (linear) equations: with friction, also every slipping
+/// point's direction (a reversed one changes its equations under the same status).
+pub(super) fn kept_sets(
+    system: &ReducedSystem,
+    (eval, next): (&Evaluation, &Evaluation),
+    chi: &[bool],
+    status: &[Status],
+) -> bool {
+    let reversed = (system.interface).hold_reversals(&mut next.status.clone(), &eval.g, &next.g);
+    next.closed == chi && next.status == status && !reversed
+}
+
 /// Frictional points closed in `chi` but open in `status` stick: J treats them as touching, and
 /// a body that just touches does not slide (J then resists its tangential motions too).
 pub(super) fn stick_where_closed(system: &ReducedSystem, chi: &[bool], status: &mut [Status]) {
