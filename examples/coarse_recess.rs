@@ -8,22 +8,7 @@
 
 use contactdd::cases;
 use contactdd::ddm::{prepare, solve, CoarseMode, Gamma, Hooks, Method, Model, Settings};
-use contactdd::fem::Component;
 use contactdd::io::load_file;
-
-/// `cases::recess` with the lower block also floating vertically (pressure q on its bottom).
-fn floating_recess(ratio: f64, c: f64, n: usize) -> Model {
-    let mut model = cases::recess(ratio, c, n);
-    let mesh = model.bodies[0].mesh.clone();
-    model.bodies[0] = cases::body(
-        "lower",
-        mesh,
-        ratio * 2.1e5,
-        &[("left", Component::X)],
-        Some(("bottom", cases::RECESS_Q)),
-    );
-    model
-}
 
 /// The count of one run, or why it did not converge.
 fn count(model: &Model, coarse: CoarseMode) -> String {
@@ -52,7 +37,7 @@ fn main() {
             for n in [8, 16] {
                 list.push((
                     format!("floating recess, E₁/E₂ = {ratio}, c = {c}, n = {n}"),
-                    Box::new(move || floating_recess(ratio, c, n)),
+                    Box::new(move || cases::floating_recess(ratio, c, n)),
                 ));
             }
         }

@@ -208,6 +208,22 @@ pub fn recess(ratio: f64, c: f64, n: usize) -> Model {
     }
 }
 
+/// [`recess`] with the lower block also floating vertically: symmetry on its left side and the
+/// pressure q on its bottom instead of the floor, so that only the contact holds either block
+/// vertically.
+pub fn floating_recess(ratio: f64, c: f64, n: usize) -> Model {
+    let mut model = recess(ratio, c, n);
+    let mesh = model.bodies[0].mesh.clone();
+    model.bodies[0] = body(
+        "lower",
+        mesh,
+        ratio * 2.1e5,
+        &[("left", Component::X)],
+        Some(("bottom", RECESS_Q)),
+    );
+    model
+}
+
 /// The paper's notch benchmark with 32 × 16 cells below and 23 × 12 above (non-matching).
 pub fn non_matching_notch(c: f64) -> Model {
     let e = 2.1e5;

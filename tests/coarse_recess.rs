@@ -6,22 +6,6 @@
 
 use contactdd::cases;
 use contactdd::ddm::{prepare, solve, CoarseMode, Gamma, Hooks, Method, Model, Settings, Solution};
-use contactdd::fem::Component;
-
-/// `cases::recess` with the lower block also floating vertically: symmetry on its left side and
-/// the pressure q = 100 on its bottom instead of the floor.
-fn floating_recess(ratio: f64, c: f64, n: usize) -> Model {
-    let mut model = cases::recess(ratio, c, n);
-    let mesh = model.bodies[0].mesh.clone();
-    model.bodies[0] = cases::body(
-        "lower",
-        mesh,
-        ratio * 2.1e5,
-        &[("left", Component::X)],
-        Some(("bottom", cases::RECESS_Q)),
-    );
-    model
-}
 
 fn sweeps(coarse: CoarseMode) -> Settings {
     Settings {
@@ -55,7 +39,7 @@ fn run(model: &Model, settings: &Settings) -> Solution {
 #[test]
 fn the_coarse_correction_costs_no_iterations_on_a_floating_recess() {
     for (ratio, c) in [(1.0, 0.005), (1.0, 0.0005)] {
-        let model = floating_recess(ratio, c, 8);
+        let model = cases::floating_recess(ratio, c, 8);
         let one_level = run(&model, &sweeps(CoarseMode::Off)).iterations;
         let two_level = run(&model, &sweeps(CoarseMode::Chains)).iterations;
         assert!(
@@ -70,7 +54,7 @@ fn the_coarse_correction_costs_no_iterations_on_a_floating_recess() {
 /// converges (it stalled at the iteration cap without the guard).
 #[test]
 fn the_guard_switches_off_a_correction_that_hurts() {
-    let model = floating_recess(1.0, 0.005, 8);
+    let model = cases::floating_recess(1.0, 0.005, 8);
     let one_level = run(&model, &sweeps(CoarseMode::Off)).iterations;
     let all = run(&model, &sweeps(CoarseMode::All)).iterations;
     assert!(

@@ -33,6 +33,8 @@ pub struct RobinSweep<'a> {
     method: Method,
     /// Retry a singular body with φ = 1 on its partnered points (the accelerated default only).
     safeguard: bool,
+    /// Whether some point has friction (the sweep then reads the tangential displacements).
+    friction: bool,
     scratch: Vec<Scratch>,
 }
 
@@ -60,6 +62,7 @@ impl<'a> RobinSweep<'a> {
             bodies,
             method,
             safeguard,
+            friction: interface.has_friction(),
             scratch,
         }
     }
@@ -79,7 +82,7 @@ impl<'a> RobinSweep<'a> {
         let (interface, bodies, method, safeguard) =
             (self.interface, self.bodies, self.method, self.safeguard);
         // The frictional points' tangential displacements at U^k (empty without friction).
-        let g = match interface.has_friction() {
+        let g = match self.friction {
             true => interface.slip_sums(un),
             false => Vec::new(),
         };
