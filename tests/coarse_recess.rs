@@ -1,7 +1,8 @@
 //! The two-level sweeps never cost more iterations than the one-level sweeps on a recess between
 //! two blocks that only the contact holds vertically (both blocks pressed by opposite pressures,
-//! nothing else holds them vertically), with `active-set` and `gamma = "auto"`. The coarse
-//! correction used to stall there (docs/two-level.md, "Which bodies" and "The guard"). The
+//! nothing else holds them vertically), with `active-set` and `gamma = "auto"`, where a correction
+//! of every floating body stalls without the guard (docs/two-level.md, "Which bodies" and "The
+//! guard"). The
 //! results are checked against the applied load: the contact carries q · 20 = 2000 on each side.
 
 use contactdd::cases;
