@@ -52,9 +52,9 @@ pub enum MeshError {
         /// Triangle index.
         element: usize,
     },
-    /// A P2 mid-side node off its edge midpoint.
-    #[error("P2 triangle {element} has a mid-side node away from its edge midpoint (only straight-sided triangles are supported)")]
-    CurvedEdge {
+    /// A curved P2 triangle whose Jacobian is not positive everywhere.
+    #[error("curved P2 triangle {element} is folded: a mid-side node lies so far off its edge that the element's Jacobian is not positive everywhere (move it closer to the edge's midpoint, or refine the mesh near the curve)")]
+    CurvedInverted {
         /// Triangle index.
         element: usize,
     },

@@ -1,8 +1,8 @@
 //! Triangular meshes: nodes, P1/P2 triangles, named boundary edge sets and node sets.
 //!
 //! A [`Mesh`] is always validated on construction: every triangle is counter-clockwise with a
-//! positive area, P2 mid-side nodes sit on their edge midpoints (straight-sided elements), every node
-//! is used by some triangle, and every boundary edge is an edge of exactly one triangle. Boundary
+//! positive area, every curved P2 triangle (a mid-side node off its edge's midpoint: an
+//! isoparametric triangle) has a positive Jacobian everywhere, every node is used by some triangle, and every boundary edge is an edge of exactly one triangle. Boundary
 //! edges are stored oriented so that the body lies on their left; the outward normal of an edge
 //! from `a` to `b` is therefore `(b - a)` rotated clockwise.
 
@@ -147,14 +147,8 @@ impl Mesh {
             if area2 < 0.0 {
                 return Err(MeshError::InvertedElement { element: e });
             }
-            if self.order == Order::P2 {
-                for &(i, j, m) in &TRIANGLE_EDGES {
-                    let (a, b, mid) = (self.nodes[c[i]], self.nodes[c[j]], self.nodes[c[m]]);
-                    let centre = [0.5 * (a[0] + b[0]), 0.5 * (a[1] + b[1])];
-                    if dist(centre, mid) > 1e-8 * dist(a, b) {
-                        return Err(MeshError::CurvedEdge { element: e });
-                    }
-                }
+            if self.is_curved_cell(e) && !self.positive_jacobian(e) {
+                return Err(MeshError::CurvedInverted { element: e });
             }
         }
         Ok(())
@@ -419,7 +413,96 @@ impl Mesh {
         })
     }
 
-    /// Outward unit normal and length of a boundary edge.
+    /// Whether the mid-side node `mid` of the edge from `a` to `b` lies off the edge's midpoint
+    /// (by more than 1e-8 of its length, the rounding of a mesh written in text): the edge is
+    /// then a parabolic arc, and every quantity along it uses the quadratic map.
+    fn curved(&self, a: usize, b: usize, mid: Option<usize>) -> bool {
+        let Some(m) = mid else { return false };
+        let (a, b, m) = (self.nodes[a], self.nodes[b], self.nodes[m]);
+        dist([0.5 * (a[0] + b[0]), 0.5 * (a[1] + b[1])], m) > 1e-8 * dist(a, b)
+    }
+
+    /// Whether a boundary edge is curved (a P2 edge whose mid-side node is off its midpoint).
+    pub fn is_curved_edge(&self, edge: &Edge) -> bool {
+        self.curved(edge.a, edge.b, edge.mid)
+    }
+
+    /// Whether triangle `e` is curved (isoparametric): one of its edges is.
+    pub fn is_curved_cell(&self, e: usize) -> bool {
+        self.order == Order::P2
+            && TRIANGLE_EDGES.iter().any(|&(i, j, m)| {
+                let c = self.cell(e);
+                self.curved(c[i], c[j], Some(c[m]))
+            })
+    }
+
+    /// Whether any triangle of the mesh is curved.
+    pub fn is_curved(&self) -> bool {
+        (0..self.num_cells()).any(|e| self.is_curved_cell(e))
+    }
+
+    /// Whether the Jacobian determinant of the quadratic map of triangle `e` is positive
+    /// everywhere. It is a quadratic polynomial, so its six nodal values give its Bernstein
+    /// coefficients (the vertex values, and 2 f(mid) − (f_a + f_b)/2 per edge), and positive
+    /// coefficients make it positive on the whole triangle.
+    fn positive_jacobian(&self, e: usize) -> bool {
+        let c = self.cell(e);
+        let x: Vec<Point> = c.iter().map(|&v| self.nodes[v]).collect();
+        let det = |l: [f64; 3]| {
+            // ∂x/∂λ_k of the P2 map, then J = [∂x/∂λ1 − ∂x/∂λ0, ∂x/∂λ2 − ∂x/∂λ0].
+            let d: [[f64; 6]; 3] = [
+                [4.0 * l[0] - 1.0, 0.0, 0.0, 4.0 * l[1], 0.0, 4.0 * l[2]],
+                [0.0, 4.0 * l[1] - 1.0, 0.0, 4.0 * l[0], 4.0 * l[2], 0.0],
+                [0.0, 0.0, 4.0 * l[2] - 1.0, 0.0, 4.0 * l[1], 4.0 * l[0]],
+            ];
+            let dx = |k: usize, c: usize| (0..6).map(|i| d[k][i] * x[i][c]).sum::<f64>();
+            let j = |k: usize, c: usize| dx(k, c) - dx(0, c);
+            j(1, 0) * j(2, 1) - j(2, 0) * j(1, 1)
+        };
+        let v = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]].map(det);
+        let m = [[0.5, 0.5, 0.0], [0.0, 0.5, 0.5], [0.5, 0.0, 0.5]].map(det);
+        let bernstein = [
+            2.0 * m[0] - 0.5 * (v[0] + v[1]),
+            2.0 * m[1] - 0.5 * (v[1] + v[2]),
+            2.0 * m[2] - 0.5 * (v[2] + v[0]),
+        ];
+        v.iter().chain(&bernstein).all(|&b| b > 0.0)
+    }
+
+    /// The point of a boundary edge at parameter `t ∈ [0, 1]` (from `a` to `b`): on the chord
+    /// for a straight edge, on the parabola through `a`, `mid`, `b` for a curved one.
+    pub fn edge_point(&self, edge: &Edge, t: f64) -> Point {
+        let (a, b) = (self.nodes[edge.a], self.nodes[edge.b]);
+        match edge.mid.filter(|_| self.is_curved_edge(edge)) {
+            None => std::array::from_fn(|c| a[c] + t * (b[c] - a[c])),
+            Some(m) => {
+                let m = self.nodes[m];
+                let n = [
+                    (1.0 - t) * (1.0 - 2.0 * t),
+                    t * (2.0 * t - 1.0),
+                    4.0 * t * (1.0 - t),
+                ];
+                std::array::from_fn(|c| n[0] * a[c] + n[1] * b[c] + n[2] * m[c])
+            }
+        }
+    }
+
+    /// The outward unit normal of a boundary edge at parameter `t`, and the speed |dx/dt| there
+    /// (the edge's length for a straight edge, whose normal is the same everywhere).
+    pub fn edge_normal_at(&self, edge: &Edge, t: f64) -> (Vector, f64) {
+        let Some(m) = edge.mid.filter(|_| self.is_curved_edge(edge)) else {
+            return self.edge_normal(edge);
+        };
+        let (a, b, m) = (self.nodes[edge.a], self.nodes[edge.b], self.nodes[m]);
+        let d: Vector = std::array::from_fn(|c| {
+            (4.0 * t - 3.0) * a[c] + (4.0 * t - 1.0) * b[c] + (4.0 - 8.0 * t) * m[c]
+        });
+        let speed = d[0].hypot(d[1]);
+        ([d[1] / speed, -d[0] / speed], speed)
+    }
+
+    /// Outward unit normal and length of a boundary edge's chord (for a curved edge, the
+    /// chord from `a` to `b`; [`Mesh::edge_normal_at`] gives the normal along the arc).
     pub fn edge_normal(&self, edge: &Edge) -> (Vector, f64) {
         let (a, b) = (self.nodes[edge.a], self.nodes[edge.b]);
         let (dx, dy) = (b[0] - a[0], b[1] - a[1]);

@@ -20,14 +20,11 @@ impl RawMsh {
         let (nodes, new_index) = self.renumber_nodes(&used)?;
         let (cells, boundaries, node_sets) = self.sort_elements(order, &nodes, &new_index, body)?;
         Mesh::new(nodes, order, cells, boundaries, node_sets).map_err(|e| match e {
-            // The element code maps every triangle affinely (crate::element::Affine), so a
-            // curved (isoparametric) triangle cannot be represented: say how to avoid one.
-            MeshError::CurvedEdge { element } => GmshError::Unsupported(format!(
-                "line {}: curved 6-node triangle (a mid-side node off its edge's midpoint); \
-                 contactdd's P2 triangles are straight-sided. Mesh with order 1 and promote to \
-                 P2 in contactdd (mesh key order = \"p2\"), or keep order 2 with straight sides \
-                 (gmsh -setnumber Mesh.SecondOrderLinear 1)",
-                self.triangle_line(element, body)
+            // Name the file line of a folded curved triangle.
+            MeshError::CurvedInverted { element } => GmshError::Unsupported(format!(
+                "line {}: {}",
+                self.triangle_line(element, body),
+                MeshError::CurvedInverted { element }
             )),
             e => GmshError::Mesh(e),
         })
