@@ -1,6 +1,7 @@
 //! The press fit of `contactdd::press_fit` (a quarter shaft of radius 1.005 in a quarter ring of
 //! radius 1 to 2, steel, plane strain, both bodies held by symmetry supports) solved by the
-//! interface Newton method with the default settings, P1 and P2, penalty and augmented, against
+//! interface Newton method with the default settings, P1, P2 and curved P2 (mid-side nodes on
+//! the circles), penalty and augmented, against
 //! the monolithic reference and Lamé's pressure. `cargo run --release --example press_fit [ARCS SHAFT_ARCS RADIAL]` (default 32 32 8;
 //! `32 40 8`: non-matching arcs).
 
@@ -36,7 +37,7 @@ fn main() {
         ("θ = 1e-7", Penalty::Theta(1e-7)),
         ("θ = 1e-8", Penalty::Theta(1e-8)),
     ];
-    for p2 in [false, true] {
+    for (p2, curved) in [(false, false), (true, false), (true, true)] {
         for enforcement in [Enforcement::Penalty, Enforcement::Augmented] {
             for (name, penalty) in penalties {
                 for shift in [0.0, 1e-10, 1e-8] {
@@ -45,6 +46,7 @@ fn main() {
                         shaft_arcs: arg(2, 32),
                         radial: arg(3, 8),
                         p2,
+                        curved,
                         penalty,
                         enforcement,
                         shift: [shift, shift],
@@ -72,7 +74,11 @@ fn main() {
                     }
                     println!(
                         "{:5} {:11} {:14} {shift:8.0e} {:9} {:3} {:5} {du:9.2e} {:+.4}..{:+.4}  {}",
-                        if p2 { "P2" } else { "P1" },
+                        match (p2, curved) {
+                            (false, _) => "P1",
+                            (true, false) => "P2",
+                            (true, true) => "P2c",
+                        },
                         enforcement.to_string(),
                         name,
                         sol.converged,

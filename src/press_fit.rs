@@ -39,6 +39,9 @@ pub struct PressFit {
     pub radial: usize,
     /// Promote both meshes to P2.
     pub p2: bool,
+    /// With `p2`: put the mid-side nodes of the arcs on the circles (curved, isoparametric P2
+    /// triangles; otherwise they sit on the chords and the arcs are polygons).
+    pub curved: bool,
     /// The pair's penalty.
     pub penalty: Penalty,
     /// The pair's enforcement.
@@ -56,6 +59,7 @@ impl Default for PressFit {
             shaft_arcs: 32,
             radial: 8,
             p2: false,
+            curved: false,
             penalty: Penalty::RodModel { c: 0.05, h: 1.0 },
             enforcement: Enforcement::Penalty,
             shift: [0.0, 0.0],
@@ -154,11 +158,41 @@ fn held(name: &str, mesh: Mesh) -> Result<ElasticBody, String> {
     })
 }
 
+/// The P2 mesh `mesh` of a polar mesh with the mid-side node of every arc edge (both vertices
+/// at the same radius r > 0) moved onto the circle of radius r, at the mean angle of the
+/// vertices: curved triangles whose arcs follow the circles to O(h³).
+pub fn on_arcs(mesh: &Mesh) -> Result<Mesh, MeshError> {
+    let mut nodes = mesh.nodes().to_vec();
+    let radius = |p: [f64; 2]| p[0].hypot(p[1]);
+    for e in 0..mesh.num_cells() {
+        let c = mesh.cell(e);
+        for (i, j, m) in contactdd_core::mesh::TRIANGLE_EDGES {
+            let (a, b) = (mesh.nodes()[c[i]], mesh.nodes()[c[j]]);
+            let r = radius(a);
+            if r > 0.0 && (radius(b) - r).abs() <= 1e-12 * r {
+                let phi = 0.5 * (a[1].atan2(a[0]) + b[1].atan2(b[0]));
+                nodes[c[m]] = [r * phi.cos(), r * phi.sin()];
+            }
+        }
+    }
+    Mesh::new(
+        nodes,
+        mesh.order(),
+        mesh.cells().to_vec(),
+        mesh.boundaries().clone(),
+        mesh.node_sets().clone(),
+    )
+}
+
 /// The press fit: body 0 the ring, body 1 the shaft, one pair between the ring's `inner` and the
 /// shaft's `outer` arcs.
 pub fn press_fit(options: &PressFit) -> Result<Model, String> {
     let finish = |mesh: Mesh| -> Result<Mesh, String> {
-        let mesh = if options.p2 { mesh.to_p2() } else { mesh };
+        let mesh = match (options.p2, options.curved) {
+            (false, _) => mesh,
+            (true, false) => mesh.to_p2(),
+            (true, true) => on_arcs(&mesh.to_p2()).map_err(|e| e.to_string())?,
+        };
         let [dx, dy] = options.shift;
         mesh.map_nodes(|p| [p[0] + dx, p[1] + dy])
             .map_err(|e| e.to_string())

@@ -11,6 +11,9 @@ bisection (LEPP), which keeps the mesh conforming and the angles bounded away fr
 nodes on the arc are projected onto the circle. The quarter is then mirrored in x = 0, so the
 mesh is symmetric and the contact point is a node.
 
+With `--order 2` the triangles are curved 6-node triangles (Gmsh's `SetOrder(2)`): the mid-side
+nodes of the arc lie on the circle, the others at their edges' midpoints.
+
 Physical groups: lines "arc" (curved lower boundary) and "top" (flat side), surface "disc".
 
 Usage: python3 make_half_disc.py [-o half_disc.msh] [--radius 1] [--gap 0] ...
@@ -214,6 +217,36 @@ def half_disc(radius, h_contact, grading, h_max, rings):
     return out_nodes, tris, boundary["arc"], boundary["top"]
 
 
+def promote(nodes, tris, arc, top, radius):
+    """The curved P2 mesh of the same triangles: a node at the middle of every edge, on the
+    circle (on the bisector of its vertices' radii from the centre (0, R)) for the arc's edges,
+    on the chord elsewhere. Triangles list their vertices, then the mid-side nodes of (0, 1),
+    (1, 2), (2, 0); edges their vertices, then their mid-side node (Gmsh's 6-node triangle and
+    3-node line)."""
+    nodes = list(nodes)
+    on_arc = {edge_key(*e) for e in arc}
+    mid = {}
+
+    def middle(a, b):
+        key = edge_key(a, b)
+        if key not in mid:
+            (xa, ya), (xb, yb) = nodes[a], nodes[b]
+            if key in on_arc:
+                # The bisector of the two radii: no wrap-around at the angle ±π.
+                ux, uy = xa + xb, (ya - radius) + (yb - radius)
+                scale = radius / math.hypot(ux, uy)
+                nodes.append((scale * ux, radius + scale * uy))
+            else:
+                nodes.append((0.5 * (xa + xb), 0.5 * (ya + yb)))
+            mid[key] = len(nodes) - 1
+        return mid[key]
+
+    tris6 = [t + (middle(t[0], t[1]), middle(t[1], t[2]), middle(t[2], t[0])) for t in tris]
+    arc3 = [e + (middle(*e),) for e in arc]
+    top3 = [e + (middle(*e),) for e in top]
+    return nodes, tris6, arc3, top3
+
+
 def write_msh(path, nodes, tris, arc, top, radius, gap):
     """Writes MSH 4.1 ASCII: points A (left) and C (right), curves arc (A to C) and top (C to A)."""
     a_node = min(range(len(nodes)), key=lambda v: (nodes[v][0], -nodes[v][1]))
@@ -266,10 +299,12 @@ def write_msh(path, nodes, tris, arc, top, radius, gap):
     def along(edge_list, key):
         return sorted(edge_list, key=lambda e: key(0.5 * (nodes[e[0]][0] + nodes[e[1]][0])))
 
+    # Gmsh types: 2-node line 1, 3-node triangle 2; 3-node line 8, 6-node triangle 9.
+    line, triangle = (1, 2) if len(tris[0]) == 3 else (8, 9)
     element_blocks = [
-        (1, 1, 1, along(arc, lambda x: x)),
-        (1, 2, 1, along(top, lambda x: -x)),
-        (2, 1, 2, tris),
+        (1, 1, line, along(arc, lambda x: x)),
+        (1, 2, line, along(top, lambda x: -x)),
+        (2, 1, triangle, tris),
     ]
     count = sum(len(b[3]) for b in element_blocks)
     lines += ["$Elements", f"{len(element_blocks)} {count} 1 {count}"]
@@ -293,6 +328,8 @@ def main():
     parser.add_argument("--grading", type=float, default=0.1, help="size growth per unit length")
     parser.add_argument("--h-max", type=float, help="largest element size (R/10)")
     parser.add_argument("--rings", type=int, default=5, help="rings of the coarse polar mesh")
+    parser.add_argument("--order", type=int, choices=(1, 2), default=1,
+                        help="2: curved 6-node triangles, the arc's mid-side nodes on the circle")
     args = parser.parse_args()
     radius = args.radius
     if not (radius > 0 and math.isfinite(radius)):
@@ -305,6 +342,8 @@ def main():
     nodes, tris, arc, top = half_disc(radius, h_contact, args.grading, h_max, args.rings)
     for t in tris:
         assert area2(nodes, t) > 0, "inverted triangle"
+    if args.order == 2:
+        nodes, tris, arc, top = promote(nodes, tris, arc, top, radius)
     write_msh(args.output, nodes, tris, arc, top, radius, args.gap)
     print(
         f"{args.output}: {len(nodes)} nodes, {len(tris)} triangles, "

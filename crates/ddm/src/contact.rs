@@ -8,6 +8,7 @@
 //! - `friction`: the tangential laws (Coulomb, Tresca) and a frictional point's return mapping;
 //! - `gap_profile`: the prescribed gap profiles of the pairs;
 //! - `points`: the contact points, their roles, and the [`Interface`] they form;
+//! - `curved_edge`: integrals, normals and ray hits along a curved (isoparametric) P2 edge;
 //! - `edge_index`: the R-tree search for the partner edge a normal ray hits;
 //! - `nodal_quadrature`: the nodes, nodal normals and quadrature weights of a contact boundary;
 //! - `mortar`: the dual mortar coefficients of the balanced pairs;
@@ -18,6 +19,7 @@
 pub mod balanced_pair;
 mod builder;
 pub mod check;
+mod curved_edge;
 mod edge_index;
 pub mod formulation;
 pub mod friction;

@@ -6,6 +6,8 @@ use contactdd_core::geometry::dot;
 use contactdd_core::mesh::dist;
 use contactdd_core::{Edge, Mesh, Point, Vector, DIM};
 
+use super::curved_edge;
+
 use rstar::primitives::{GeomWithData, Rectangle};
 use rstar::{RTree, AABB};
 
@@ -38,18 +40,18 @@ impl<'m> EdgeIndex<'m> {
                 let (a, b) = (p[e.a], p[e.b]);
                 // Inflated by the projection's tolerance on the edge parameter (1e−9).
                 let pad = 1e-8 * dist(a, b) + f64::MIN_POSITIVE;
-                let lo = [a[0].min(b[0]) - pad, a[1].min(b[1]) - pad];
-                let hi = [a[0].max(b[0]) + pad, a[1].max(b[1]) + pad];
+                let (lo, hi) = hull(mesh, e);
+                let lo = [lo[0] - pad, lo[1] - pad];
+                let hi = [hi[0] + pad, hi[1] + pad];
                 GeomWithData::new(Rectangle::from_corners(lo, hi), k)
             })
             .collect();
         let (mut lo, mut hi) = ([f64::INFINITY; DIM], [f64::NEG_INFINITY; DIM]);
         for e in edges {
-            for v in [e.a, e.b] {
-                for c in 0..DIM {
-                    lo[c] = lo[c].min(p[v][c]);
-                    hi[c] = hi[c].max(p[v][c]);
-                }
+            let (elo, ehi) = hull(mesh, e);
+            for c in 0..DIM {
+                lo[c] = lo[c].min(elo[c]);
+                hi[c] = hi[c].max(ehi[c]);
             }
         }
         let total: f64 = edges.iter().map(|e| dist(p[e.a], p[e.b])).sum();
@@ -99,15 +101,23 @@ impl<'m> EdgeIndex<'m> {
 }
 
 impl EdgeIndex<'_> {
-    /// Where the vertices of the partner edges facing the edge a → b (outward normal `n`) project
-    /// onto its line, as parameters t of a + t (b − a): the breakpoints of the partner's shape
-    /// functions along the edge. Searched in the band the edge sweeps along n out to its rays'
-    /// hits, widened by its length; empty if no ray from it hits.
-    pub(super) fn vertices_facing(&self, a: Point, b: Point, n: Vector) -> Vec<f64> {
+    /// Where the vertices of the partner edges facing the edge `e` of `own` project onto it
+    /// along its normals, as parameters t of the edge (for a straight edge from a to b, of
+    /// a + t (b − a), on its whole line): the breakpoints of the partner's shape functions
+    /// along the edge. Searched in the band the edge sweeps along its chord's normal out to its
+    /// rays' hits, widened by its length; empty if no ray from it hits.
+    pub(super) fn vertices_facing(&self, own: &Mesh, e: &Edge) -> Vec<f64> {
+        let curved = own.is_curved_edge(e);
+        let (n, _) = own.edge_normal(e);
+        let (a, b) = (own.nodes()[e.a], own.nodes()[e.b]);
         let mid = [0.5 * (a[0] + b[0]), 0.5 * (a[1] + b[1])];
-        let reach: Vec<f64> = [a, mid, b]
+        let reach: Vec<f64> = [(a, 0.0), (mid, 0.5), (b, 1.0)]
             .iter()
-            .filter_map(|&x| self.project(x, n).map(|h| h.0))
+            .filter_map(|&(x, t)| match curved {
+                true => self.project(own.edge_point(e, t), own.edge_normal_at(e, t).0),
+                false => self.project(x, n),
+            })
+            .map(|h| h.0)
             .collect();
         if reach.is_empty() {
             return Vec::new();
@@ -132,16 +142,71 @@ impl EdgeIndex<'_> {
             .tree
             .locate_in_envelope_intersecting(&AABB::from_corners(min, max))
         {
-            let e = &self.edges[g.data];
-            if dot(self.mesh.edge_normal(e).0, n) >= -1e-3 {
+            let partner = &self.edges[g.data];
+            if dot(self.mesh.edge_normal(partner).0, n) >= -1e-3 {
                 continue;
             }
-            for v in [e.a, e.b] {
-                out.push(dot([p[v][0] - a[0], p[v][1] - a[1]], dir) / dd);
+            for v in [partner.a, partner.b] {
+                match curved {
+                    true => out.extend(curved_edge::normal_feet(own, e, p[v])),
+                    false => out.push(dot([p[v][0] - a[0], p[v][1] - a[1]], dir) / dd),
+                }
             }
         }
         out
     }
+}
+
+/// The bounding box of an edge: of its vertices, and for a curved edge also of the control
+/// point 2 mid − (a + b)/2 of its parabola, whose convex hull with the vertices holds the arc.
+fn hull(mesh: &Mesh, e: &Edge) -> (Point, Point) {
+    let p = mesh.nodes();
+    let (a, b) = (p[e.a], p[e.b]);
+    let (mut lo, mut hi) = (
+        [a[0].min(b[0]), a[1].min(b[1])],
+        [a[0].max(b[0]), a[1].max(b[1])],
+    );
+    if let Some(m) = e.mid.filter(|_| mesh.is_curved_edge(e)) {
+        let control: Point = std::array::from_fn(|c| 2.0 * p[m][c] - 0.5 * (a[c] + b[c]));
+        for c in 0..DIM {
+            lo[c] = lo[c].min(control[c]);
+            hi[c] = hi[c].max(control[c]);
+        }
+    }
+    (lo, hi)
+}
+
+/// The hit of the ray x + t n on edge `e` (facing the ray): its signed distance t and the
+/// edge's parameter s there.
+fn hit(x: Point, n: Vector, mesh: &Mesh, e: &Edge) -> Option<(f64, f64)> {
+    let tol = 1e-9;
+    if mesh.is_curved_edge(e) {
+        // The nearest hit where the arc faces the ray.
+        return curved_edge::ray_hits(mesh, e, x, n, tol)
+            .into_iter()
+            .filter(|&(s, _)| dot(mesh.edge_normal_at(e, s).0, n) < -1e-3)
+            .map(|(s, t)| (t, s))
+            .min_by(|p, q| p.0.abs().total_cmp(&q.0.abs()));
+    }
+    let p = mesh.nodes();
+    let (ne, len) = mesh.edge_normal(e);
+    // Only edges facing the point: their outward normal opposes n.
+    if dot(ne, n) >= -1e-3 {
+        return None;
+    }
+    let (a, b) = (p[e.a], p[e.b]);
+    let dir: Vector = std::array::from_fn(|c| b[c] - a[c]);
+    let den = cross(n, dir);
+    if den.abs() < 1e-14 * len {
+        return None;
+    }
+    let ax: Vector = std::array::from_fn(|c| a[c] - x[c]);
+    let t = cross(ax, dir) / den;
+    let s = cross(ax, n) / den;
+    if !(-tol..=1.0 + tol).contains(&s) {
+        return None;
+    }
+    Some((t, s.clamp(0.0, 1.0)))
 }
 
 /// Intersects the ray x + t n with the edges (facing the ray) and returns the signed distance t
@@ -152,28 +217,11 @@ fn project<'e>(
     mesh: &Mesh,
     edges: impl IntoIterator<Item = &'e Edge>,
 ) -> Option<(f64, Vec<(usize, f64)>)> {
-    let p = mesh.nodes();
     let mut best: Option<(f64, Vec<(usize, f64)>)> = None;
     for e in edges {
-        let (ne, len) = mesh.edge_normal(e);
-        // Only edges facing the point: their outward normal opposes n.
-        if dot(ne, n) >= -1e-3 {
+        let Some((t, s)) = hit(x, n, mesh, e) else {
             continue;
-        }
-        let (a, b) = (p[e.a], p[e.b]);
-        let dir: Vector = std::array::from_fn(|c| b[c] - a[c]);
-        let den = cross(n, dir);
-        if den.abs() < 1e-14 * len {
-            continue;
-        }
-        let ax: Vector = std::array::from_fn(|c| a[c] - x[c]);
-        let t = cross(ax, dir) / den;
-        let s = cross(ax, n) / den;
-        let tol = 1e-9;
-        if !(-tol..=1.0 + tol).contains(&s) {
-            continue;
-        }
-        let s = s.clamp(0.0, 1.0);
+        };
         if best.as_ref().is_some_and(|(bt, _)| bt.abs() <= t.abs()) {
             continue;
         }

@@ -24,6 +24,7 @@ use std::collections::HashMap;
 use contactdd_core::element::edge_shape;
 use contactdd_core::{Edge, Mesh, Order, Vector};
 
+use super::curved_edge;
 use super::edge_index::EdgeIndex;
 
 /// Three-point Gauss–Legendre rule on [0, 1]: exact to degree 5.
@@ -70,8 +71,20 @@ pub(super) fn dual_integrals(
         let (n, len) = mesh.edge_normal(e);
         let (a, b) = (p[e.a], p[e.b]);
         let dir: Vector = [b[0] - a[0], b[1] - a[1]];
-        let at = |t: f64| [a[0] + t * dir[0], a[1] + t * dir[1]];
-        let mut cuts = partner.vertices_facing(a, b, n);
+        // A curved edge: its own dual basis, the arc's points and normals, a finer rule.
+        let curved = mesh.is_curved_edge(e);
+        let (a_edge, rule) = match curved {
+            true => (
+                curved_edge::dual(mesh, e).unwrap_or(a_dual),
+                &curved_edge::GAUSS_5[..],
+            ),
+            false => (a_dual, &GAUSS[..]),
+        };
+        let frame = |t: f64| match curved {
+            true => curved_edge::frame(mesh, e, t),
+            false => ([a[0] + t * dir[0], a[1] + t * dir[1]], n, len),
+        };
+        let mut cuts = partner.vertices_facing(mesh, e);
         cuts.retain(|&t| t > 0.0 && t < 1.0);
         cuts.extend([0.0, 1.0]);
         cuts.sort_by(f64::total_cmp);
@@ -79,17 +92,17 @@ pub(super) fn dual_integrals(
         let nodes: Vec<usize> = e.nodes().collect();
         for piece in cuts.windows(2) {
             let (t0, t1) = (piece[0], piece[1]);
-            for &(g, wg) in &GAUSS {
+            for &(g, wg) in rule {
                 let t = t0 + g * (t1 - t0);
-                let x = at(t);
+                let (x, n, speed) = frame(t);
                 let Some((ray, coeffs)) = partner.project(x, n) else {
                     continue;
                 };
                 let phi = edge_shape(mesh.order(), t);
-                let w = len * (t1 - t0) * wg;
+                let w = speed * (t1 - t0) * wg;
                 let d = profile(x);
                 for (i, &v) in nodes.iter().enumerate() {
-                    let psi: f64 = (0..3).map(|l| a_dual[i][l] * phi[l]).sum();
+                    let psi: f64 = (0..3).map(|l| a_edge[i][l] * phi[l]).sum();
                     let node = out.entry(v).or_default();
                     for &(k, c) in &coeffs {
                         *node.coupling.entry(k).or_insert(0.0) += w * psi * c;

@@ -1,12 +1,14 @@
 //! The nodal quadrature of a contact boundary: its nodes with their nodal normals (length-weighted
-//! averages of the adjacent edge normals, which makes curved boundaries work) and quadrature
-//! weights (trapezoid for P1, Simpson for P2, over the part of each edge that faces the partner).
+//! averages of the adjacent edge normals, which makes curved boundaries work; on a curved P2 edge,
+//! the arc's normal at the node) and quadrature weights (trapezoid for P1, Simpson for P2, the
+//! integrals ∫ φ_k ds along a curved edge, over the part of each edge that faces the partner).
 
 use std::collections::HashMap;
 
 use contactdd_core::element::edge_nodal_weights;
 use contactdd_core::{Edge, Mesh, Order, Vector, DIM};
 
+use super::curved_edge;
 use super::edge_index::EdgeIndex;
 
 /// Nodes of a boundary with their nodal normals and quadrature weights.
@@ -25,8 +27,20 @@ pub(super) fn nodal_quadrature(
     for e in edges {
         let (n, len) = mesh.edge_normal(e);
         let (t0, t1) = covered_part(mesh, e, n, partner);
-        let w = partial_edge_weights(mesh.order(), len, t0, t1);
+        let curved = mesh.is_curved_edge(e);
+        let (w, len) = match curved {
+            true => (
+                curved_weights(mesh, e, t0, t1),
+                curved_edge::length(mesh, e, 0.0, 1.0),
+            ),
+            false => (partial_edge_weights(mesh.order(), len, t0, t1), len),
+        };
         for (k, v) in e.nodes().enumerate() {
+            // A curved edge's normal at the node itself (t = 0, 1, ½ in the order a, b, mid).
+            let n = match curved {
+                true => mesh.edge_normal_at(e, [0.0, 1.0, 0.5][k]).0,
+                false => n,
+            };
             let i = *index.entry(v).or_insert_with(|| {
                 nodes.push(v);
                 normals.push([0.0; DIM]);
@@ -53,9 +67,16 @@ pub(super) fn nodal_quadrature(
 fn covered_part(mesh: &Mesh, e: &Edge, n: Vector, partner: &EdgeIndex) -> (f64, f64) {
     const SAMPLES: usize = 8;
     let (a, b) = (mesh.nodes()[e.a], mesh.nodes()[e.b]);
-    let hits = |t: f64| {
-        let x = [a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1])];
-        partner.project(x, n).is_some()
+    let curved = mesh.is_curved_edge(e);
+    let hits = |t: f64| match curved {
+        true => {
+            let (x, n, _) = curved_edge::frame(mesh, e, t);
+            partner.project(x, n).is_some()
+        }
+        false => {
+            let x = [a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1])];
+            partner.project(x, n).is_some()
+        }
     };
     let covered: Vec<bool> = (0..=SAMPLES)
         .map(|i| hits(i as f64 / SAMPLES as f64))
@@ -93,6 +114,23 @@ fn covered_part(mesh: &Mesh, e: &Edge, n: Vector, partner: &EdgeIndex) -> (f64, 
         refine((last + 1) as f64 * step, last as f64 * step, true)
     };
     (t0, t1.max(t0))
+}
+
+/// The weights of a curved edge: ∫ φ_k ds over [t0, t1], with the same treatment of a partial
+/// edge's negative vertex shares as [`partial_edge_weights`].
+fn curved_weights(mesh: &Mesh, e: &Edge, t0: f64, t1: f64) -> [f64; 3] {
+    let w = curved_edge::shape_integrals(mesh, e, t0, t1);
+    if t0 == 0.0 && t1 == 1.0 {
+        return w;
+    }
+    let positive = w.map(|x| x.max(0.0));
+    let sum: f64 = positive.iter().sum();
+    let covered: f64 = w.iter().sum();
+    if sum > 0.0 {
+        positive.map(|x| x * covered / sum)
+    } else {
+        [0.0; 3]
+    }
 }
 
 /// Integrals of the edge shape functions (order `a, b, [mid]`) over [t0, t1] of an edge of length
