@@ -52,14 +52,25 @@ fn of_pairs(points: &[ContactPoint], pairs: usize) -> Vec<Vec<usize>> {
 
 /// Resolves the pairs' forces against their points: a balanced pair whose sides match node for
 /// node (the same discrete problem either way) is the own-side formulation and keeps its
-/// arithmetic.
-pub(super) fn resolve(points: &[ContactPoint], formulations: &mut [Formulation]) {
+/// arithmetic. Its points' partners become the matching node alone, coefficient 1: a rotated or
+/// shifted mesh interpolates the partner at a hit a rounding error away from the node.
+pub(super) fn resolve(points: &mut [ContactPoint], formulations: &mut [Formulation]) {
     let of_pair = of_pairs(points, formulations.len());
     for (f, of_pair) in formulations.iter_mut().zip(&of_pair) {
         // A frictional pair keeps its carriers: they carry the tangential tractions.
         let frictional = f.friction.is_active();
-        if f.forces == Forces::Balanced && !frictional && matches_node_for_node(points, of_pair) {
+        if f.forces != Forces::Balanced || frictional {
+            continue;
+        }
+        if let Some(matched) = matches_node_for_node(points, of_pair) {
             f.forces = Forces::OwnSide;
+            for (&j, k) in of_pair.iter().zip(matched) {
+                if let Some(k) = k {
+                    if points[j].partner.as_slice() != [(k, 1.0)] {
+                        points[j].partner = vec![(k, 1.0)];
+                    }
+                }
+            }
         }
     }
 }
@@ -359,25 +370,55 @@ fn reference_body(points: &[ContactPoint], of_pair: &[usize], first: usize) -> u
 /// Normal spreads (1 − cos of the angle) closer than this are equal: rounding of straight sides.
 const SPREAD_TIE: f64 = 1e-12;
 
-/// True if every point of a pair (`of_pair`) faces exactly one partner node, which faces it
-/// back, along exactly opposite normals, with the same weight and gap: then each side's pressure
-/// equals the other's and the own-side formulation is already balanced.
-fn matches_node_for_node(points: &[ContactPoint], of_pair: &[usize]) -> bool {
-    of_pair.iter().all(|&j| {
+/// The matching partner node of every point of a pair (`of_pair`; `None` for a point without
+/// partner) if every point faces exactly one partner node, which faces it back, along opposite
+/// normals, with the same weight and gap: then each side's pressure equals the other's and the
+/// own-side formulation is already balanced. `None` otherwise.
+///
+/// "Exactly" is up to rounding, relative to the mesh and never to the coordinates, so that a
+/// shifted or rotated problem resolves the same way: a coefficient within [`MATCH_TOL`] of 1
+/// (the others within it of 0), normals within [`MATCH_TOL`] of opposite, weights within
+/// [`MATCH_TOL`] of each other relative to the larger, gaps within [`MATCH_TOL`] times the
+/// pair's shortest nodal weight (a length of the order of the shortest contact edge).
+fn matches_node_for_node(points: &[ContactPoint], of_pair: &[usize]) -> Option<Vec<Option<usize>>> {
+    let length = of_pair
+        .iter()
+        .map(|&j| points[j].weight)
+        .filter(|&w| w > 0.0)
+        .fold(f64::INFINITY, f64::min);
+    let matched: Vec<Option<usize>> = of_pair.iter().map(|&j| dominant(&points[j])).collect();
+    let all = of_pair.iter().zip(&matched).all(|(&j, &k)| {
         let p = &points[j];
-        match p.partner.as_slice() {
-            [] => true,
-            [(k, 1.0)] => {
-                let q = &points[*k];
-                q.partner.as_slice() == [(j, 1.0)]
-                    && -dot(p.normal, q.normal) == 1.0
-                    && q.weight == p.weight
-                    && q.gap == p.gap
+        match k {
+            None => p.partner.is_empty(),
+            Some(k) => {
+                let q = &points[k];
+                let normals = (p.normal[0] + q.normal[0]).hypot(p.normal[1] + q.normal[1]);
+                dominant(q) == Some(j)
+                    && normals <= MATCH_TOL
+                    && (q.weight - p.weight).abs() <= MATCH_TOL * q.weight.max(p.weight)
+                    && (q.gap - p.gap).abs() <= MATCH_TOL * length
             }
-            _ => false,
         }
-    })
+    });
+    all.then_some(matched)
 }
+
+/// The partner node of a point whose partner coefficients are 1 at one node and 0 elsewhere,
+/// within [`MATCH_TOL`]; `None` for any other point (none, or an interpolation between nodes).
+fn dominant(p: &ContactPoint) -> Option<usize> {
+    let &(k, c) = p.partner.iter().max_by(|a, b| a.1.total_cmp(&b.1))?;
+    let rest_zero = p
+        .partner
+        .iter()
+        .all(|&(i, d)| i == k || d.abs() <= MATCH_TOL);
+    ((c - 1.0).abs() <= MATCH_TOL && rest_zero).then_some(k)
+}
+
+/// The relative tolerance of [`matches_node_for_node`]: far above the rounding of coordinates
+/// (about 1e−16 of their size, so up to 1e−9 of the mesh size for a problem 1e7 mesh sizes from
+/// the origin), far below any mesh detail.
+const MATCH_TOL: f64 = 1e-9;
 
 /// n turned by +90°.
 fn turned(n: [f64; 2]) -> [f64; 2] {

@@ -84,7 +84,7 @@ impl Interface {
             }
         }
         name_remote_nodes(model, &mut points);
-        balanced_pair::resolve(&points, &mut formulations);
+        balanced_pair::resolve(&mut points, &mut formulations);
         let first: Vec<usize> = model.pairs.iter().map(|p| p.bodies[0]).collect();
         let (points, body_range) = balanced_pair::balance(
             points,
