@@ -284,7 +284,8 @@ const R7_D: f64 = 0.101_286_507_323_456_34;
 const R7_WB: f64 = 0.132_394_152_788_506_2;
 const R7_WD: f64 = 0.125_939_180_544_827_15;
 
-/// Radon's 7-point rule, exact for polynomials of degree 5 (loads, error norms).
+/// Radon's 7-point rule, exact for polynomials of degree 5 (loads, error norms, the stiffness of a
+/// curved triangle).
 pub const TRIANGLE_DEGREE_5: TriangleRule = TriangleRule {
     points: &[
         [1.0 / 3.0, 1.0 / 3.0, 1.0 / 3.0],
