@@ -1,7 +1,9 @@
 //! The deformed bodies of `contactdd plot`, each element coloured by its von Mises stress, over
 //! the undeformed outlines, read back from the bodies' `.vtu` files (the last load step's with
 //! load steps). The reader (`contactdd_io::vtu_read`) knows only what `crates/io/src/vtu.rs`
-//! writes, ASCII or binary; the figure draws triangles (the corners of a quadratic triangle).
+//! writes, ASCII or binary; the figure draws triangles (the corners of a quadratic triangle), a
+//! curved edge of a quadratic triangle (its mid-side node off the chord's midpoint) as two
+//! segments through its mid-side node.
 
 use std::ops::Range;
 use std::path::{Path, PathBuf};
@@ -22,12 +24,15 @@ const BAR_WIDTH: u32 = 140;
 
 /// One body: deformed corner coordinates of its triangles and their von Mises stress.
 struct Body {
-    triangles: Vec<[(f64, f64); 3]>,
+    /// Per triangle, its deformed corners, with the mid-side node of a curved edge between them.
+    triangles: Vec<Vec<(f64, f64)>>,
     stress: Vec<f64>,
     /// The undeformed node coordinates and the displacements, for the scale.
     points: Vec<(f64, f64)>,
     displacement: Vec<(f64, f64)>,
     cells: Vec<[usize; 3]>,
+    /// Per triangle, the mid-side node of each edge (0,1), (1,2), (2,0) if that edge is curved.
+    mids: Vec<[Option<usize>; 3]>,
 }
 
 /// The `bodies` figure from the `.vtu` files `files` (plain names in `dir`).
@@ -112,6 +117,7 @@ fn read_body(path: &Path) -> Result<Option<Body>> {
         return Err(bad());
     }
     let mut cells = Vec::with_capacity(offsets.len());
+    let mut mids = Vec::with_capacity(offsets.len());
     let mut begin = 0usize;
     for &end in offsets {
         // The first three nodes of a (linear or quadratic) triangle are its corners.
@@ -123,7 +129,15 @@ fn read_body(path: &Path) -> Result<Option<Body>> {
             }
             Ok(i)
         };
-        cells.push([corner(0)?, corner(1)?, corner(2)?]);
+        let c = [corner(0)?, corner(1)?, corner(2)?];
+        let quadratic = end as usize >= begin + 6;
+        let mut mid = [None; 3];
+        for (k, m) in mid.iter_mut().enumerate().filter(|_| quadratic) {
+            let v = corner(3 + k)?;
+            *m = curved(points[c[k]], points[c[(k + 1) % 3]], points[v]).then_some(v);
+        }
+        cells.push(c);
+        mids.push(mid);
         begin = end as usize;
     }
     Ok(Some(Body {
@@ -132,7 +146,48 @@ fn read_body(path: &Path) -> Result<Option<Body>> {
         points,
         displacement,
         cells,
+        mids,
     }))
+}
+
+/// Whether the mid-side node `m` of the edge from `a` to `b` is off its midpoint by more than
+/// 1e-8 of the edge (the mesh's own test of a curved edge).
+fn curved(a: (f64, f64), b: (f64, f64), m: (f64, f64)) -> bool {
+    let off = (m.0 - 0.5 * (a.0 + b.0)).hypot(m.1 - 0.5 * (a.1 + b.1));
+    off > 1e-8 * (b.0 - a.0).hypot(b.1 - a.1)
+}
+
+/// The outline paths with the mid-side node of every curved edge inserted between its ends.
+fn through_mids(
+    paths: Vec<Vec<usize>>,
+    cells: &[[usize; 3]],
+    mids: &[[Option<usize>; 3]],
+) -> Vec<Vec<usize>> {
+    let mut on: std::collections::HashMap<(usize, usize), usize> = Default::default();
+    for (c, m) in cells.iter().zip(mids) {
+        for k in 0..3 {
+            if let Some(v) = m[k] {
+                let (a, b) = (c[k], c[(k + 1) % 3]);
+                on.insert((a.min(b), a.max(b)), v);
+            }
+        }
+    }
+    if on.is_empty() {
+        return paths;
+    }
+    paths
+        .into_iter()
+        .map(|path| {
+            let mut out = Vec::with_capacity(2 * path.len());
+            for (i, &v) in path.iter().enumerate() {
+                if let Some(&p) = i.checked_sub(1).and_then(|i| path.get(i)) {
+                    out.extend(on.get(&(p.min(v), p.max(v))));
+                }
+                out.push(v);
+            }
+            out
+        })
+        .collect()
 }
 
 /// The bodies, deformed, coloured by stress.
@@ -183,7 +238,13 @@ impl Bodies<'_> {
             b.triangles = b
                 .cells
                 .iter()
-                .map(|c| [at(c[0]), at(c[1]), at(c[2])])
+                .zip(&b.mids)
+                .map(|(c, m)| {
+                    (0..3)
+                        .flat_map(|k| std::iter::once(c[k]).chain(m[k]))
+                        .map(at)
+                        .collect()
+                })
                 .collect();
         }
     }
@@ -246,13 +307,14 @@ impl Figure for Bodies<'_> {
         for b in &self.bodies {
             let polys = b.triangles.iter().zip(&b.stress).map(|(t, &s)| {
                 let c = viridis((s - stress.start) / width);
-                Polygon::new(t.to_vec(), c.filled())
+                Polygon::new(t.clone(), c.filled())
             });
             ok(chart.draw_series(polys))?;
         }
         let red = ShapeStyle::from(&RGBColor(200, 0, 0)).stroke_width(1);
         for b in &self.bodies {
-            let lines = outline(&b.cells).into_iter().map(|path| {
+            let paths = through_mids(outline(&b.cells), &b.cells, &b.mids);
+            let lines = paths.into_iter().map(|path| {
                 let pts = path.into_iter().map(|i| b.points[i]).collect::<Vec<_>>();
                 PathElement::new(pts, red)
             });
@@ -445,6 +507,22 @@ mod tests {
         assert_eq!(nodes, [0, 1, 2, 3]);
         // Two separate triangles: two loops.
         assert_eq!(outline(&[[0, 1, 2], [3, 4, 5]]).len(), 2);
+    }
+
+    #[test]
+    fn a_curved_edge_is_drawn_through_its_mid_side_node() {
+        // The square's edge 1–2 bulges out through node 4; its other edges are straight.
+        let cells = [[0, 1, 2], [0, 2, 3]];
+        let mids = [[None, Some(4), None], [None; 3]];
+        let paths = through_mids(outline(&cells), &cells, &mids);
+        let path = &paths[0];
+        assert_eq!(path.len(), 6, "{path:?}");
+        let at = path.iter().position(|&v| v == 4).unwrap();
+        let mut ends = [path[at - 1], path[at + 1]];
+        ends.sort_unstable();
+        assert_eq!(ends, [1, 2]);
+        assert!(curved((1.0, 0.0), (1.0, 1.0), (1.1, 0.5)));
+        assert!(!curved((1.0, 0.0), (1.0, 1.0), (1.0, 0.5)));
     }
 
     #[test]

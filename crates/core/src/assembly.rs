@@ -10,7 +10,7 @@
 use faer::sparse::{SparseColMat, SymbolicSparseColMat};
 use rayon::prelude::*;
 
-use crate::element::{self, Affine, EDGE_GAUSS_3, TRIANGLE_DEGREE_5};
+use crate::element::{self, Affine, Geometry, EDGE_GAUSS_3, TRIANGLE_DEGREE_5};
 use crate::geometry::{dof, num_dofs, Point, Vector, DIM};
 use crate::mesh::{Edge, Mesh};
 
@@ -131,8 +131,7 @@ impl Pattern {
             let len = cols.len() / DIM;
             for &e in &adj.cells[adj.cell_ptr[i]..adj.cell_ptr[i + 1]] {
                 let c = mesh.cell(e);
-                let geo = affine(mesh, c);
-                let ke = element::stiffness(order, &geo, d);
+                let ke = Geometry::of_cell(mesh, e).stiffness(order, d);
                 let Some(a) = c.iter().position(|&v| v == i) else {
                     continue;
                 };
@@ -153,19 +152,20 @@ impl Pattern {
     }
 }
 
-/// Geometry of triangle `c` (its first three nodes are the vertices).
+/// Straight-sided geometry of triangle `c` (its first three nodes are the vertices); a curved
+/// triangle's geometry is [`Geometry::of_cell`].
 pub fn affine(mesh: &Mesh, c: &[usize]) -> Affine {
     let p = mesh.nodes();
     Affine::new([p[c[0]], p[c[1]], p[c[2]]])
 }
 
 /// Adds the consistent nodal forces of a body force `f(x)` (force per unit area), integrated by a
-/// degree-5 rule.
+/// degree-5 rule (on a curved triangle, with the area element `det J / 2` of each point).
 pub fn add_body_force(mesh: &Mesh, f: impl Fn(Point) -> Vector, rhs: &mut [f64]) {
     let order = mesh.order();
     for e in 0..mesh.num_cells() {
         let c = mesh.cell(e);
-        let geo = affine(mesh, c);
+        let geo = Geometry::of_cell(mesh, e);
         for (l, w) in TRIANGLE_DEGREE_5
             .points
             .iter()
@@ -173,9 +173,10 @@ pub fn add_body_force(mesh: &Mesh, f: impl Fn(Point) -> Vector, rhs: &mut [f64])
         {
             let n = element::shape(order, *l);
             let fx = f(geo.point(*l));
+            let da = geo.weight(*w, *l);
             for (k, &v) in c.iter().enumerate() {
                 for c in 0..DIM {
-                    rhs[dof(v, c)] += w * geo.area * n[k] * fx[c];
+                    rhs[dof(v, c)] += da * n[k] * fx[c];
                 }
             }
         }
@@ -184,6 +185,13 @@ pub fn add_body_force(mesh: &Mesh, f: impl Fn(Point) -> Vector, rhs: &mut [f64])
 
 /// Adds the consistent nodal forces of a traction on boundary edges. `traction(point, normal)`
 /// returns the force per unit length at a point of an edge with outward unit normal `normal`.
+///
+/// Both straight and curved edges use the 3-point Gauss rule. A straight edge is integrated along
+/// its chord; a curved edge along its parabola ([`Mesh::edge_point`], [`Mesh::edge_normal_at`]).
+/// For a pressure, `n |dx/dt|` is linear in `t` and the rule is exact on curved edges too. For a
+/// uniform traction vector the length element `|dx/dt|` is the square root of a quadratic: the
+/// rule's relative error is of order θ⁶ on an edge turning by θ (4e-7 at θ = 30°), far below the
+/// θ⁴ by which the parabola's length differs from the arc it replaces (8e-5 at 30°).
 pub fn add_edge_traction(
     mesh: &Mesh,
     edges: &[Edge],
@@ -193,18 +201,28 @@ pub fn add_edge_traction(
     let order = mesh.order();
     let p = mesh.nodes();
     for edge in edges {
-        let (normal, len) = mesh.edge_normal(edge);
-        let (a, b) = (p[edge.a], p[edge.b]);
         let ids: Vec<usize> = edge.nodes().collect();
-        for (t, w) in EDGE_GAUSS_3.0.iter().zip(EDGE_GAUSS_3.1) {
-            let x: Point = std::array::from_fn(|c| a[c] + t * (b[c] - a[c]));
+        let mut add = |t: f64, w: f64, x: Point, normal: Vector, len: f64| {
             let tr = traction(x, normal);
-            let n = element::edge_shape(order, *t);
+            let n = element::edge_shape(order, t);
             for (k, &v) in ids.iter().enumerate() {
                 for c in 0..DIM {
                     rhs[dof(v, c)] += w * len * n[k] * tr[c];
                 }
             }
+        };
+        if mesh.is_curved_edge(edge) {
+            for (t, w) in EDGE_GAUSS_3.0.iter().zip(EDGE_GAUSS_3.1) {
+                let (normal, speed) = mesh.edge_normal_at(edge, *t);
+                add(*t, w, mesh.edge_point(edge, *t), normal, speed);
+            }
+            continue;
+        }
+        let (normal, len) = mesh.edge_normal(edge);
+        let (a, b) = (p[edge.a], p[edge.b]);
+        for (t, w) in EDGE_GAUSS_3.0.iter().zip(EDGE_GAUSS_3.1) {
+            let x: Point = std::array::from_fn(|c| a[c] + t * (b[c] - a[c]));
+            add(*t, w, x, normal, len);
         }
     }
 }

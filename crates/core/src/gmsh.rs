@@ -29,13 +29,11 @@
 //! tag number), every physical group of dimension 0 a named node set. With a chosen surface, a
 //! line or point belongs to the body when all its nodes are nodes of the body, so a physical
 //! curve running along two bodies gives each its own part.
-//! All coordinates must share one `z` (the mesh lies in a plane parallel to `xy`). 6-node
-//! triangles must be straight-sided: the element code maps every triangle affinely (constant
-//! barycentric gradients, [`crate::element::Affine`]), so isoparametric triangles would need a
-//! point-wise Jacobian in assembly, loads, stresses and the contact geometry. Curved ones (Gmsh's
-//! default for `SetOrder(2)` on curved geometry) are reported as [`GmshError::Unsupported`] at
-//! their line, naming the two ways out: a P1 mesh promoted to P2 by contactdd, or the gmsh option
-//! `Mesh.SecondOrderLinear = 1`.
+//! All coordinates must share one `z` (the mesh lies in a plane parallel to `xy`). Curved 6-node
+//! triangles (Gmsh's default for `SetOrder(2)` on curved geometry: a mid-side node off its edge's
+//! midpoint) are read as they are and used isoparametrically ([`crate::element::Geometry`]); one
+//! whose quadratic map folds (a Jacobian not positive everywhere) is reported as
+//! [`GmshError::Unsupported`] at its line.
 //!
 //! The reader runs in three steps: `tokens` splits the text, `raw` reads the sections and
 //! `build` assembles the mesh.

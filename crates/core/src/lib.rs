@@ -1,7 +1,8 @@
 //! # contactdd-core
 //!
-//! The finite element core of contactdd: 2D linear elasticity on straight-sided P1/P2 triangles in
-//! plane strain or plane stress, assembled into a fixed sparsity pattern and solved by a sparse
+//! The finite element core of contactdd: 2D linear elasticity on P1/P2 triangles (straight-sided,
+//! or curved isoparametric P2 as Gmsh `SetOrder(2)` writes them, [`element::Geometry`]) in plane
+//! strain or plane stress, assembled into a fixed sparsity pattern and solved by a sparse
 //! Cholesky factorisation (faer) per body.
 //!
 //! Modules follow the data flow: [`mesh`] (and [`rectangle`], [`gmsh`]) → [`element`] →

@@ -2,8 +2,7 @@
 
 use faer::sparse::SparseColMat;
 
-use crate::assembly::affine;
-use crate::element::{self, node_barycentric};
+use crate::element::{node_barycentric, Geometry};
 use crate::geometry::{dof, node_vector, Vector, DIM};
 use crate::material::{von_mises, Material, Plane};
 use crate::mesh::Mesh;
@@ -16,25 +15,25 @@ pub type Stress = [f64; 4];
 pub struct Stresses {
     /// Stress at each triangle's centroid.
     pub element: Vec<Stress>,
-    /// Area-weighted average at each node of the element stresses evaluated at that node.
+    /// Area-weighted average at each node of the element stresses evaluated at that node (a
+    /// curved triangle weighs by its curved area).
     pub nodal: Vec<Stress>,
     /// von Mises stress of `nodal`.
     pub von_mises: Vec<f64>,
 }
 
+/// The stress at barycentric point `l` of a triangle of geometry `geo` and nodal displacements
+/// `ue`.
 fn stress_at(
     mesh: &Mesh,
     material: &Material,
     plane: Plane,
     d: &[[f64; 3]; 3],
-    e: usize,
+    geo: &Geometry,
     l: [f64; 3],
-    u: &[f64],
+    ue: &[Vector],
 ) -> Stress {
-    let c = mesh.cell(e);
-    let geo = affine(mesh, c);
-    let ue: Vec<Vector> = c.iter().map(|&v| node_vector(u, v)).collect();
-    let eps = element::strain(mesh.order(), &geo, l, &ue);
+    let eps = geo.strain(mesh.order(), l, ue);
     let s: [f64; 3] = [0, 1, 2].map(|i| d[i][0] * eps[0] + d[i][1] * eps[1] + d[i][2] * eps[2]);
     [s[0], s[1], s[2], material.sigma_zz(plane, s[0], s[1])]
 }
@@ -47,11 +46,21 @@ pub fn stresses(mesh: &Mesh, material: &Material, plane: Plane, u: &[f64]) -> St
     let mut weight = vec![0.0; n];
     let mut element = Vec::with_capacity(mesh.num_cells());
     for e in 0..mesh.num_cells() {
-        element.push(stress_at(mesh, material, plane, &d, e, [1.0 / 3.0; 3], u));
         let c = mesh.cell(e);
-        let area = affine(mesh, c).area;
+        let geo = Geometry::of_cell(mesh, e);
+        let ue: Vec<Vector> = c.iter().map(|&v| node_vector(u, v)).collect();
+        element.push(stress_at(
+            mesh,
+            material,
+            plane,
+            &d,
+            &geo,
+            [1.0 / 3.0; 3],
+            &ue,
+        ));
+        let area = geo.area();
         for (&v, l) in c.iter().zip(node_barycentric(mesh.order())) {
-            let s = stress_at(mesh, material, plane, &d, e, *l, u);
+            let s = stress_at(mesh, material, plane, &d, &geo, *l, &ue);
             for k in 0..4 {
                 nodal[v][k] += area * s[k];
             }

@@ -257,9 +257,13 @@ fn meet((d1, g1): Row, (d2, g2): Row) -> Vector {
     u
 }
 
-/// 0 if boundary `name` is a straight line x = const, 1 if y = const, None otherwise.
+/// 0 if boundary `name` is a straight line x = const, 1 if y = const, None otherwise (also when
+/// one of its edges is curved).
 fn axis_normal(mesh: &Mesh, name: &str) -> Option<usize> {
     let edges = mesh.boundary(name).ok()?;
+    if edges.iter().any(|e| mesh.is_curved_edge(e)) {
+        return None;
+    }
     let p = mesh.nodes();
     let first = edges.first()?;
     let axis = if (p[first.a][0] - p[first.b][0]).abs() < (p[first.a][1] - p[first.b][1]).abs() {
@@ -277,7 +281,8 @@ fn axis_normal(mesh: &Mesh, name: &str) -> Option<usize> {
 }
 
 /// The outward unit normal of boundary `name` if all its nodes lie on one straight line (within
-/// 1e-9 × the mesh diameter) and all its edges face the same side of it.
+/// 1e-9 × the mesh diameter), none of its edges is curved ([`Mesh::is_curved_edge`]: its normal
+/// turns along it) and all its edges face the same side of it.
 fn line_normal(mesh: &Mesh, name: &str) -> Result<Vector, SupportError> {
     let not_straight = || SupportError::NotStraight {
         boundary: name.to_string(),
@@ -289,6 +294,9 @@ fn line_normal(mesh: &Mesh, name: &str) -> Result<Vector, SupportError> {
         })?;
     let p = mesh.nodes();
     let first = edges.first().ok_or_else(not_straight)?;
+    if edges.iter().any(|e| mesh.is_curved_edge(e)) {
+        return Err(not_straight());
+    }
     // The edges run with the body on their left, so Σ (b − a) turned clockwise points outward.
     let s = edges.iter().fold([0.0; DIM], |s, e| {
         std::array::from_fn(|c| s[c] + p[e.b][c] - p[e.a][c])

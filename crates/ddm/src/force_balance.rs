@@ -13,8 +13,7 @@
 //! more than it deforms (a huge prescribed displacement) carries reactions drowned in it. This floor is reported with the imbalance, so that a failure says which
 //! of the two it is.
 
-use contactdd_core::assembly::affine;
-use contactdd_core::element;
+use contactdd_core::element::Geometry;
 use contactdd_core::rigid::{RigidBasis, NUM_MODES};
 use contactdd_core::{dof, ElasticBody, DIM};
 
@@ -155,7 +154,7 @@ fn held_rows(body: &ElasticBody, u: &[f64]) -> (Vec<f64>, Vec<f64>) {
         if !c.iter().any(|&v| held(v)) {
             continue;
         }
-        let ke = element::stiffness(mesh.order(), &affine(mesh, c), &d);
+        let ke = Geometry::of_cell(mesh, e).stiffness(mesh.order(), &d);
         for (a, &i) in c.iter().enumerate() {
             for ci in 0..DIM {
                 for (b, &j) in c.iter().enumerate() {

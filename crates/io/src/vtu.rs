@@ -6,6 +6,8 @@
 //! - `Cells`: the flat `connectivity`, the `offsets` (end of each cell in `connectivity`) and the
 //!   VTK cell `types`: 5 (`VTK_TRIANGLE`) for P1 and 22 (`VTK_QUADRATIC_TRIANGLE`) for P2, whose
 //!   node order (vertices, then the mid-side nodes of edges (0,1), (1,2), (2,0)) is the mesh's;
+//!   the mid-side nodes are points of their own, so a curved (isoparametric) P2 triangle comes out
+//!   with its curved edges (ParaView draws a quadratic triangle's edges through its mid-side nodes);
 //! - `PointData`: one array per nodal field, node-major (all components of node 0 first);
 //! - `CellData`: one array per element field, in cell order.
 //!
