@@ -342,7 +342,7 @@ impl Problem {
     /// by the reader of ``kind = "gmsh"`` meshes with its rules: the physical surface
     /// ``surface`` is the body (default: the text's only one), the physical curves and points
     /// that touch it are its boundaries and node sets, clockwise triangles are reordered, and
-    /// curved P2 triangles are refused with the ways out. The mesh is kept in the problem (a
+    /// curved P2 triangles are used isoparametrically (folded ones are refused). The mesh is kept in the problem (a
     /// ``kind = "inline"`` mesh for :meth:`to_toml`). :func:`contactdd.add_meshio_body` and
     /// :func:`contactdd.add_gmsh_body` use it.
     ///

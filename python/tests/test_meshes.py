@@ -100,7 +100,7 @@ def block(add):
     return p
 
 
-def test_meshio_rules_clockwise_and_curved_p2():
+def test_meshio_rules_clockwise_curved_and_folded_p2():
     meshio = pytest.importorskip("meshio")
     corners = [[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]]
     ccw, cw = [[0, 1, 2], [0, 2, 3]], [[0, 2, 1], [0, 3, 2]]
@@ -114,12 +114,16 @@ def test_meshio_rules_clockwise_and_curved_p2():
     # The clockwise triangles were reordered into the counter-clockwise ones.
     assert texts[0] == texts[1]
     assert "triangles = [[0, 1, 2], [0, 2, 3]]" in texts[0]
-    # P2 with the mid-side node of edge (0, 1) off the edge: a curved triangle.
+    # P2 with the mid-side node of edge (0, 1) off the edge: a curved (isoparametric) triangle.
     mids = [[0.5, -0.1], [1.0, 0.5], [0.5, 0.5], [0.5, 1.0], [0.0, 0.5]]
     p2 = [[0, 1, 2, 4, 5, 6], [0, 2, 3, 6, 7, 8]]
     mesh = square(meshio, corners + mids, p2, mid=4)
-    with pytest.raises(contactdd.ContactddError, match="SecondOrderLinear") as info:
-        block(lambda p: contactdd.add_meshio_body(p, "b", mesh, "steel", supports=held))
+    curved = block(lambda p: contactdd.add_meshio_body(p, "b", mesh, "steel", supports=held))
+    assert "-0.1" in curved.to_toml()
+    # Pulled deep into its triangle, the node folds it: refused, saying where.
+    folded = square(meshio, corners + [[0.5, 0.45]] + mids[1:], p2, mid=4)
+    with pytest.raises(contactdd.ContactddError, match="folded") as info:
+        block(lambda p: contactdd.add_meshio_body(p, "b", folded, "steel", supports=held))
     assert "the meshio mesh" in str(info.value)
 
 

@@ -4,8 +4,8 @@
 Both hand the mesh to :meth:`Problem.add_msh_body` as the text of a ``.msh`` file, so it is read
 by the one Gmsh reader of contactdd with the rules of a ``kind = "gmsh"`` mesh in a problem file:
 the physical surface ``surface`` picks the body, the physical curves and points that touch it are
-its boundaries and node sets, clockwise triangles are reordered, curved P2 triangles are refused
-with the ways out. meshio and gmsh are optional; each is imported only when its function is
+its boundaries and node sets, clockwise triangles are reordered, curved P2 triangles are used
+isoparametrically (folded ones are refused). meshio and gmsh are optional; each is imported only when its function is
 called.
 """
 
