@@ -2,6 +2,7 @@
 //! stresses, von Mises, σ_n of the contact nodes), with the model and the pairs' results the contact
 //! pressure, the contact point data and the element von Mises. File names are the [`safe_file_name`]s of the body names, made unique.
 
+use rayon::prelude::*;
 use std::collections::HashSet;
 use std::io::{Error, ErrorKind};
 use std::path::{Path, PathBuf};
@@ -156,64 +157,81 @@ fn write_vtus(
     (dir, suffix, format): (&Path, &str, VtuFormat),
     bodies: &[BodyResult],
     owns: &dyn Fn(usize) -> bool,
-    extra: impl Fn(usize, &BodyResult) -> std::io::Result<Extra>,
+    extra: impl Fn(usize, &BodyResult) -> std::io::Result<Extra> + Sync,
     written: &mut Vec<PathBuf>,
 ) -> std::io::Result<()> {
     let paths = vtu_paths(dir, suffix, bodies);
-    for ((b, body), path) in bodies.iter().enumerate().zip(paths) {
-        if !owns(b) {
-            continue;
+    let mine: Vec<(usize, PathBuf)> = (paths.into_iter().enumerate())
+        .filter(|&(b, _)| owns(b))
+        .collect();
+    // The bodies' files are independent: written in parallel, listed in body order.
+    let results: Vec<std::io::Result<()>> = mine
+        .par_iter()
+        .map(|(b, path)| write_body_vtu(path, &bodies[*b], extra(*b, &bodies[*b])?, format))
+        .collect();
+    let mut first_error = None;
+    for ((_, path), result) in mine.into_iter().zip(results) {
+        match result {
+            Ok(()) => written.push(path),
+            Err(e) => first_error = first_error.or(Some(e)),
         }
-        let extra = extra(b, body)?;
-        let component = |k: usize| body.stress.iter().map(|s| s[k]).collect::<Vec<f64>>();
-        let (sxx, syy, sxy, szz) = (component(0), component(1), component(2), component(3));
-        let tensors: Vec<f64> = body.stress.iter().flat_map(tensor).collect();
-        let principals: Vec<[f64; 3]> = body.stress.iter().map(principal).collect();
-        let principal_k = |k: usize| principals.iter().map(|p| p[k]).collect::<Vec<f64>>();
-        let (p1, p2, p3) = (principal_k(0), principal_k(1), principal_k(2));
-        let field = |name, components, values| Field {
-            name,
-            components,
-            values,
-        };
-        let mut points = vec![
-            field("stress", 9, &tensors),
-            field("principal_stress_1", 1, &p1),
-            field("principal_stress_2", 1, &p2),
-            field("principal_stress_3", 1, &p3),
-            field("sigma_xx", 1, &sxx),
-            field("sigma_yy", 1, &syy),
-            field("sigma_xy", 1, &sxy),
-            field("sigma_zz", 1, &szz),
-            field("von_mises", 1, &body.von_mises),
-            field("sigma_n", 1, &body.contact_pressure),
-        ];
-        if let Some(p) = &extra.pressure {
-            points.push(field("contact_pressure", 1, p));
-        }
-        if let Some(c) = &extra.contact {
-            points.push(field("gap", 1, &c.gap));
-            points.push(field("contact_status", 1, &c.status));
-        }
-        if let Some((tangential, status)) = &extra.friction {
-            points.push(field("contact_tangential", 1, tangential));
-            points.push(field("friction_status", 1, status));
-        }
-        let cells: Vec<Field<'_>> = extra
-            .element_von_mises
-            .as_deref()
-            .map(|v| field("element_von_mises", 1, v))
-            .into_iter()
-            .collect();
-        let data = VtuData {
-            displacement: Some(&body.displacement),
-            points: &points,
-            cells: &cells,
-        };
-        write_vtu_as(&path, &body.mesh, data, format)?;
-        written.push(path);
     }
-    Ok(())
+    first_error.map_or(Ok(()), Err)
+}
+
+/// Writes one body's `.vtu` with its fields and `extra`.
+fn write_body_vtu(
+    path: &Path,
+    body: &BodyResult,
+    extra: Extra,
+    format: VtuFormat,
+) -> std::io::Result<()> {
+    let component = |k: usize| body.stress.iter().map(|s| s[k]).collect::<Vec<f64>>();
+    let (sxx, syy, sxy, szz) = (component(0), component(1), component(2), component(3));
+    let tensors: Vec<f64> = body.stress.iter().flat_map(tensor).collect();
+    let principals: Vec<[f64; 3]> = body.stress.iter().map(principal).collect();
+    let principal_k = |k: usize| principals.iter().map(|p| p[k]).collect::<Vec<f64>>();
+    let (p1, p2, p3) = (principal_k(0), principal_k(1), principal_k(2));
+    let field = |name, components, values| Field {
+        name,
+        components,
+        values,
+    };
+    let mut points = vec![
+        field("stress", 9, &tensors),
+        field("principal_stress_1", 1, &p1),
+        field("principal_stress_2", 1, &p2),
+        field("principal_stress_3", 1, &p3),
+        field("sigma_xx", 1, &sxx),
+        field("sigma_yy", 1, &syy),
+        field("sigma_xy", 1, &sxy),
+        field("sigma_zz", 1, &szz),
+        field("von_mises", 1, &body.von_mises),
+        field("sigma_n", 1, &body.contact_pressure),
+    ];
+    if let Some(p) = &extra.pressure {
+        points.push(field("contact_pressure", 1, p));
+    }
+    if let Some(c) = &extra.contact {
+        points.push(field("gap", 1, &c.gap));
+        points.push(field("contact_status", 1, &c.status));
+    }
+    if let Some((tangential, status)) = &extra.friction {
+        points.push(field("contact_tangential", 1, tangential));
+        points.push(field("friction_status", 1, status));
+    }
+    let cells: Vec<Field<'_>> = extra
+        .element_von_mises
+        .as_deref()
+        .map(|v| field("element_von_mises", 1, v))
+        .into_iter()
+        .collect();
+    let data = VtuData {
+        displacement: Some(&body.displacement),
+        points: &points,
+        cells: &cells,
+    };
+    write_vtu_as(path, &body.mesh, data, format)
 }
 
 /// A name usable as a file name on every platform: letters, digits, `-`, `_` and `.` are kept,
