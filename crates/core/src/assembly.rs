@@ -14,18 +14,15 @@ use crate::element::{self, Affine, Geometry, EDGE_GAUSS_3, TRIANGLE_DEGREE_5};
 use crate::geometry::{dof, num_dofs, Point, Vector, DIM};
 use crate::mesh::{Edge, Mesh};
 
-/// Node-to-triangle incidence and node adjacency of a mesh.
-struct Adjacency {
-    /// For node i, the triangles `cell_ptr[i]..cell_ptr[i+1]` of `cells`.
+/// Node-to-triangle incidence of a mesh: for node i, the triangles
+/// `cells[cell_ptr[i]..cell_ptr[i + 1]]`, in increasing order.
+struct Incidence {
     cell_ptr: Vec<usize>,
     cells: Vec<usize>,
-    /// Sorted neighbour nodes (including i itself), CSR.
-    nbr_ptr: Vec<usize>,
-    nbrs: Vec<usize>,
 }
 
-impl Adjacency {
-    fn new(mesh: &Mesh) -> Adjacency {
+impl Incidence {
+    fn new(mesh: &Mesh) -> Incidence {
         let n = mesh.num_nodes();
         let npc = mesh.order().nodes_per_cell();
         let mut count = vec![0usize; n + 1];
@@ -44,27 +41,48 @@ impl Adjacency {
                 fill[v] += 1;
             }
         }
-        let lists: Vec<Vec<usize>> = (0..n)
-            .into_par_iter()
-            .map(|i| {
-                let mut l: Vec<usize> = cells[cell_ptr[i]..cell_ptr[i + 1]]
-                    .iter()
-                    .flat_map(|&e| mesh.cell(e).iter().copied())
-                    .collect();
-                l.sort_unstable();
-                l.dedup();
-                l
-            })
+        Incidence { cell_ptr, cells }
+    }
+
+    /// The triangles around node `i`.
+    fn cells_of(&self, i: usize) -> &[usize] {
+        &self.cells[self.cell_ptr[i]..self.cell_ptr[i + 1]]
+    }
+
+    /// The sorted neighbour nodes of node `i` (including i itself).
+    fn neighbours_of(&self, mesh: &Mesh, i: usize) -> Vec<usize> {
+        let mut l: Vec<usize> = (self.cells_of(i).iter())
+            .flat_map(|&e| mesh.cell(e).iter().copied())
             .collect();
-        let mut nbr_ptr = Vec::with_capacity(n + 1);
+        l.sort_unstable();
+        l.dedup();
+        l
+    }
+}
+
+/// Node-to-triangle incidence and node adjacency of a mesh.
+struct Adjacency {
+    incidence: Incidence,
+    /// Sorted neighbour nodes (including i itself), CSR.
+    nbr_ptr: Vec<usize>,
+    nbrs: Vec<usize>,
+}
+
+impl Adjacency {
+    fn new(mesh: &Mesh) -> Adjacency {
+        let incidence = Incidence::new(mesh);
+        let lists: Vec<Vec<usize>> = (0..mesh.num_nodes())
+            .into_par_iter()
+            .map(|i| incidence.neighbours_of(mesh, i))
+            .collect();
+        let mut nbr_ptr = Vec::with_capacity(lists.len() + 1);
         nbr_ptr.push(0);
         for l in &lists {
             nbr_ptr.push(nbr_ptr.last().copied().unwrap_or(0) + l.len());
         }
         let nbrs = lists.concat();
         Adjacency {
-            cell_ptr,
-            cells,
+            incidence,
             nbr_ptr,
             nbrs,
         }
@@ -73,6 +91,80 @@ impl Adjacency {
     fn neighbours(&self, i: usize) -> &[usize] {
         &self.nbrs[self.nbr_ptr[i]..self.nbr_ptr[i + 1]]
     }
+}
+
+/// The two stiffness columns of node `i` (u_x, then u_y; each over the rows of its sorted
+/// neighbours `nbrs`, two per neighbour) added into `cols`, from the triangles `cells` around it.
+fn node_columns(
+    mesh: &Mesh,
+    d: &[[f64; 3]; 3],
+    (i, cells, nbrs): (usize, &[usize], &[usize]),
+    cols: &mut [f64],
+) {
+    let len = cols.len() / DIM;
+    for &e in cells {
+        let c = mesh.cell(e);
+        let ke = Geometry::of_cell(mesh, e).stiffness(mesh.order(), d);
+        let Some(a) = c.iter().position(|&v| v == i) else {
+            continue;
+        };
+        for (b, &j) in c.iter().enumerate() {
+            let Ok(p) = nbrs.binary_search(&j) else {
+                continue;
+            };
+            for ci in 0..DIM {
+                for cj in 0..DIM {
+                    // Column dof(i, ci), row dof(j, cj).
+                    cols[ci * len + dof(p, cj)] += ke[dof(b, cj)][dof(a, ci)];
+                }
+            }
+        }
+    }
+}
+
+/// The residual K u − f of the stiffness with elasticity matrix `d` in the rows of the nodes
+/// `rows` only (zero in every other row), without assembling K: only the columns of the rows'
+/// neighbours are built. Each row adds the same terms in the same order as the product with the
+/// assembled matrix (`crate::post::residual`), so the values are the same to the bit. What a
+/// body's support reactions need, at a cost that grows with the supported nodes.
+pub fn residual_rows(
+    mesh: &Mesh,
+    d: &[[f64; 3]; 3],
+    (u, f): (&[f64], &[f64]),
+    rows: &[usize],
+) -> Vec<f64> {
+    let incidence = Incidence::new(mesh);
+    let mut wanted = vec![false; mesh.num_nodes()];
+    rows.iter().for_each(|&v| wanted[v] = true);
+    let mut columns: Vec<usize> = (rows.iter())
+        .flat_map(|&v| incidence.neighbours_of(mesh, v))
+        .collect();
+    columns.sort_unstable();
+    columns.dedup();
+    let built: Vec<(Vec<usize>, Vec<f64>)> = columns
+        .par_iter()
+        .map(|&j| {
+            let nbrs = incidence.neighbours_of(mesh, j);
+            let mut cols = vec![0.0; DIM * DIM * nbrs.len()];
+            node_columns(mesh, d, (j, incidence.cells_of(j), &nbrs), &mut cols);
+            (nbrs, cols)
+        })
+        .collect();
+    let mut r = vec![0.0; f.len()];
+    rows.iter()
+        .for_each(|&v| (0..DIM).for_each(|c| r[dof(v, c)] = -f[dof(v, c)]));
+    for (&j, (nbrs, cols)) in columns.iter().zip(&built) {
+        let len = DIM * nbrs.len();
+        for ci in 0..DIM {
+            let uj = u[dof(j, ci)];
+            for (p, &k) in nbrs.iter().enumerate().filter(|(_, &k)| wanted[k]) {
+                for cj in 0..DIM {
+                    r[dof(k, cj)] += cols[ci * len + dof(p, cj)] * uj;
+                }
+            }
+        }
+    }
+    r
 }
 
 /// The fixed sparsity pattern of a body's stiffness matrix and the data needed to refill it.
@@ -113,7 +205,6 @@ impl Pattern {
 
     /// Assembles the stiffness matrix with elasticity matrix `d` into this pattern.
     pub fn stiffness(&self, mesh: &Mesh, d: &[[f64; 3]; 3]) -> SparseColMat<usize, f64> {
-        let order = mesh.order();
         let n = mesh.num_nodes();
         let adj = &self.adjacency;
         let col_ptr = self.symbolic.col_ptr();
@@ -127,26 +218,8 @@ impl Pattern {
             rest = tail;
         }
         chunks.into_par_iter().enumerate().for_each(|(i, cols)| {
-            let nbrs = adj.neighbours(i);
-            let len = cols.len() / DIM;
-            for &e in &adj.cells[adj.cell_ptr[i]..adj.cell_ptr[i + 1]] {
-                let c = mesh.cell(e);
-                let ke = Geometry::of_cell(mesh, e).stiffness(order, d);
-                let Some(a) = c.iter().position(|&v| v == i) else {
-                    continue;
-                };
-                for (b, &j) in c.iter().enumerate() {
-                    let Ok(p) = nbrs.binary_search(&j) else {
-                        continue;
-                    };
-                    for ci in 0..DIM {
-                        for cj in 0..DIM {
-                            // Column dof(i, ci), row dof(j, cj).
-                            cols[ci * len + dof(p, cj)] += ke[dof(b, cj)][dof(a, ci)];
-                        }
-                    }
-                }
-            }
+            let cells = adj.incidence.cells_of(i);
+            node_columns(mesh, d, (i, cells, adj.neighbours(i)), cols);
         });
         SparseColMat::new(self.symbolic.clone(), values)
     }

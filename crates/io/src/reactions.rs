@@ -7,7 +7,7 @@
 //! forces of the reported pressures (w σ_n n) are subtracted, so that a body's balance reads
 //! `applied load + reactions + contact force = 0` up to the solver's equilibrium residual.
 
-use contactdd_core::post::residual;
+use contactdd_core::assembly::residual_rows;
 use contactdd_core::{dof, Constraints, Vector, DIM};
 use contactdd_ddm::solution::{nodal_contact_force, BodyResult, PairResult};
 use contactdd_ddm::Model;
@@ -72,12 +72,17 @@ pub fn body_reactions(
 ) -> BodyReactions {
     let body = &model.bodies[b];
     let fc = nodal_contact_force(model, b, contact);
-    let r = residual(&body.stiffness(), &fields.displacement, &body.load);
     let constraints = &body.constraints;
     // A node of an inclined normal support counts with both components: its reaction lies
     // along the normal.
     let held = |v: usize, c: usize| constraints.holds(dof(v, c));
     let mesh = &body.mesh;
+    // K u − f in the supported rows only: the rest of K is not needed.
+    let rows: Vec<usize> = (0..mesh.num_nodes())
+        .filter(|&v| (0..DIM).any(|c| held(v, c)))
+        .collect();
+    let d = body.material.elasticity(body.plane);
+    let r = residual_rows(mesh, &d, (&fields.displacement, &body.load), &rows);
     let names = mesh.boundaries().keys().chain(mesh.node_sets().keys());
     let supported: Vec<(&String, Vec<usize>)> = names
         .filter_map(|name| {
