@@ -214,11 +214,17 @@ pub fn solve(args: SolveArgs) -> Result<Exit> {
                     .insert(format!("communication_rank{r}"), u.communication);
             }
         }
+        let t_reactions = Instant::now();
         let reactions = ranks.reactions(model, &sol);
+        sol.timing.insert("load".into(), t_load);
+        let t_reactions = t_reactions.elapsed().as_secs_f64();
+        sol.timing.insert("reactions".into(), t_reactions);
         let units = loaded.problem.units.as_deref();
+        let t_write = Instant::now();
         let written = ranks
             .write_results(&out, model, &sol, &reactions, units)
             .with_context(|| format!("cannot write the results to '{}'", out.display()))?;
+        let t_write = t_write.elapsed().as_secs_f64();
         if !ranks.is_root() {
             // Rank 0 reports; every rank ends with the same exit code.
             return Ok(if sol.converged {
@@ -240,7 +246,13 @@ pub fn solve(args: SolveArgs) -> Result<Exit> {
                     .iter()
                     .filter_map(|&k| Some((k, *sol.timing.get(k)?))),
             );
-            phases.push(("total", start.elapsed().as_secs_f64()));
+            phases.push(("write", t_write));
+            // The rest of the run (start-up, thread pools, this report): the phases add up to
+            // the total.
+            let total = start.elapsed().as_secs_f64();
+            let timed: f64 = phases.iter().map(|p| p.1).sum();
+            phases.push(("other", (total - timed).max(0.0)));
+            phases.push(("total", total));
             let usage = (ranks.size() > 1).then_some(usage.as_slice());
             print_summary(model, &sol, &reactions, &phases, usage);
             say!("results: {}", files(&out, &written));
@@ -306,12 +318,13 @@ fn solve_outcome(sol: &contactdd_ddm::Solution, settings: &contactdd_ddm::Settin
 }
 
 /// The timed phases of a solve, in the order the console reports them.
-const SOLVE_PHASES: [&str; 5] = [
+const SOLVE_PHASES: [&str; 6] = [
     "contact_setup",
     "assemble_factor_condense",
     "iterate",
     "recover",
     "post",
+    "reactions",
 ];
 
 /// The console summary after the outcome line: every pair, the loads, the reactions, the timings
