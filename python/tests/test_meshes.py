@@ -80,6 +80,59 @@ def test_live_gmsh_model_solves_as_the_file(from_file):
     assert_same_result(from_file[1], contactdd.solve(problem), timing=False)
 
 
+def test_live_gmsh_order_2_mesh_is_curved_and_matches_hertz():
+    """Gmsh's SetOrder(2) on a half disc gives curved 6-node triangles, read isoparametrically:
+    the arc's nodes (mid-side ones too) lie on the circle, and the half disc pressed on a block
+    (examples/hertz.toml's problem) has Hertz's peak pressure to 1 %."""
+    try:
+        import gmsh
+    except (ImportError, OSError) as e:
+        pytest.skip(f"the gmsh package cannot be imported here: {e}")
+    gmsh.initialize(interruptible=False)
+    try:
+        gmsh.option.setNumber("General.Terminal", 0)
+        occ = gmsh.model.occ
+        centre, left, right, low = (occ.addPoint(x, y, 0) for x, y in
+                                    [(0, 1), (-1, 1), (1, 1), (0, 0)])
+        arcs = [occ.addCircleArc(left, centre, low), occ.addCircleArc(low, centre, right)]
+        top = occ.addLine(right, left)
+        disc = occ.addPlaneSurface([occ.addCurveLoop(arcs + [top])])
+        occ.synchronize()
+        gmsh.model.addPhysicalGroup(1, arcs, name="arc")
+        gmsh.model.addPhysicalGroup(1, [top], name="top")
+        gmsh.model.addPhysicalGroup(2, [disc], name="disc")
+        near = gmsh.model.mesh.field.add("Distance")
+        gmsh.model.mesh.field.setNumbers(near, "PointsList", [low])
+        size = gmsh.model.mesh.field.add("Threshold")
+        for key, value in [("InField", near), ("SizeMin", 0.01), ("SizeMax", 0.1),
+                           ("DistMin", 0.05), ("DistMax", 1.0)]:
+            gmsh.model.mesh.field.setNumber(size, key, value)
+        gmsh.model.mesh.field.setAsBackgroundMesh(size)
+        gmsh.option.setNumber("Mesh.MeshSizeExtendFromBoundary", 0)
+        gmsh.model.mesh.generate(2)
+        gmsh.model.mesh.setOrder(2)
+        p = contactdd.Problem(name="hertz")
+        p.add_material("steel", young=2.1e5, poisson=0.3)
+        contactdd.add_gmsh_body(p, "disc", "steel", surface="disc",
+                                supports=[{"boundary": "top", "component": "both"}])
+    finally:
+        gmsh.finalize()
+    p.add_rectangle_body("block", (-1.0, 1.0), (-1.0, 0.0), 200, 100, "steel", order="p2",
+                         supports=[{"boundary": "bottom", "component": "x"}],
+                         loads=[{"kind": "pressure", "boundary": "bottom", "value": 450.0}])
+    p.add_contact(("disc", "block"), ("arc", "top"), theta=8e-9)
+    result = contactdd.solve(p)
+    assert result.converged
+    contact = result.contact[0]
+    on_disc = np.asarray(contact.side) == 0
+    x, y = np.asarray(contact.x)[on_disc], np.asarray(contact.y)[on_disc]
+    assert np.abs(np.hypot(x, y - 1.0) - 1.0).max() < 1e-12
+    e_star = 2.1e5 / (2 * (1 - 0.3 ** 2))
+    a = np.sqrt(4 * 900.0 / (np.pi * e_star))
+    p0 = 2 * 900.0 / (np.pi * a)
+    assert abs(np.asarray(contact.pressure).max() / p0 - 1) < 0.01
+
+
 def square(meshio, points, cells, mid=None):
     """A unit square of two triangles as a meshio mesh with physical groups: surface "block"
     (tag 1), curve "bottom" (tag 2)."""
