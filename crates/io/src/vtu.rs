@@ -256,11 +256,39 @@ fn zlib_file(text: &str, raw: Vec<u8>, pending: &[Pending]) -> std::io::Result<V
 
 /// `bytes` as one zlib stream at [`ZLIB_LEVEL`].
 fn compress_block(bytes: &[u8]) -> std::io::Result<Vec<u8>> {
-    use std::io::Write as _;
-    let level = flate2::Compression::new(ZLIB_LEVEL);
-    let mut encoder = flate2::write::ZlibEncoder::new(Vec::with_capacity(bytes.len() / 2), level);
-    encoder.write_all(bytes)?;
-    encoder.finish()
+    use flate2::{Compress, FlushCompress, Status};
+    thread_local! {
+        // One compressor per thread, reset per block: a new one allocates and clears its
+        // window and hash tables (hundreds of kB), which would cost more than compressing a
+        // small body's array.
+        static COMPRESSOR: std::cell::RefCell<Option<Compress>> = const { std::cell::RefCell::new(None) };
+    }
+    let failed = |e: flate2::CompressError| std::io::Error::other(e.to_string());
+    COMPRESSOR.with(|cell| {
+        let mut cell = cell.borrow_mut();
+        let z =
+            cell.get_or_insert_with(|| Compress::new(flate2::Compression::new(ZLIB_LEVEL), true));
+        z.reset();
+        let mut out = Vec::with_capacity(bytes.len() / 2 + 64);
+        // As a zlib encoder writes: the input without flushing, then the end of the stream.
+        let mut input = bytes;
+        while !input.is_empty() {
+            out.reserve(64.max(input.len() / 2));
+            let before = z.total_in();
+            z.compress_vec(input, &mut out, FlushCompress::None)
+                .map_err(failed)?;
+            input = &input[(z.total_in() - before) as usize..];
+        }
+        loop {
+            out.reserve(64.max(out.len() / 8));
+            if z.compress_vec(&[], &mut out, FlushCompress::Finish)
+                .map_err(failed)?
+                == Status::StreamEnd
+            {
+                return Ok(out);
+            }
+        }
+    })
 }
 
 /// The XML of the file through `</UnstructuredGrid>` (and `</VTKFile>` for ASCII), with the
