@@ -6,6 +6,7 @@ grows with the number of bodies (docs/interface-newton.md, "Many bodies").
     python3 scripts/columns.py 64 256 1024
     python3 scripts/columns.py --wall 8 16 32                          # 64 to 1024 blocks
     CONTACTDD_BIN=/path/to/contactdd python3 scripts/columns.py 1024   # another build
+    python3 scripts/columns.py --monolithic 64 256                     # also the reference
 
 A column's blocks are 2 × 0.25, held sideways on their left edge and free vertically; steel and
 aluminium alternate with 8 and 10 cells across, so every interface is non-matching; the bottom
@@ -13,7 +14,9 @@ block rests on the floor and the top one is pressed by p = 100. A wall's blocks 
 4 or 5 cells across (neighbours never match), floating in all three rigid modes inside; the
 bottom row rests on the floor, the side columns on the walls, and the top row is pressed by
 p = 100. Per problem the script prints the iterations, the `iterate` time of summary.json and the
-whole run's wall time.
+whole run's wall time. With `--monolithic` it also runs `contactdd monolithic` on the same file and
+prints its Newton steps, its wall time and the ratio of the two wall times (docs/monolithic.md,
+"Many bodies").
 """
 import json
 import os
@@ -79,27 +82,44 @@ def wall(n):
     return s
 
 
+def run(command, problem, out):
+    """Runs `contactdd COMMAND problem`; returns (summary.json, wall time) or an error line."""
+    start = time.perf_counter()
+    result = subprocess.run([str(BINARY), command, str(problem), "--quiet", "--out", str(out)],
+                            capture_output=True, text=True)
+    elapsed = time.perf_counter() - start
+    if result.returncode != 0:
+        return f"{command} exit {result.returncode}: {result.stderr.strip()}", elapsed
+    return json.loads((out / "summary.json").read_text()), elapsed
+
+
 def main():
     args = sys.argv[1:]
     make = column
     if "--wall" in args:
         args.remove("--wall")
         make = wall
+    monolithic = "--monolithic" in args
+    if monolithic:
+        args.remove("--monolithic")
     with tempfile.TemporaryDirectory() as tmp:
         for n in map(int, args):
             problem = Path(tmp) / f"{make.__name__}{n}.toml"
             problem.write_text(make(n))
-            out = Path(tmp) / f"out{n}"
-            start = time.perf_counter()
-            result = subprocess.run([str(BINARY), "solve", str(problem), "--quiet", "--out", str(out)],
-                                    capture_output=True, text=True)
-            elapsed = time.perf_counter() - start
-            if result.returncode != 0:
-                print(f"{make.__name__} {n}: exit {result.returncode}: {result.stderr.strip()}")
+            summary, elapsed = run("solve", problem, Path(tmp) / f"out{n}")
+            if isinstance(summary, str):
+                print(f"{make.__name__} {n}: {summary}")
                 continue
-            summary = json.loads((out / "summary.json").read_text())
-            print(f"{make.__name__} {n}: {summary['iterations']} iterations, iterate "
-                  f"{summary['timing_s']['iterate']:.3f} s, run {elapsed:.2f} s", flush=True)
+            line = (f"{make.__name__} {n}: {summary['iterations']} iterations, iterate "
+                    f"{summary['timing_s']['iterate']:.3f} s, run {elapsed:.2f} s")
+            if monolithic:
+                reference, seconds = run("monolithic", problem, Path(tmp) / f"mono{n}")
+                if isinstance(reference, str):
+                    line += f"; monolithic {reference}"
+                else:
+                    line += (f"; monolithic {reference['newton_steps']} steps, run {seconds:.2f} s"
+                             f" ({seconds / elapsed:.2f}x solve)")
+            print(line, flush=True)
 
 
 if __name__ == "__main__":

@@ -40,9 +40,9 @@ use crate::model::Model;
 use crate::settings::Settings;
 use crate::solution::{body_results, pair_results, BodyResult, PairResult};
 
-use modes::{dot, project_out, Mode};
+use modes::{dot, project_out, Modes};
 use reduced::ReducedBody;
-use system::{Evaluation, ReducedSystem};
+use system::{Evaluation, ReducedSystem, Sparse};
 
 /// Accepted states whose worst merit the line search compares with (Grippo, Lampariello &
 /// Lucidi's non-monotone rule).
@@ -284,7 +284,7 @@ fn finish(
     model: &Model,
     system: &ReducedSystem,
     bodies: &[ReducedBody],
-    modes: &[Mode],
+    modes: &Modes,
     settings: &MonolithicSettings,
     end: End,
     start: Instant,
@@ -419,7 +419,7 @@ struct Run {
 /// The globalised semismooth Newton iteration from x = 0, λ = 0.
 fn newton(
     system: &ReducedSystem,
-    modes: &[Mode],
+    modes: &Modes,
     settings: &MonolithicSettings,
     on_step: Option<&(dyn Fn(&MonolithicStep) + Sync)>,
 ) -> Run {
@@ -514,7 +514,7 @@ fn load_scale(system: &ReducedSystem) -> f64 {
 /// search once a set comes back (the plain iteration would cycle) or the merit would grow past it.
 fn step_length(
     system: &ReducedSystem,
-    z: &[Vec<f64>],
+    z: &[Sparse],
     new_set: bool,
     at: (&[f64], &[f64]),
     dir: (&[f64], &[f64]),
@@ -536,7 +536,7 @@ fn step_length(
 /// search many short steps). Frictional points that J treats as closed but are open stick.
 fn jacobian_set(
     system: &ReducedSystem,
-    modes: &[Mode],
+    modes: &Modes,
     eval: &Evaluation,
 ) -> (Vec<bool>, Vec<Status>) {
     let points = &system.interface.points;
@@ -570,12 +570,13 @@ fn jacobian_set(
 
 /// A body held by closed points, but not along a motion its loads push it in (a column of
 /// blocks held sideways by its neighbours, open below; a block whose frictional points all
-/// slip): the points that would resist the motion, of smallest gap, count as closed in `chi`,
-/// or if none is open, the frictional points that would resist it stick in `status`, until no
-/// such motion is left free.
+/// slip): the points that would resist the free motions, of smallest gap over all of them, count
+/// as closed in `chi`, or if none is open, the frictional points that would resist them stick in
+/// `status`, until no loaded motion is left free. All free motions at once, not one group of
+/// bodies after the other: the sets then do not depend on how the free motions are split.
 fn hold_loaded_motions(
     system: &ReducedSystem,
-    modes: &[Mode],
+    modes: &Modes,
     eval: &Evaluation,
     chi: &mut [bool],
     status: &mut [Status],
@@ -583,7 +584,7 @@ fn hold_loaded_motions(
     let points = &system.interface.points;
     for _ in 0..modes.len() {
         let stick: Vec<bool> = status.iter().map(|&s| s == Status::Stick).collect();
-        let Some(w) = loaded_motion(modes, chi, &stick) else {
+        let Some(w) = loaded_motions(modes, chi, &stick) else {
             break;
         };
         let open: Vec<usize> = resisting(system, modes, &w)
@@ -618,41 +619,35 @@ fn hold_loaded_motions(
 /// which the motion is loaded (far above the rounding of loads that balance).
 const WORK_TOL: f64 = 1e-8;
 
-/// The weights of a rigid motion that the closed points `chi` and the sticking points `stick`
-/// leave free and along which the applied loads do work.
-fn loaded_motion(modes: &[Mode], chi: &[bool], stick: &[bool]) -> Option<Vec<f64>> {
+/// The weights of the rigid motions that the closed points `chi` and the sticking points `stick`
+/// leave free, if the applied loads do work along one of them.
+fn loaded_motions(modes: &Modes, chi: &[bool], stick: &[bool]) -> Option<Vec<Vec<f64>>> {
     let total = modes.iter().map(|m| m.work * m.work).sum::<f64>().sqrt();
     if total == 0.0 {
         return None;
     }
-    modes::kernel(modes, chi, stick)
-        .weights
-        .into_iter()
-        .find(|w| {
-            let work: f64 = w.iter().zip(modes).map(|(c, m)| c * m.work).sum();
+    let free = modes::kernel(modes, chi, stick).weights;
+    free.iter()
+        .any(|w| {
+            let work: f64 = w.iter().zip(modes.iter()).map(|(c, m)| c * m.work).sum();
             work.abs() > WORK_TOL * total
         })
+        .then_some(free)
 }
 
-/// The points that can carry a force (partnered, own-side or carriers) and whose pair sum the
-/// motion with mode weights `w` changes.
-fn resisting(system: &ReducedSystem, modes: &[Mode], w: &[f64]) -> Vec<usize> {
+/// The points that can carry a force (partnered, own-side or carriers) and whose pair sum one of
+/// the motions with mode weights `ws` changes.
+fn resisting(system: &ReducedSystem, modes: &Modes, ws: &[Vec<f64>]) -> Vec<usize> {
     let points = &system.interface.points;
-    let change: Vec<(usize, f64)> = (0..points.len())
+    let candidates: Vec<usize> = (0..points.len())
         .filter(|&j| points[j].has_partner() && points[j].carries())
-        .map(|j| (j, w.iter().zip(modes).map(|(c, m)| c * m.on_s[j]).sum()))
         .collect();
-    let largest = change.iter().fold(0.0f64, |a, &(_, c)| a.max(c.abs()));
-    change
-        .into_iter()
-        .filter(|&(_, c)| c.abs() > 1e-8 * largest)
-        .map(|(j, _)| j)
-        .collect()
+    modes::changed_by(&candidates, ws, |j, w| modes.s_along(j, w))
 }
 
 /// ‖(F, Φ)‖ with F's part along the unresisted motions `z` removed (no step changes that part;
 /// the balance check judges it).
-fn merit(z: &[Vec<f64>], eval: &Evaluation) -> f64 {
+fn merit(z: &[Sparse], eval: &Evaluation) -> f64 {
     let mut r = eval.f.clone();
     project_out(z, &mut r);
     (dot(&r, &r) + dot(&eval.phi, &eval.phi)).sqrt()
@@ -673,7 +668,7 @@ fn full_step(
 /// not, the shortest step).
 fn line_search(
     system: &ReducedSystem,
-    z: &[Vec<f64>],
+    z: &[Sparse],
     (x, lam): (&[f64], &[f64]),
     (dx, dlam): (&[f64], &[f64]),
     reference: f64,

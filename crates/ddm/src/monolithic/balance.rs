@@ -15,7 +15,7 @@ use contactdd_core::{component_of, node_of};
 use crate::model::Model;
 
 use super::modes::{dot, project_out, Kernel, Mode};
-use super::system::ReducedSystem;
+use super::system::{ReducedSystem, Sparse};
 
 /// The residuals of a result, relative to the size of the applied and contact forces.
 pub(super) struct Balance {
@@ -72,22 +72,14 @@ pub(super) fn balance(
             Some(o)
         })
         .collect();
-    let shapes: Vec<Vec<f64>> = kernel
-        .on_x
-        .iter()
+    let shapes: Vec<Sparse> = (kernel.on_x.iter())
         .map(|z| {
-            let mut full = vec![
-                0.0;
-                offsets
-                    .last()
-                    .map_or(0, |o| o + residual[residual.len() - 1].len())
-            ];
-            for (b, body) in system.bodies.iter().enumerate() {
-                for (i, &d) in body.dofs.iter().enumerate() {
-                    full[offsets[b] + d] = z[system.offset[b] + i];
-                }
-            }
-            full
+            z.iter()
+                .map(|&(i, v)| {
+                    let b = system.offset.partition_point(|&o| o <= i) - 1;
+                    (offsets[b] + system.bodies[b].dofs[i - system.offset[b]], v)
+                })
+                .collect()
         })
         .collect();
     let mut flat: Vec<f64> = residual.concat();

@@ -8,7 +8,7 @@
 use crate::contact::Status;
 use crate::model::Model;
 
-use super::modes::{describe_motion, kernel, Mode};
+use super::modes::{changed_by, describe_motion, kernel, Mode, Modes};
 use super::system::{Evaluation, ReducedSystem};
 
 /// Work of the loads along a free rigid motion, relative to their work along all free modes,
@@ -24,7 +24,7 @@ const WORK_TOL: f64 = 1e-8;
 pub(super) fn sliding(
     model: &Model,
     system: &ReducedSystem,
-    modes: &[Mode],
+    modes: &Modes,
     eval: &Evaluation,
 ) -> Option<String> {
     let total = modes.iter().map(|m| m.work * m.work).sum::<f64>().sqrt();
@@ -39,16 +39,11 @@ pub(super) fn sliding(
         .weights
         .iter()
         .find_map(|w| {
-            let along = |j: usize| -> f64 { w.iter().zip(modes).map(|(c, m)| c * m.on_g[j]).sum() };
-            let change: Vec<f64> = frictional.iter().map(|&j| along(j)).collect();
+            let change: Vec<f64> = frictional.iter().map(|&j| modes.g_along(j, w)).collect();
             let largest = change.iter().fold(0.0f64, |a, c| a.max(c.abs()));
-            let held = modes.iter().fold(0.0f64, |a, m| {
-                a.max(
-                    frictional
-                        .iter()
-                        .fold(0.0f64, |b, &j| b.max(m.on_g[j].abs())),
-                )
-            });
+            let held = (frictional.iter())
+                .flat_map(|&j| modes.on_g[j].iter().map(|&(_, v)| v.abs()))
+                .fold(0.0f64, f64::max);
             if largest <= 1e-8 * held {
                 return None;
             }
@@ -60,7 +55,7 @@ pub(super) fn sliding(
                     Some(p.weight * f.law.bound(-p.pressure(eval.s[j])) * dg.abs())
                 })
                 .sum();
-            let work: f64 = w.iter().zip(modes).map(|(c, m)| c * m.work).sum();
+            let work: f64 = w.iter().zip(modes.iter()).map(|(c, m)| c * m.work).sum();
             (work.abs() > WORK_TOL * total && work.abs() > capacity).then(|| {
                 format!(
                     "no equilibrium: body '{}' slides: its loads push it along {} harder than \
@@ -152,25 +147,19 @@ pub(super) fn stick_where_closed(system: &ReducedSystem, chi: &[bool], status: &
     }
 }
 
-/// The frictional points that can close whose tangential displacement the rigid motion with
-/// mode weights `w` changes: sticking, they would resist it.
+/// The frictional points that can close whose tangential displacement one of the rigid motions
+/// with mode weights `ws` changes: sticking, they would resist it.
 pub(super) fn resisting_tangentially(
     system: &ReducedSystem,
-    modes: &[Mode],
-    w: &[f64],
+    modes: &Modes,
+    ws: &[Vec<f64>],
 ) -> Vec<usize> {
     if !system.friction {
         return Vec::new();
     }
     let points = &system.interface.points;
-    let change: Vec<(usize, f64)> = (0..points.len())
+    let candidates: Vec<usize> = (0..points.len())
         .filter(|&j| points[j].has_partner() && points[j].friction.is_some())
-        .map(|j| (j, w.iter().zip(modes).map(|(c, m)| c * m.on_g[j]).sum()))
         .collect();
-    let largest = change.iter().fold(0.0f64, |a, &(_, c)| a.max(c.abs()));
-    change
-        .into_iter()
-        .filter(|&(_, c)| largest > 0.0 && c.abs() > 1e-8 * largest)
-        .map(|(j, _)| j)
-        .collect()
+    changed_by(&candidates, ws, |j, w| modes.g_along(j, w))
 }

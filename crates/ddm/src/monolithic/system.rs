@@ -37,6 +37,9 @@ use crate::model::Model;
 
 use super::reduced::ReducedBody;
 
+/// A kernel motion's values on x: (index, value), ascending, on its bodies' parts of x only.
+pub(super) type Sparse = Vec<(usize, f64)>;
+
 /// An affine function of x: Σ coef·x[index] + constant.
 #[derive(Clone, Debug, Default)]
 pub(super) struct Affine {
@@ -262,7 +265,7 @@ impl<'a> ReducedSystem<'a> {
     pub fn direction(
         &self,
         (chi, status): (&[bool], &[Status]),
-        z: &[Vec<f64>],
+        z: &[Sparse],
         eval: &Evaluation,
         lam: &[f64],
     ) -> Option<(Vec<f64>, Vec<f64>)> {
@@ -304,7 +307,7 @@ impl<'a> ReducedSystem<'a> {
     fn solve(
         &self,
         (chi, status): (&[bool], &[Status]),
-        z: &[Vec<f64>],
+        z: &[Sparse],
         g: &[f64],
         rhs: &[f64],
     ) -> Option<Vec<f64>> {
@@ -333,7 +336,7 @@ impl<'a> ReducedSystem<'a> {
         }
         self.friction_terms(status, g, &mut trip);
         for (q, zq) in z.iter().enumerate() {
-            for (i, &v) in zq.iter().enumerate().filter(|(_, v)| **v != 0.0) {
+            for &(i, v) in zq.iter().filter(|(_, v)| *v != 0.0) {
                 trip.push(Triplet::new(i, n + q, v));
                 trip.push(Triplet::new(n + q, i, v));
             }
