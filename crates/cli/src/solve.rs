@@ -217,8 +217,7 @@ pub fn solve(args: SolveArgs) -> Result<Exit> {
         let t_reactions = Instant::now();
         let reactions = ranks.reactions(model, &sol);
         sol.timing.insert("load".into(), t_load);
-        let t_reactions = t_reactions.elapsed().as_secs_f64();
-        sol.timing.insert("reactions".into(), t_reactions);
+        (sol.timing).insert("reactions".into(), t_reactions.elapsed().as_secs_f64());
         let units = loaded.problem.units.as_deref();
         let t_write = Instant::now();
         let written = ranks
@@ -240,19 +239,7 @@ pub fn solve(args: SolveArgs) -> Result<Exit> {
         } else {
             say!("");
             say!("{outcome}");
-            let mut phases = vec![("load", t_load)];
-            phases.extend(
-                SOLVE_PHASES
-                    .iter()
-                    .filter_map(|&k| Some((k, *sol.timing.get(k)?))),
-            );
-            phases.push(("write", t_write));
-            // The rest of the run (start-up, thread pools, this report): the phases add up to
-            // the total.
-            let total = start.elapsed().as_secs_f64();
-            let timed: f64 = phases.iter().map(|p| p.1).sum();
-            phases.push(("other", (total - timed).max(0.0)));
-            phases.push(("total", total));
+            let phases = phases(&sol, (t_load, t_write), start);
             let usage = (ranks.size() > 1).then_some(usage.as_slice());
             print_summary(model, &sol, &reactions, &phases, usage);
             say!("results: {}", files(&out, &written));
@@ -315,6 +302,27 @@ fn solve_outcome(sol: &contactdd_ddm::Solution, settings: &contactdd_ddm::Settin
         settings.scheme()
     );
     outcome(sol.converged, done, sol.message.as_deref())
+}
+
+/// The console's phases of a solve from its `start`: `load`, the solver's phases, `write`, and
+/// `other` (start-up, thread pools, this report), so that they add up to the `total`.
+fn phases(
+    sol: &contactdd_ddm::Solution,
+    (load, write): (f64, f64),
+    start: Instant,
+) -> Vec<(&'static str, f64)> {
+    let mut phases = vec![("load", load)];
+    phases.extend(
+        SOLVE_PHASES
+            .iter()
+            .filter_map(|&k| Some((k, *sol.timing.get(k)?))),
+    );
+    phases.push(("write", write));
+    let total = start.elapsed().as_secs_f64();
+    let timed: f64 = phases.iter().map(|p| p.1).sum();
+    phases.push(("other", (total - timed).max(0.0)));
+    phases.push(("total", total));
+    phases
 }
 
 /// The timed phases of a solve, in the order the console reports them.
