@@ -21,6 +21,21 @@ each meets the exact contact only to its gap tolerance). Where the decomposition
 converge, the line names its stop from summary.json (diverged, stalled, unenforced, or
 unbalanced: converged, but a body's loads, contact forces and reactions do not balance), and an
 unbalanced stop adds the worst body's imbalance and rounding floor.
+
+    python3 scripts/random_walls.py 1 150 --hard --keep /tmp/hard   # the hard family
+
+`--hard` draws another family (problem files hard<seed>.toml): a column of 2 to 6 blocks (held
+sideways on their left edge, resting on each other, the bottom one on the floor) or a wall of 2
+to 4 rows of 1 to 3 blocks, P1 or P2; every block has its own Young's modulus, log-uniform over
+1e3 … 1e9 (a quarter of them at either end: contrasts up to 1e6 between neighbours); each pair's
+θ is 1e-3 to 10 times the rod model's (c = 0.05, h = 1), log-uniform; loads scale with the
+softest block. Half the seeds have non-matching meshes (each block its own cell size, notched
+gaps); the other half share one cell size with every split and height on its grid, so that
+neighbours' interface nodes match, and then one block or one whole row may be moved by 1e-10 …
+1e-8 of its size along x, along y (a gap or an overlap) or both: near-coincident nodes. Pairs are
+balanced, or own-side on a third of the matching columns. Each line names the seed's traits, and
+the last line also counts the seeds where the reference converged. Where the decomposition
+stops without a summary.json (a refusal before solving), the line quotes its error.
 """
 import csv
 import json
@@ -103,6 +118,111 @@ def wall(seed):
     return s + "[solver]\ntol = 1e-9\n"
 
 
+def hard(seed):
+    """The problem file of one seed of the `--hard` family (TOML text) and a short description."""
+    r = random.Random(seed)
+    order = r.choice(["p1", "p2"])
+    column = r.random() < 0.4
+    matching = r.random() < 0.5
+    # Own-side pairs balance only node for node: on the matching columns, whose pairs span
+    # whole edges (a wall's rows split at different places).
+    forces = (r.choice(["balanced", "balanced", "own-side"]) if matching and column
+              else "balanced")
+    width = r.choice([0.5, 1.0, 2.0]) if column else r.choice([2.0, 4.0])
+    # A matching family shares one cell size, with every split and height on its grid.
+    across = r.choice([32, 48, 64] if column else [64, 96, 128])
+    cell = width / across
+    s = f'name = "hard{seed}"\nplane = "strain"\n'
+    layout, y = [], 0.0
+    for _ in range(r.randint(2, 6) if column else r.randint(2, 4)):
+        h = (cell * r.randint(across // 10, across // (2 if column else 4)) if matching
+             else r.choice([0.25, 0.5, 1.0]))
+        n = 1 if column else r.choice([1, 2, 3])
+        cells = round(width / cell)
+        cuts = sorted(r.sample(range(2, cells - 1), n - 1)) if matching else sorted(
+            r.uniform(0.2, 0.8) * cells for _ in range(n - 1))
+        xs = [0.0] + [k * cell for k in cuts] + [width]
+        layout.append([[xs[i], xs[i + 1], y, y + h] for i in range(n)])
+        y += h
+    # Near-coincident meshes: one block, or one whole row, moved by 1e-10 … 1e-8 of its size
+    # along the interface (x), across it (y: a gap or an overlap), or both.
+    shift = "none"
+    if matching:
+        shift = r.choice(["none", "block", "row"])
+        if shift != "none":
+            j = r.randrange(len(layout))
+            moved = layout[j] if shift == "row" else [r.choice(layout[j])]
+            axes = r.choice(["x", "y", "xy"])
+            dx = r.choice([-1, 1]) * 10 ** r.uniform(-10, -8) if "x" in axes else 0.0
+            dy = r.choice([-1, 1]) * 10 ** r.uniform(-10, -8) if "y" in axes else 0.0
+            for block in moved:
+                size = max(block[1] - block[0], block[3] - block[2])
+                block[0] += dx * size
+                block[1] += dx * size
+                block[2] += dy * size
+                block[3] += dy * size
+            shift = f"{shift} {j} {axes} {max(abs(dx), abs(dy)):.0e}"
+    young = {}
+    names = {}
+    for j, row in enumerate(layout):
+        for i, (x0, x1, y0, y1) in enumerate(row):
+            name = names[(j, i)] = f"b{j}_{i}"
+            # Young's moduli log-uniform over 6 decades, a quarter of them at either end.
+            u = r.random() if r.random() < 0.75 else r.choice([0.0, 1.0])
+            young[name] = 10 ** (3 + 6 * u)
+            s += f"[materials.{name}]\nyoung = {young[name]!r}\npoisson = {r.choice([0.0, 0.2, 0.3, 0.45, 0.49])}\n"
+    soft = min(young.values())
+    for j, row in enumerate(layout):
+        for i, (x0, x1, y0, y1) in enumerate(row):
+            name = names[(j, i)]
+            size = cell if matching else width / r.choice([32, 48, 64] if column else [64, 96, 128])
+            nx, ny = max(2, round((x1 - x0) / size)), max(2, round((y1 - y0) / size))
+            supports = []
+            if j == 0:
+                supports.append('{ boundary = "bottom", component = "y" }')
+            if i == 0:
+                supports.append('{ boundary = "left", component = "x" }')
+            if not column and i == len(row) - 1 and (r.random() < 0.5 or j == 0):
+                supports.append('{ boundary = "right", component = "x" }')
+            loads = []
+            p = soft * 10 ** r.uniform(-5, -3)
+            if j == len(layout) - 1:
+                loads.append(f'{{ kind = "pressure", boundary = "top", value = {p!r} }}')
+            if (i == len(row) - 1 and not any('"right"' in x for x in supports)
+                    and (not column or r.random() < 0.5)):
+                loads.append(f'{{ kind = "pressure", boundary = "right", value = {p / 10!r} }}')
+            if r.random() < 0.3:
+                loads.append(f'{{ kind = "body-force", value = [0.0, {-p / width!r}] }}')
+            s += (f'[[bodies]]\nname = "{name}"\nmaterial = "{name}"\n'
+                  f'mesh = {{ kind = "rectangle", x = [{x0!r}, {x1!r}], y = [{y0!r}, {y1!r}], '
+                  f'nx = {nx}, ny = {ny}, diagonal = "{r.choice(["right", "left", "alternate"])}", '
+                  f'order = "{order}" }}\n'
+                  f'supports = [{", ".join(supports)}]\nloads = [{", ".join(loads)}]\n')
+
+    def pair(a, b, side_a, side_b, gap=""):
+        # θ from 1e-3 to 10 times the rod model's (c = 0.05, h = 1), log-uniform.
+        c = 0.05 * 10 ** r.uniform(-3, 1)
+        return (f'[[contact]]\nbodies = ["{a}", "{b}"]\nboundaries = ["{side_a}", "{side_b}"]\n'
+                f'penalty = {{ c = {c!r}, h = 1.0 }}\nforces = "{forces}"\n{gap}')
+
+    for j, row in enumerate(layout):
+        for i in range(len(row) - 1):
+            s += pair(names[(j, i)], names[(j, i + 1)], "right", "left")
+        if j + 1 < len(layout):
+            for i, (a0, a1, _, _) in enumerate(row):
+                for k, (b0, b1, _, _) in enumerate(layout[j + 1]):
+                    if min(a1, b1) - max(a0, b0) > 1e-6 * width:
+                        gap = ""
+                        if not matching and r.random() < 0.3:
+                            gap = (f'gap = {{ kind = "notch", r0 = {r.choice([1e-4, 1e-3]) * width}, '
+                                   f'b = {width / 4}, centre = {width / 2}, power = 1.5 }}\n')
+                        s += pair(names[(j, i)], names[(j + 1, k)], "top", "bottom", gap)
+    kind = f"column {len(layout)}" if column else f"wall {len(layout)} rows"
+    mesh = "matching" if matching else "non-matching"
+    contrast = max(young.values()) / soft
+    about = f"{kind}, {order}, {forces}, {mesh}, shift {shift}, contrast {contrast:.0e}"
+    return s + "[solver]\ntol = 1e-9\n", about
+
 def pressures(path):
     """Contact pressure per (pair, body, point) of a contact.csv."""
     with open(path) as f:
@@ -127,9 +247,17 @@ def stop(out):
     return shown + ")"
 
 
-def run(seed, work, enforcement, condensation, friction=()):
-    problem = work / f"wall{seed}.toml"
-    problem.write_text(wall(seed) + (f'condensation = "{condensation}"\n' if condensation else ""))
+def run(seed, work, enforcement, condensation, friction=(), family=None):
+    """Both solves of one seed: exit codes, the decomposition's stop, the difference, failed?
+
+    `family` is `hard` for `--hard` (its problem files are hard<seed>.toml), else the walls."""
+    if family is None:
+        problem = work / f"wall{seed}.toml"
+        text = wall(seed)
+    else:
+        problem = work / f"hard{seed}.toml"
+        text, _ = family(seed)
+    problem.write_text(text + (f'condensation = "{condensation}"\n' if condensation else ""))
     codes = []
     for command in ("solve", "monolithic"):
         out = work / f"{command}{seed}"
@@ -137,7 +265,11 @@ def run(seed, work, enforcement, condensation, friction=()):
                                  "--enforcement", enforcement, *friction], capture_output=True,
                                 text=True)
         codes.append(result.returncode)
+        if command == "solve":
+            error = result.stderr.strip().splitlines()
     solve_stop = stop(work / f"solve{seed}") if codes[0] != 0 else ""
+    if family is not None and solve_stop == " (no summary.json)" and error:
+        solve_stop = f" (no summary.json: {error[-1]})"
     difference = None
     if codes == [0, 0]:
         a, b = pressures(work / f"solve{seed}/contact.csv"), pressures(work / f"monolithic{seed}/contact.csv")
@@ -167,22 +299,30 @@ def main():
     if "--friction" in args:
         friction = ("--friction", args.pop(args.index("--friction") + 1))
         args.remove("--friction")
+    family = None
+    if "--hard" in args:
+        family = hard
+        args.remove("--hard")
     first, last = int(args[0]), int(args[1])
     with tempfile.TemporaryDirectory() as tmp:
         work = keep or Path(tmp)
         work.mkdir(parents=True, exist_ok=True)
-        failures, both = [], 0
+        failures, both, reference = [], 0, 0
         for seed in range(first, last + 1):
             codes, solve_stop, difference, failed = run(seed, work, enforcement, condensation,
-                                                        friction)
+                                                        friction, family)
             both += codes == [0, 0]
+            reference += codes[1] == 0
             shown = "" if difference is None else f" difference {difference:.1e}"
-            print(f"seed {seed}: solve exit {codes[0]}{solve_stop}, monolithic exit {codes[1]}{shown}"
-                  f"{'  FAILED' if failed else ''}", flush=True)
+            about = f" [{family(seed)[1]}]" if family else ""
+            print(f"seed {seed}{about}: solve exit {codes[0]}{solve_stop}, monolithic exit "
+                  f"{codes[1]}{shown}{'  FAILED' if failed else ''}", flush=True)
             if failed:
                 failures.append(seed)
         total = last - first + 1
-        print(f"{total} seeds: both converged on {both}; failed {len(failures)}: {failures}")
+        converged = f"the reference converged on {reference}, " if family else ""
+        print(f"{total} seeds: {converged}both converged on {both}; failed {len(failures)}: "
+              f"{failures}")
     sys.exit(1 if failures else 0)
 
 
