@@ -19,6 +19,7 @@ pub mod body;
 pub mod element;
 pub mod error;
 pub mod factor;
+mod fast_hash;
 pub mod geometry;
 pub mod gmsh;
 pub mod incremental_cholesky;

@@ -6,9 +6,10 @@
 //! edges are stored oriented so that the body lies on their left; the outward normal of an edge
 //! from `a` to `b` is therefore `(b - a)` rotated clockwise.
 
-use std::collections::{BTreeMap, HashMap};
+use std::collections::BTreeMap;
 
 use crate::error::MeshError;
+use crate::fast_hash::FastMap;
 use crate::geometry::{Point, Vector, DIM};
 use crate::names::{listed, shown};
 
@@ -154,14 +155,36 @@ impl Mesh {
         Ok(())
     }
 
-    /// Maps every triangle edge to (element, local edge); boundary edges appear once.
-    fn edge_owners(&self) -> HashMap<(usize, usize), Vec<(usize, usize)>> {
-        let mut owners: HashMap<(usize, usize), Vec<(usize, usize)>> = HashMap::new();
+    /// The owners of every given boundary edge, by its sorted vertex pair: how many triangles
+    /// have it (saturating at 255) and the first one's (element, local edge). One pass over the
+    /// triangles fills the owners of these edges only; an edge with a node out of range has none.
+    fn boundary_owners(
+        &self,
+        boundaries: &BTreeMap<String, Vec<Edge>>,
+    ) -> FastMap<(usize, usize), (u8, (usize, usize))> {
+        let mut owners: FastMap<(usize, usize), (u8, (usize, usize))> = FastMap::default();
+        let mut on_boundary = vec![false; self.nodes.len()];
+        for edge in boundaries.values().flatten() {
+            owners.insert((edge.a.min(edge.b), edge.a.max(edge.b)), (0, (0, 0)));
+            for v in [edge.a, edge.b] {
+                if let Some(flag) = on_boundary.get_mut(v) {
+                    *flag = true;
+                }
+            }
+        }
         for e in 0..self.num_cells() {
             let c = self.cell(e);
             for (k, &(i, j, _)) in TRIANGLE_EDGES.iter().enumerate() {
-                let key = (c[i].min(c[j]), c[i].max(c[j]));
-                owners.entry(key).or_default().push((e, k));
+                // Cells hold nodes in range (checked by `Mesh::new` before).
+                if !(on_boundary[c[i]] && on_boundary[c[j]]) {
+                    continue;
+                }
+                if let Some((count, owner)) = owners.get_mut(&(c[i].min(c[j]), c[i].max(c[j]))) {
+                    if *count == 0 {
+                        *owner = (e, k);
+                    }
+                    *count = count.saturating_add(1);
+                }
             }
         }
         owners
@@ -171,23 +194,19 @@ impl Mesh {
         &self,
         boundaries: BTreeMap<String, Vec<Edge>>,
     ) -> Result<BTreeMap<String, Vec<Edge>>, MeshError> {
-        let owners = self.edge_owners();
+        let owners = self.boundary_owners(&boundaries);
         let mut out = BTreeMap::new();
         for (name, edges) in boundaries {
             let mut oriented = Vec::with_capacity(edges.len());
             for edge in edges {
                 let key = (edge.a.min(edge.b), edge.a.max(edge.b));
-                let owner = match owners.get(&key).map(Vec::as_slice) {
-                    Some([one]) => *one,
-                    _ => {
-                        return Err(MeshError::NotABoundaryEdge {
-                            boundary: shown(&name),
-                            a: edge.a,
-                            b: edge.b,
-                        })
-                    }
+                let Some(&(1, (e, k))) = owners.get(&key) else {
+                    return Err(MeshError::NotABoundaryEdge {
+                        boundary: shown(&name),
+                        a: edge.a,
+                        b: edge.b,
+                    });
                 };
-                let (e, k) = owner;
                 let (i, j, m) = TRIANGLE_EDGES[k];
                 let c = self.cell(e);
                 let mid = match self.order {
@@ -297,27 +316,32 @@ impl Mesh {
     }
 
     /// Turns a P1 mesh into the P2 mesh on the same triangles by adding one node per edge
-    /// (a P2 mesh is returned unchanged).
+    /// (a P2 mesh is returned unchanged). The new nodes follow the old ones, numbered in the
+    /// order their edges are first met, triangle by triangle.
     pub fn to_p2(&self) -> Mesh {
         if self.order == Order::P2 {
             return self.clone();
         }
-        let mut nodes = self.nodes.clone();
-        let mut mid_of: HashMap<(usize, usize), usize> = HashMap::new();
+        let n = self.nodes.len();
+        let mut mid_of = EdgeTable::new(n, &self.cells);
         let mut cells = Vec::with_capacity(self.num_cells() * 6);
-        for e in 0..self.num_cells() {
-            let c = self.cell(e);
-            let mut mids = [0; 3];
-            for (k, &(i, j, _)) in TRIANGLE_EDGES.iter().enumerate() {
-                let key = (c[i].min(c[j]), c[i].max(c[j]));
-                mids[k] = *mid_of.entry(key).or_insert_with(|| {
-                    let (a, b) = (self.nodes[c[i]], self.nodes[c[j]]);
-                    nodes.push([0.5 * (a[0] + b[0]), 0.5 * (a[1] + b[1])]);
-                    nodes.len() - 1
-                });
-            }
+        let mut next = n;
+        for c in self.cells.chunks_exact(3) {
             cells.extend_from_slice(c);
-            cells.extend_from_slice(&mids);
+            for &(i, j, _) in &TRIANGLE_EDGES {
+                cells.push(mid_of.number(c[i], c[j], &mut next));
+            }
+        }
+        // The mid-side nodes in their numbering: each is met first where its number is next.
+        let mut nodes = Vec::with_capacity(next);
+        nodes.extend_from_slice(&self.nodes);
+        for cell in cells.chunks_exact(6) {
+            for &(i, j, m) in &TRIANGLE_EDGES {
+                if cell[m] == nodes.len() {
+                    let (a, b) = (self.nodes[cell[i]], self.nodes[cell[j]]);
+                    nodes.push([0.5 * (a[0] + b[0]), 0.5 * (a[1] + b[1])]);
+                }
+            }
         }
         let boundaries = self
             .boundaries
@@ -328,7 +352,7 @@ impl Mesh {
                     .map(|e| Edge {
                         a: e.a,
                         b: e.b,
-                        mid: mid_of.get(&(e.a.min(e.b), e.a.max(e.b))).copied(),
+                        mid: mid_of.get(e.a, e.b),
                     })
                     .collect();
                 (name.clone(), edges)
@@ -447,7 +471,7 @@ impl Mesh {
     /// coefficients make it positive on the whole triangle.
     fn positive_jacobian(&self, e: usize) -> bool {
         let c = self.cell(e);
-        let x: Vec<Point> = c.iter().map(|&v| self.nodes[v]).collect();
+        let x: [Point; 6] = std::array::from_fn(|i| self.nodes[c[i]]);
         let det = |l: [f64; 3]| {
             // ∂x/∂λ_k of the P2 map, then J = [∂x/∂λ1 − ∂x/∂λ0, ∂x/∂λ2 − ∂x/∂λ0].
             let d: [[f64; 6]; 3] = [
@@ -520,6 +544,66 @@ impl Mesh {
             self.boundaries.clone(),
             self.node_sets.clone(),
         )
+    }
+}
+
+/// The edges of a P1 connectivity, each with a number: per smaller vertex, a slot for each time
+/// a triangle edge starts there (found by a scan of the few slots of one vertex, in a table laid
+/// out like the nodes, so that neighbouring triangles use neighbouring memory). A hash map of the
+/// edges would do the same with a random access per edge.
+struct EdgeTable {
+    /// Slots of vertex `v`: `start[v]..start[v + 1]`.
+    start: Vec<usize>,
+    /// How many slots of each vertex are used.
+    used: Vec<u32>,
+    /// (larger vertex, number) per slot.
+    slots: Vec<(usize, usize)>,
+}
+
+impl EdgeTable {
+    /// An empty table for the edges of the triangles `cells` (3 vertices each, in `0..n`).
+    fn new(n: usize, cells: &[usize]) -> EdgeTable {
+        let mut start = vec![0usize; n + 1];
+        for c in cells.chunks_exact(3) {
+            for &(i, j, _) in &TRIANGLE_EDGES {
+                start[c[i].min(c[j]) + 1] += 1;
+            }
+        }
+        for v in 0..n {
+            start[v + 1] += start[v];
+        }
+        EdgeTable {
+            used: vec![0; n],
+            slots: vec![(0, 0); start[n]],
+            start,
+        }
+    }
+
+    /// The used slots of vertex `v`.
+    fn slots(&self, v: usize) -> &[(usize, usize)] {
+        let s = self.start[v];
+        &self.slots[s..s + self.used[v] as usize]
+    }
+
+    /// The number of the edge from `a` to `b`: the one it has, or `next` (then incremented).
+    fn number(&mut self, a: usize, b: usize, next: &mut usize) -> usize {
+        let (lo, hi) = (a.min(b), a.max(b));
+        if let Some(&(_, k)) = self.slots(lo).iter().find(|s| s.0 == hi) {
+            return k;
+        }
+        // Every edge of the cells has a slot of its own: the count never passes the capacity.
+        self.slots[self.start[lo] + self.used[lo] as usize] = (hi, *next);
+        self.used[lo] += 1;
+        *next += 1;
+        *next - 1
+    }
+
+    /// The number of the edge from `a` to `b`, if it is an edge of the cells.
+    fn get(&self, a: usize, b: usize) -> Option<usize> {
+        let (lo, hi) = (a.min(b), a.max(b));
+        (lo < self.used.len())
+            .then(|| self.slots(lo).iter().find(|s| s.0 == hi).map(|s| s.1))
+            .flatten()
     }
 }
 

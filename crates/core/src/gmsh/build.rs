@@ -1,14 +1,18 @@
 //! The mesh assembled from a file's raw content: the body's triangles chosen, nodes renumbered,
 //! elements sorted into cells, boundaries and node sets.
 
-use std::collections::{BTreeMap, BTreeSet, HashMap};
+use std::collections::{BTreeMap, BTreeSet};
 
 use crate::error::{GmshError, MeshError};
+use crate::fast_hash::hash_of;
 use crate::geometry::{Point, DIM};
 use crate::mesh::{counter_clockwise, dist, Edge, Mesh, Order};
 use crate::names::{listed, shown};
 
-use super::raw::{kind_dim, Kind, RawElement, RawMsh};
+use super::raw::{kind_dim, Few, Kind, RawElement, RawMsh};
+
+/// The sorted positions of a triangle's vertices, as bits ([`RawMsh::vertex_key`]).
+type VertexKey = [[u64; 2]; 3];
 
 impl RawMsh {
     /// Assembles and validates the mesh: the triangles' order and nodes, the nodes renumbered,
@@ -113,30 +117,27 @@ impl RawMsh {
 
     /// The index in `coords` of node `tag` of `element`.
     fn node_position(&self, element: &RawElement, tag: u64) -> Result<usize, GmshError> {
-        self.node_index
-            .get(&tag)
-            .copied()
-            .ok_or_else(|| GmshError::Parse {
-                line: element.line,
-                message: format!("element refers to node {tag}, which is not in $Nodes"),
-            })
+        self.node_index.get(tag).ok_or_else(|| GmshError::Parse {
+            line: element.line,
+            message: format!("element refers to node {tag}, which is not in $Nodes"),
+        })
     }
 
     /// Whether every node of `element` is a node of the body (`new_index` is set).
     fn touches(&self, element: &RawElement, new_index: &[usize]) -> bool {
         element.nodes.iter().all(|&tag| {
             self.node_index
-                .get(&tag)
-                .and_then(|&i| new_index.get(i))
+                .get(tag)
+                .and_then(|i| new_index.get(i))
                 .is_some_and(|&n| n != usize::MAX)
         })
     }
 
     /// The nodes of `element` in the new numbering `new_index`; a node of no triangle is an
     /// error.
-    fn new_ids(&self, element: &RawElement, new_index: &[usize]) -> Result<Vec<usize>, GmshError> {
-        let mut ids = Vec::with_capacity(element.nodes.len());
-        for &tag in &element.nodes {
+    fn new_ids(&self, element: &RawElement, new_index: &[usize]) -> Result<Few<usize>, GmshError> {
+        let mut ids = Few::new();
+        for &tag in element.nodes.iter() {
             let i = self.node_position(element, tag)?;
             let id = new_index.get(i).copied().filter(|&n| n != usize::MAX);
             ids.push(id.ok_or_else(|| GmshError::Parse {
@@ -151,9 +152,9 @@ impl RawMsh {
 
     /// The positions of the first three nodes (a triangle's vertices) of `element`, sorted, as
     /// bits (`-0.0` as `0.0`): equal for two triangles on the same three points.
-    fn vertex_key(&self, element: &RawElement) -> Result<[[u64; 2]; 3], GmshError> {
+    fn vertex_key(&self, element: &RawElement) -> Result<VertexKey, GmshError> {
         let mut key = [[0; 2]; 3];
-        for (k, &tag) in key.iter_mut().zip(&element.nodes) {
+        for (k, &tag) in key.iter_mut().zip(element.nodes.iter()) {
             let xyz = self.coords[self.node_position(element, tag)?];
             *k = [(xyz[0] + 0.0).to_bits(), (xyz[1] + 0.0).to_bits()];
         }
@@ -167,42 +168,50 @@ impl RawMsh {
         let mut order = None;
         let mut used = vec![false; self.coords.len()];
         // A triangle listed twice would be assembled twice: a body twice as stiff there. Its
-        // vertices are compared by position, so that a copy on duplicated nodes is caught too.
-        let mut vertices: HashMap<[[u64; 2]; 3], (u64, usize)> = HashMap::new();
-        for element in &self.elements {
+        // vertices are compared by position, so that a copy on duplicated nodes is caught too:
+        // the hashes of their keys are sorted after the pass (less memory than a hash map).
+        let mut keys: Vec<(u64, usize)> = Vec::new();
+        // The first error of the pass: (element, 0 before its duplicate check or 2 after, error).
+        let mut failure = None;
+        for (index, element) in self.elements.iter().enumerate() {
             let Kind::Triangle(o) = element.kind else {
                 continue;
             };
             if !self.in_body(element, body) {
                 continue;
             }
-            let key = self.vertex_key(element)?;
-            if let Some((tag, line)) = vertices.insert(key, (element.tag, element.line)) {
+            match self.vertex_key(element) {
+                Ok(key) => keys.push((hash_of(&key), index)),
+                Err(e) => {
+                    failure = Some((index, 0, e));
+                    break;
+                }
+            }
+            if let Err(e) = self.check_triangle(element, o, &mut order, &mut used) {
+                failure = Some((index, 2, e));
+                break;
+            }
+        }
+        if let Some((first, second)) = self.first_duplicate(&mut keys) {
+            // The error the file shows first: a duplicate comes after the vertices of its own
+            // triangle are found and before the rest of its checks.
+            if failure
+                .as_ref()
+                .map_or(true, |&(index, stage, _)| (second, 1) < (index, stage))
+            {
+                let (first, second) = (&self.elements[first], &self.elements[second]);
                 return Err(GmshError::Parse {
-                    line: element.line,
+                    line: second.line,
                     message: format!(
-                        "triangles {tag} (line {line}) and {} have the same three vertices; \
+                        "triangles {} (line {}) and {} have the same three vertices; \
                          a mesh lists each triangle once",
-                        element.tag
+                        first.tag, first.line, second.tag
                     ),
                 });
             }
-            match order {
-                None => order = Some(o),
-                Some(first) if first != o => {
-                    return Err(GmshError::Unsupported(format!(
-                        "line {}: the mesh mixes 3-node and 6-node triangles",
-                        element.line
-                    )));
-                }
-                Some(_) => {}
-            }
-            for &tag in &element.nodes {
-                let i = self.node_position(element, tag)?;
-                if let Some(u) = used.get_mut(i) {
-                    *u = true;
-                }
-            }
+        }
+        if let Some((_, _, e)) = failure {
+            return Err(e);
         }
         let Some(order) = order else {
             // Gmsh saves only the elements of physical groups once a model defines any: a model
@@ -216,6 +225,57 @@ impl RawMsh {
             ));
         };
         Ok((order, used))
+    }
+
+    /// Checks that triangle `element` of order `o` has the order of those before (`order`, set
+    /// by the first) and nodes in `$Nodes`, and marks them `used`.
+    fn check_triangle(
+        &self,
+        element: &RawElement,
+        o: Order,
+        order: &mut Option<Order>,
+        used: &mut [bool],
+    ) -> Result<(), GmshError> {
+        match *order {
+            None => *order = Some(o),
+            Some(first) if first != o => {
+                return Err(GmshError::Unsupported(format!(
+                    "line {}: the mesh mixes 3-node and 6-node triangles",
+                    element.line
+                )));
+            }
+            Some(_) => {}
+        }
+        for &tag in element.nodes.iter() {
+            let i = self.node_position(element, tag)?;
+            if let Some(u) = used.get_mut(i) {
+                *u = true;
+            }
+        }
+        Ok(())
+    }
+
+    /// The first triangle in file order whose vertex key an earlier one has: (the earlier one,
+    /// it), as indices of the elements. `keys` holds (the hash of its vertex key, element) per
+    /// triangle, and is sorted; triangles of equal hashes are compared by their keys.
+    fn first_duplicate(&self, keys: &mut [(u64, usize)]) -> Option<(usize, usize)> {
+        keys.sort_unstable();
+        let mut found: Option<(usize, usize)> = None;
+        for run in keys.chunk_by(|a, b| a.0 == b.0).filter(|run| run.len() > 1) {
+            // The vertex keys were read once already: they cannot fail here.
+            let mut exact: Vec<(VertexKey, usize)> = (run.iter())
+                .filter_map(|&(_, e)| Some((self.vertex_key(&self.elements[e]).ok()?, e)))
+                .collect();
+            exact.sort_unstable();
+            // Equal keys are sorted by element: the first two of a run meet first.
+            let pairs = exact.windows(2).filter(|w| w[0].0 == w[1].0);
+            for pair in pairs.map(|w| (w[0].1, w[1].1)) {
+                if found.map_or(true, |(_, second)| pair.1 < second) {
+                    found = Some(pair);
+                }
+            }
+        }
+        found
     }
 
     /// Renumbers the `used` nodes in file order and checks that they lie in one xy plane.
@@ -275,7 +335,7 @@ impl RawMsh {
                 continue;
             }
             let ids = self.new_ids(element, new_index)?;
-            match (element.kind, ids.as_slice()) {
+            match (element.kind, &*ids) {
                 (Kind::Triangle(_), _) => {
                     let start = cells.len();
                     cells.extend_from_slice(&ids);

@@ -2,8 +2,10 @@
 //! and elements, with node tags not yet resolved.
 
 use std::collections::HashMap;
+use std::ops::Deref;
 
 use crate::error::GmshError;
+use crate::fast_hash::FastMap;
 use crate::mesh::Order;
 use crate::names::{name_problem, shown};
 
@@ -33,7 +35,7 @@ pub(super) struct RawElement {
     pub(super) tag: u64,
     pub(super) kind: Kind,
     /// Node tags.
-    pub(super) nodes: Vec<u64>,
+    pub(super) nodes: Few<u64>,
     /// MSH 4.1: the (dimension, tag) of the entity the element belongs to.
     pub(super) entity: Option<(u8, i64)>,
     /// MSH 2.2: the physical tag of the element, if any (0 means none).
@@ -44,18 +46,102 @@ pub(super) struct RawElement {
 #[derive(Debug, Default)]
 pub(super) struct RawMsh {
     /// Physical names by (dimension, tag).
-    pub(super) names: HashMap<(u8, i64), String>,
+    pub(super) names: FastMap<(u8, i64), String>,
     /// The `$PhysicalNames` line of each name, for errors.
-    pub(super) name_lines: HashMap<(u8, i64), usize>,
+    pub(super) name_lines: FastMap<(u8, i64), usize>,
     /// Physical tags of each (dimension, entity tag), from `$Entities`.
-    pub(super) entities: HashMap<(u8, i64), Vec<i64>>,
+    pub(super) entities: FastMap<(u8, i64), Vec<i64>>,
     /// Node coordinates in file order.
     pub(super) coords: Vec<[f64; 3]>,
     /// Node tag to index into `coords`.
-    pub(super) node_index: HashMap<u64, usize>,
+    pub(super) node_index: NodeIndex,
     pub(super) elements: Vec<RawElement>,
     /// Number of lines of the file (for errors at the end of the file).
     pub(super) num_lines: usize,
+}
+
+/// The nodes of one element (at most 6), without an allocation of their own.
+#[derive(Clone, Copy, Debug)]
+pub(super) struct Few<T> {
+    items: [T; 6],
+    len: u8,
+}
+
+impl<T: Copy + Default> Few<T> {
+    /// No items.
+    pub(super) fn new() -> Self {
+        Few {
+            items: [T::default(); 6],
+            len: 0,
+        }
+    }
+
+    /// Appends `item`; the caller keeps to 6 items (more would panic).
+    pub(super) fn push(&mut self, item: T) {
+        self.items[usize::from(self.len)] = item;
+        self.len += 1;
+    }
+}
+
+impl<T> Deref for Few<T> {
+    type Target = [T];
+
+    fn deref(&self) -> &[T] {
+        &self.items[..usize::from(self.len)]
+    }
+}
+
+/// Node tag to index into `coords`: a vector indexed by tag while the tags are dense (Gmsh
+/// numbers nodes `1..=n`), a hash map once a tag lies far beyond the number of nodes.
+#[derive(Debug, Default)]
+pub(super) struct NodeIndex {
+    /// The index of each tag (`usize::MAX`: none), while no tag is far out.
+    dense: Vec<usize>,
+    /// Every tag, once one is far out.
+    sparse: Option<FastMap<u64, usize>>,
+}
+
+impl NodeIndex {
+    /// Records node `tag` at `index` (the number of nodes recorded before); `false` if the tag
+    /// is recorded already.
+    fn insert(&mut self, tag: u64, index: usize) -> bool {
+        // Dense while the vector stays within a few times the number of nodes.
+        let limit = (index as u64).saturating_mul(4).saturating_add(1024);
+        match usize::try_from(tag) {
+            Ok(t) if self.sparse.is_none() && tag <= limit => {
+                if t >= self.dense.len() {
+                    let len = (t + 1).max(2 * self.dense.len());
+                    self.dense.resize(len, usize::MAX);
+                }
+                let fresh = self.dense[t] == usize::MAX;
+                if fresh {
+                    self.dense[t] = index;
+                }
+                fresh
+            }
+            _ => {
+                let dense = std::mem::take(&mut self.dense);
+                let map = self.sparse.get_or_insert_with(|| {
+                    (0u64..)
+                        .zip(dense)
+                        .filter(|&(_, i)| i != usize::MAX)
+                        .collect()
+                });
+                map.insert(tag, index).is_none()
+            }
+        }
+    }
+
+    /// The index of node `tag`.
+    pub(super) fn get(&self, tag: u64) -> Option<usize> {
+        match &self.sparse {
+            Some(map) => map.get(&tag).copied(),
+            None => (usize::try_from(tag).ok())
+                .and_then(|t| self.dense.get(t))
+                .copied()
+                .filter(|&i| i != usize::MAX),
+        }
+    }
 }
 
 /// Number of nodes of a Gmsh element type, and what it is; unsupported types are errors.
@@ -265,7 +351,7 @@ impl RawMsh {
                 message: "node tag 0: Gmsh node tags start at 1".to_string(),
             });
         }
-        if self.node_index.insert(tag, self.coords.len()).is_some() {
+        if !self.node_index.insert(tag, self.coords.len()) {
             return Err(GmshError::Parse {
                 line,
                 message: format!("node tag {tag} appears twice"),
@@ -280,6 +366,8 @@ impl RawMsh {
         let (line, num_nodes) = tokens.parse_at::<usize>("the number of nodes")?;
         tokens.usize("the smallest node tag")?;
         tokens.usize("the largest node tag")?;
+        // A node takes a tag and three coordinates: at least 8 bytes.
+        self.coords.reserve(tokens.room_for(num_nodes, 8));
         for _ in 0..num_blocks {
             let dim = read_dim(tokens)?;
             tokens.parse::<i64>("an entity tag")?;
@@ -314,6 +402,7 @@ impl RawMsh {
 
     fn read_nodes_v2(&mut self, tokens: &mut Tokens<'_>) -> Result<(), GmshError> {
         let count = tokens.usize("the number of nodes")?;
+        self.coords.reserve(tokens.room_for(count, 8));
         for _ in 0..count {
             let (line, tag) = tokens.parse_at::<u64>("a node tag")?;
             let xyz = [
@@ -327,8 +416,12 @@ impl RawMsh {
     }
 
     /// Reads the node tags of one element of `len` nodes.
-    fn read_element_nodes(tokens: &mut Tokens<'_>, len: usize) -> Result<Vec<u64>, GmshError> {
-        (0..len).map(|_| tokens.parse("a node tag")).collect()
+    fn read_element_nodes(tokens: &mut Tokens<'_>, len: usize) -> Result<Few<u64>, GmshError> {
+        let mut nodes = Few::new();
+        for _ in 0..len {
+            nodes.push(tokens.parse("a node tag")?);
+        }
+        Ok(nodes)
     }
 
     fn read_elements_v4(&mut self, tokens: &mut Tokens<'_>) -> Result<(), GmshError> {
@@ -336,6 +429,8 @@ impl RawMsh {
         let (header, num_elements) = tokens.parse_at::<usize>("the number of elements")?;
         tokens.usize("the smallest element tag")?;
         tokens.usize("the largest element tag")?;
+        // An element takes a tag and a node: at least 4 bytes.
+        self.elements.reserve(tokens.room_for(num_elements, 4));
         let mut total = 0usize;
         for _ in 0..num_blocks {
             let dim = read_dim(tokens)?;
@@ -376,7 +471,9 @@ impl RawMsh {
     }
 
     fn read_elements_v2(&mut self, tokens: &mut Tokens<'_>) -> Result<(), GmshError> {
+        // An element takes a tag, a type, a tag count and a node: at least 8 bytes.
         let count = tokens.usize("the number of elements")?;
+        self.elements.reserve(tokens.room_for(count, 8));
         for _ in 0..count {
             let (line, tag) = tokens.parse_at::<u64>("an element tag")?;
             let (kind, len) = element_kind(tokens.usize("an element type")?, line)?;

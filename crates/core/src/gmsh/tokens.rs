@@ -12,6 +12,8 @@ pub(super) struct Tokens<'a> {
     pos: usize,
     /// Name of the section being read, for end-of-file messages.
     pub(super) section: &'static str,
+    /// Length of the text, bytes.
+    bytes: usize,
 }
 
 impl<'a> Tokens<'a> {
@@ -22,7 +24,14 @@ impl<'a> Tokens<'a> {
             line: 0,
             pos: 0,
             section: "",
+            bytes: text.len(),
         }
+    }
+
+    /// The most items of `min_bytes` bytes each (separators included) the file can hold: a
+    /// bound on a count the file announces, before memory is reserved for it.
+    pub(super) fn room_for(&self, count: usize, min_bytes: usize) -> usize {
+        count.min(self.bytes / min_bytes.max(1))
     }
 
     /// Number of lines of the file.
@@ -42,6 +51,18 @@ impl<'a> Tokens<'a> {
     pub(super) fn next_opt(&mut self) -> Option<(usize, &'a str)> {
         while let Some(&text) = self.lines.get(self.line) {
             let rest = text.get(self.pos..).unwrap_or("");
+            // ASCII text (all of a usual file) byte by byte; a line with other characters from
+            // here on by characters, where Unicode white space separates too.
+            if let Some((start, len)) = ascii_token(rest.as_bytes()) {
+                if len == 0 {
+                    self.line += 1;
+                    self.pos = 0;
+                    continue;
+                }
+                let start = self.pos + start;
+                self.pos = start + len;
+                return Some((self.line + 1, &text[start..start + len]));
+            }
             let trimmed = rest.trim_start();
             if trimmed.is_empty() {
                 self.line += 1;
@@ -139,6 +160,27 @@ impl<'a> Tokens<'a> {
             ))
         }
     }
+}
+
+/// The white space of ASCII, as [`char::is_whitespace`] sees it (with the vertical tab, which
+/// [`u8::is_ascii_whitespace`] leaves out).
+fn is_space(b: u8) -> bool {
+    matches!(b, b'\t' | b'\n' | b'\x0b' | b'\x0c' | b'\r' | b' ')
+}
+
+/// The start and length of the first token of `bytes` (length 0: none), when the bytes up to
+/// the end of that token are ASCII; `None` if a non-ASCII byte comes first.
+fn ascii_token(bytes: &[u8]) -> Option<(usize, usize)> {
+    let start = bytes
+        .iter()
+        .position(|&b| !is_space(b))
+        .unwrap_or(bytes.len());
+    let len = bytes[start..]
+        .iter()
+        .position(|&b| is_space(b) || !b.is_ascii())
+        .unwrap_or(bytes.len() - start);
+    let ascii = |b: Option<&u8>| b.map_or(true, u8::is_ascii);
+    (ascii(bytes.get(start)) && ascii(bytes.get(start + len))).then_some((start, len))
 }
 
 /// Reads an entity dimension (0 to 3).
