@@ -23,13 +23,13 @@ poisson = 0.3
 [[bodies]]
 name = "lower"
 material = "steel"
-mesh = {{ kind = "rectangle", x = [0.0, 4.0], y = [0.0, 1.0], nx = {n}, ny = {n} }}
+mesh = {{ kind = "rectangle", x = [0.0, 4.0], y = [0.0, 1.0], nx = {n}, ny = {n}, order = "p2" }}
 supports = [{{ boundary = "bottom", component = "both", value = 0.0 }}]
 
 [[bodies]]
 name = "upper"
 material = "steel"
-mesh = {{ kind = "rectangle", x = [0.0, 4.0], y = [1.0, 2.0], nx = {n}, ny = {n}, mirror = true }}
+mesh = {{ kind = "rectangle", x = [0.0, 4.0], y = [1.0, 2.0], nx = {n}, ny = {n}, mirror = true, order = "p2" }}
 supports = [{{ boundary = "top", component = "y", value = -0.01 }}, {{ boundary = "left", component = "x", value = 0.0 }}]
 
 [[contact]]
@@ -60,7 +60,7 @@ fn check(file: &PathBuf, available: Option<u64>) -> Output {
 fn two_bodies_at_the_limit_are_refused_when_memory_is_short() {
     let file = problem(2000, "limit");
     // Room for one body's construction, not for the second beside the first.
-    let one = mesh_memory::rectangle(2000, 2000, Order::P1);
+    let one = mesh_memory::rectangle(2000, 2000, Order::P2);
     let run = check(&file, Some(one.peak + 1));
     let stderr = String::from_utf8_lossy(&run.stderr);
     assert_eq!(run.status.code(), Some(1), "{run:?}");
@@ -85,7 +85,7 @@ fn a_small_problem_passes_the_same_check() {
 #[test]
 fn an_address_space_limit_refuses_before_building() {
     let file = problem(2000, "ulimit");
-    // 1.5 GB of address space: less than one body's construction. Were the estimate not checked,
+    // 1.5 GB of address space: less than the two P2 bodies' construction. Were the estimate not checked,
     // the construction would abort (exit 134) at this limit, having used at most 1.5 GB.
     let run = Command::new("sh")
         .arg("-c")

@@ -443,7 +443,9 @@ impl Mesh {
     fn curved(&self, a: usize, b: usize, mid: Option<usize>) -> bool {
         let Some(m) = mid else { return false };
         let (a, b, m) = (self.nodes[a], self.nodes[b], self.nodes[m]);
-        dist([0.5 * (a[0] + b[0]), 0.5 * (a[1] + b[1])], m) > 1e-8 * dist(a, b)
+        // Squared lengths: asked once per triangle and column in the assembly.
+        let square = |u: Point, v: Point| (u[0] - v[0]).powi(2) + (u[1] - v[1]).powi(2);
+        square([0.5 * (a[0] + b[0]), 0.5 * (a[1] + b[1])], m) > 1e-16 * square(a, b)
     }
 
     /// Whether a boundary edge is curved (a P2 edge whose mid-side node is off its midpoint).
