@@ -175,13 +175,7 @@ pub fn on_arcs(mesh: &Mesh) -> Result<Mesh, MeshError> {
             }
         }
     }
-    Mesh::new(
-        nodes,
-        mesh.order(),
-        mesh.cells().to_vec(),
-        mesh.boundaries().clone(),
-        mesh.node_sets().clone(),
-    )
+    mesh.with_nodes(nodes)
 }
 
 /// The press fit: body 0 the ring, body 1 the shaft, one pair between the ring's `inner` and the

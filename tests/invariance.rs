@@ -34,15 +34,7 @@ impl Motion {
     }
 
     fn mesh(&self, mesh: Mesh) -> Mesh {
-        let nodes = mesh.nodes().iter().map(|&p| self.apply(p)).collect();
-        Mesh::new(
-            nodes,
-            mesh.order(),
-            mesh.cells().to_vec(),
-            mesh.boundaries().clone(),
-            mesh.node_sets().clone(),
-        )
-        .unwrap()
+        mesh.map_nodes(|p| self.apply(p)).unwrap()
     }
 }
 

@@ -11,19 +11,8 @@ use contactdd::fem::{Component, Mesh, Plane};
 /// `mesh` rotated by `deg` degrees about the origin.
 fn rotated(mesh: Mesh, deg: f64) -> Mesh {
     let (s, c) = deg.to_radians().sin_cos();
-    let nodes = mesh
-        .nodes()
-        .iter()
-        .map(|p| [c * p[0] - s * p[1], s * p[0] + c * p[1]])
-        .collect();
-    Mesh::new(
-        nodes,
-        mesh.order(),
-        mesh.cells().to_vec(),
-        mesh.boundaries().clone(),
-        mesh.node_sets().clone(),
-    )
-    .unwrap()
+    mesh.map_nodes(|p| [c * p[0] - s * p[1], s * p[0] + c * p[1]])
+        .unwrap()
 }
 
 /// The notch with 32 × 16 cells below and 24 × 16 above, rotated by `deg`.

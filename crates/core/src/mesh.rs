@@ -539,8 +539,14 @@ impl Mesh {
     /// Returns a copy with every node moved by `f` (e.g. to map a reference mesh onto a body).
     /// The result is validated again.
     pub fn map_nodes(&self, f: impl Fn(Point) -> Point) -> Result<Mesh, MeshError> {
+        self.with_nodes(self.nodes.iter().map(|&p| f(p)).collect())
+    }
+
+    /// Returns a copy whose nodes are `nodes` (one per node, e.g. mid-side nodes moved onto a
+    /// curve), with the same cells, boundaries and node sets. The result is validated again.
+    pub fn with_nodes(&self, nodes: Vec<Point>) -> Result<Mesh, MeshError> {
         Mesh::new(
-            self.nodes.iter().map(|&p| f(p)).collect(),
+            nodes,
             self.order,
             self.cells.clone(),
             self.boundaries.clone(),

@@ -140,14 +140,7 @@ fn curved_square() -> Mesh {
             }
         })
         .collect();
-    let mesh = Mesh::new(
-        nodes,
-        Order::P2,
-        base.cells().to_vec(),
-        base.boundaries().clone(),
-        BTreeMap::new(),
-    )
-    .unwrap();
+    let mesh = base.with_nodes(nodes).unwrap();
     assert!(mesh.is_curved());
     mesh
 }
@@ -467,14 +460,7 @@ fn a_normal_support_is_refused_on_a_curved_edge_even_with_collinear_vertices() {
         let moved = bottom[3].mid.unwrap();
         let mut nodes = base.nodes().to_vec();
         nodes[moved][1] += offset;
-        let mesh = Mesh::new(
-            nodes,
-            Order::P2,
-            base.cells().to_vec(),
-            base.boundaries().clone(),
-            BTreeMap::new(),
-        )
-        .unwrap();
+        let mesh = base.with_nodes(nodes).unwrap();
         assert!(mesh.is_curved_edge(&mesh.boundary("bottom").unwrap()[3]));
         let mut c = Constraints::new(mesh.num_nodes());
         let err = c.fix(&mesh, "bottom", Component::Normal, 0.0).unwrap_err();
