@@ -9,8 +9,8 @@ use contactdd::cases;
 use contactdd::ddm::benchmark::Notch;
 use contactdd::ddm::monolithic::{solve_monolithic_with, MonolithicSettings};
 use contactdd::ddm::{
-    prepare, prepare_with, solve, solve_monolithic, Condensation, Forces, Hooks, Model,
-    MonolithicSolution, Settings, Solution,
+    prepare, prepare_with, solve, solve_monolithic, Condensation, Forces, Gamma, Hooks, Method,
+    Model, MonolithicSolution, Settings, Solution,
 };
 use contactdd::fem::{Component, Constraints, Material};
 
@@ -389,4 +389,51 @@ fn sparse_blocks_start_unloaded_only_where_the_solution_is_unique() {
 #[test]
 fn a_block_stranded_twice_is_not_given_up_while_a_held_state_came_before() {
     wall_agrees_on(302, Condensation::Auto, 60);
+}
+
+/// The notch under loads `factor` times the paper's.
+fn notch_scaled(factor: f64) -> Model {
+    let mut model = Notch::default().model().unwrap();
+    model.name = format!("notch under {factor:e} times its loads");
+    for body in &mut model.bodies {
+        body.load.iter_mut().for_each(|f| *f *= factor);
+    }
+    model
+}
+
+/// Loads of 1e-30 and 1e-60 (on a geometry whose contact points match exactly) solve like any
+/// other, and no load gives zero at once: the starting value u⁰ = 1e-4 of the paper would bury them in rounding, so the
+/// iterations start at the data's scale. The interface Newton method and the paper's
+/// Newton–Kurchatov sweeps both agree with the monolithic reference, which has no starting value.
+#[test]
+fn tiny_loads_converge_to_the_references_answer() {
+    let kurchatov = Settings {
+        tol: 1e-10,
+        max_iter: 500,
+        ..Settings::paper(Method::NewtonKurchatov, Gamma::Constant(0.5))
+    };
+    for factor in [1e-30, 1e-60] {
+        let model = notch_scaled(factor);
+        agree(&model, |_| 1e-8);
+        let reference = solve_monolithic(&model).unwrap();
+        let prepared = prepare(&model).unwrap();
+        let sweeps = solve(&model, &prepared, &kurchatov, Hooks::default()).unwrap();
+        assert!(sweeps.converged, "{}: {:?}", model.name, sweeps.message);
+        contact_agrees(&model.name, &sweeps, &reference, 1e-6);
+    }
+    // No load at all: zero is the answer, at once, for the sweeps too (which start from u⁰ = 0
+    // there and would find nothing closed to hold the floating bodies).
+    let model = notch_scaled(0.0);
+    let prepared = prepare(&model).unwrap();
+    for method in [Method::NewtonKurchatov, Method::ActiveSet, Method::Robin] {
+        let settings = Settings::paper(method, Gamma::Constant(0.5));
+        let sol = solve(&model, &prepared, &settings, Hooks::default()).unwrap();
+        assert!(sol.converged, "{method}: {:?}", sol.message);
+        assert_eq!(sol.iterations, 1, "{method}");
+        assert!(sol.contact[0].pressure.iter().all(|&p| p == 0.0));
+        assert!(sol
+            .bodies
+            .iter()
+            .all(|b| b.displacement.iter().all(|&u| u == 0.0)));
+    }
 }

@@ -39,6 +39,21 @@ pub struct Record {
     pub contact_force: Vec<f64>,
 }
 
+impl Record {
+    /// The one record of a problem without data, solved at once by zero interface loads: every
+    /// change, closed count and force zero over `bodies` bodies.
+    pub(crate) fn unloaded(bodies: usize) -> Record {
+        Record {
+            k: 1,
+            gamma: 1.0,
+            measure: 0.0,
+            rel_change: vec![0.0; bodies],
+            active: vec![0; bodies],
+            contact_force: vec![0.0; bodies],
+        }
+    }
+}
+
 /// How the iteration ended.
 #[derive(Clone, Debug, PartialEq)]
 pub enum Stop {

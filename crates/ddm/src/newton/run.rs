@@ -7,8 +7,10 @@ use super::algebra::norm;
 use super::step::Caches;
 use super::system::{Evaluation, System};
 use crate::contact::Status;
-use crate::exchange::{share_slices, share_vectors};
-use crate::measures::{contact_summary, largest, relative_change, starting_values};
+use crate::exchange::share_slices;
+use crate::measures::{
+    contact_summary, largest, relative_change, start_factor, starting_values, unloaded,
+};
 use crate::outcome::{Breakdown, Hooks, Record, Stop};
 use crate::prepared::Prepared;
 use crate::settings::Settings;
@@ -43,6 +45,8 @@ pub(super) struct Run<'s, 'a> {
     /// first step): [`crate::contact::Interface::hold_reversals`] compares the slip directions
     /// with them.
     previous_g: Vec<f64>,
+    /// Whether the problem has no data ([`unloaded`]).
+    unloaded: bool,
 }
 
 /// The watchdog's reference: the last state whose ‖R̂‖ a step decreased enough, with the closed
@@ -80,6 +84,7 @@ impl<'s, 'a> Run<'s, 'a> {
         settings: &Settings,
     ) -> Self {
         let mut t = vec![0.0; system.len()];
+        let u0 = settings.u0 * start_factor(prepared, system.interface, settings);
         for (b, body) in system.bodies.iter().enumerate() {
             let range = system.range(b);
             match (warm, body) {
@@ -88,7 +93,7 @@ impl<'s, 'a> Run<'s, 'a> {
                 // its load for u⁰ takes conjugate gradients that cost more than a Newton step.
                 (None, Some(body)) if body.sparse().is_some() && system.variational => {}
                 (None, Some(body)) => {
-                    let u0 = starting_values(system.interface, range.clone(), settings.u0);
+                    let u0 = starting_values(system.interface, range.clone(), u0);
                     t[range].copy_from_slice(&body.initial_load(&u0))
                 }
                 (None, None) => {}
@@ -115,11 +120,12 @@ impl<'s, 'a> Run<'s, 'a> {
             pulled: None,
             caches: Caches::default(),
             previous_g: Vec::new(),
+            unloaded: unloaded(prepared, system.interface),
         }
     }
 
     pub(super) fn solve(&mut self, settings: &Settings, hooks: Hooks<'_>) -> (Stop, usize) {
-        if unloaded(self.system) {
+        if self.unloaded {
             return self.zero(hooks);
         }
         let mut watchdog: Option<Checkpoint> = None;
@@ -191,17 +197,10 @@ impl<'s, 'a> Run<'s, 'a> {
     /// (every point open or just touching, every residual zero; a floating body that nothing
     /// holds has nothing to move it either). One iteration records it, with a zero residual.
     fn zero(&mut self, hooks: Hooks<'_>) -> (Stop, usize) {
-        let (n, bodies) = (self.system.len(), self.system.bodies.len());
+        let n = self.system.len();
         self.tau = vec![0.0; n];
         self.state = self.system.evaluation(&self.tau, vec![0.0; n]);
-        let record = Record {
-            k: 1,
-            gamma: 1.0,
-            measure: 0.0,
-            rel_change: vec![0.0; bodies],
-            active: vec![0; bodies],
-            contact_force: vec![0.0; bodies],
-        };
+        let record = Record::unloaded(self.system.bodies.len());
         if let Some(f) = hooks.on_iteration {
             f(&record);
         }
@@ -443,32 +442,4 @@ fn unload_unbounded(system: &System<'_>, scale: &[f64], tau: &mut [f64]) {
             tau[range].iter_mut().for_each(|t| *t = 0.0);
         }
     }
-}
-
-/// Whether the problem has no data: no body's loads or prescribed displacements move its
-/// contact points (f₀ = 0 on every body), no load does work along a free rigid motion, no pair
-/// starts overlapping (d ≥ 0), and no friction state or multiplier carries over from an earlier
-/// solve. Then τ = 0 solves the interface problem exactly.
-fn unloaded(system: &System<'_>) -> bool {
-    let own = (system.bodies.iter())
-        .map(|b| match b {
-            Some(body) if body.free_response().iter().any(|&f| f != 0.0) => vec![1.0],
-            _ => vec![0.0],
-        })
-        .collect();
-    let moved = share_vectors(system.exchange, own)
-        .iter()
-        .any(|v| v.first() != Some(&0.0));
-    let loaded = |p: &crate::contact::ContactPoint| {
-        let carried = p
-            .friction
-            .as_ref()
-            .is_some_and(|f| f.multiplier != 0.0 || f.reference != 0.0);
-        carried
-            || p.multiplier != 0.0
-            || (p.is_contact() && p.has_partner() && p.penalty_gap() < 0.0)
-    };
-    !moved
-        && !system.interface.points.iter().any(loaded)
-        && system.mode_load.iter().all(|&w| w == 0.0)
 }

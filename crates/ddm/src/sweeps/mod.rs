@@ -27,7 +27,7 @@ use crate::coarse::CoarseMode;
 use crate::contact::Interface;
 use crate::exchange::share_slices;
 use crate::iteration::Iteration;
-use crate::measures::starting_values;
+use crate::measures::{start_factor, starting_values, unloaded};
 use crate::outcome::{Hooks, Outcome, Record, Stop};
 use crate::prepared::Prepared;
 use crate::settings::Settings;
@@ -66,10 +66,11 @@ impl State {
     fn initial(prepared: &Prepared, interface: &Interface, settings: &Settings) -> State {
         let m = interface.len();
         let (mut t, mut u) = (vec![0.0; m], vec![0.0; m]);
+        let factor = start_factor(prepared, interface, settings);
         for (b, body) in prepared.bodies.iter().enumerate() {
             let Some(body) = body else { continue };
             let range = interface.body_range[b].clone();
-            let u0 = starting_values(interface, range.clone(), settings.u0);
+            let u0 = starting_values(interface, range.clone(), factor * settings.u0);
             let (u_b, t_b) = body.initial_state(&u0);
             t[range.clone()].copy_from_slice(&t_b);
             u[range].copy_from_slice(&u_b);
@@ -77,7 +78,7 @@ impl State {
         share_slices(&*prepared.exchange, &interface.body_range, &mut t);
         share_slices(&*prepared.exchange, &interface.body_range, &mut u);
         let mut state = State {
-            u_prev: starting_values(interface, 0..m, settings.u_prev),
+            u_prev: starting_values(interface, 0..m, factor * settings.u_prev),
             u,
             s_prev: vec![0.0; m],
             s: vec![0.0; m],
@@ -223,6 +224,9 @@ fn run(
     hooks: Hooks<'_>,
 ) -> Outcome {
     let start = Instant::now();
+    if unloaded(prepared, interface) {
+        return unloaded_outcome(interface, hooks, start);
+    }
     let mut run = Run::new(prepared, interface, settings);
     let mut history = Vec::new();
     let mut stop = Stop::MaxIterations;
@@ -261,6 +265,24 @@ fn run(
         un: run.state.u,
         t_load: run.state.t,
         history,
+        seconds: start.elapsed().as_secs_f64(),
+    }
+}
+
+/// The outcome of a problem without data ([`unloaded`]): zero displacements and loads at every
+/// point solve it exactly, in one recorded iteration. (A sweep from u⁰ = 0 would find no closed
+/// point to hold a floating body, and report it lost.)
+fn unloaded_outcome(interface: &Interface, hooks: Hooks<'_>, start: Instant) -> Outcome {
+    let record = Record::unloaded(interface.body_range.len());
+    if let Some(f) = hooks.on_iteration {
+        f(&record);
+    }
+    Outcome {
+        stop: Stop::Converged,
+        iterations: 1,
+        un: vec![0.0; interface.len()],
+        t_load: vec![0.0; interface.len()],
+        history: vec![record],
         seconds: start.elapsed().as_secs_f64(),
     }
 }
