@@ -417,6 +417,15 @@ fn own_side_hint(model: &Model) -> &'static str {
     }
 }
 
+/// Why the contact forces of converged Newton steps can miss the fields' own.
+fn stall_cause(model: &Model) -> &'static str {
+    if model.pairs.iter().any(|p| p.forces == Forces::OwnSide) {
+        "with own-side pairs on non-matching meshes each body integrates its own pressures, so a body held only by contact may not balance: refine the coarser contact mesh or use forces = \"balanced\""
+    } else {
+        "the rounding of the fields is then as large as the contact forces, which happens when the loads are so small that the rounding of the node coordinates (about 1e-16 of the model's size) exceeds the displacements they cause: scale the loads up (where the contact points start touching, the answer scales with them)"
+    }
+}
+
 /// The largest relative change of a body in the last record (NaN without records).
 fn largest_change(history: &[Record]) -> f64 {
     history
@@ -441,7 +450,8 @@ fn newton_message(stop: &Stop, model: &Model, history: &[Record], tol: f64) -> O
         Stop::Unenforced { .. } => unenforced_message(stop),
         Stop::Unbalanced { .. } => unbalanced_message(stop, model, "tighten tol"),
         Stop::Stalled { residual, limit } => Some(format!(
-            "stalled: the Newton steps converged, but the contact forces that the fields carry differ from those of the contact pressures by {residual:.2e} of the total contact force (more than equilibrium-tol = {limit:.1e}); with own-side pairs on non-matching meshes each body integrates its own pressures, so a body held only by contact may not balance: refine the coarser contact mesh or use forces = \"balanced\""
+            "stalled: the Newton steps converged, but the contact forces that the fields carry differ from those of the contact pressures by {residual:.2e} of the total contact force (more than equilibrium-tol = {limit:.1e}); {}",
+            stall_cause(model)
         )),
         Stop::Diverged {
             body: b,
