@@ -629,7 +629,7 @@ def notch_agreement(rows, p):
         total = f.sum()
         rel = abs(total - load) / load
         ok &= rel <= RESULTANT_TOL
-        steps = f"{res['steps']} steps" + (
+        steps = plural(res["steps"], "step") + (
             f", {res['updates']} updates" if res.get("updates") is not None else "")
         closed = int(np.sum(f > CLOSED * peak))
         parts.append(f"{code}: Σ F = {total:.6f} ({rel:.1e} from q·4 = {load:g}), "
@@ -658,9 +658,14 @@ def column_agreement(rows, n):
         forces = r["result"]["forces"]
         worst = max(abs(f - COLUMN_FORCE) for f in forces) / COLUMN_FORCE
         parts.append(f"{code} Σ {sum(forces):.6f}, every interface within {worst:.1e} of "
-                     f"{COLUMN_FORCE:g}, {r['result']['steps']} steps")
+                     f"{COLUMN_FORCE:g}, {plural(r['result']['steps'], 'step')}")
     return [f"contact force of the {n - 1} interfaces (p·2 = {COLUMN_FORCE:g} each, "
             f"{(n - 1) * COLUMN_FORCE:g} in all): " + "; ".join(parts) + "."]
+
+
+def plural(n, word):
+    """"1 step", "2 steps"."""
+    return f"{n} {word}{'' if n == 1 else 's'}"
 
 
 def check_peers(codes):
@@ -733,8 +738,11 @@ def main():
             lines += more + [""]
         for n in args.columns:
             rows = measure("column", n, ["contactdd", "getfem"], args.repeat, folder)
-            lines += [f"## Column of {n} floating blocks (non-matching interfaces; the two codes'"
-                      " discrete contact problems differ)", ""]
+            lines += [f"## Column of {n} floating blocks (scripts/columns.py)", "",
+                      "Non-matching interfaces: contactdd's penalty contact of columns.py against "
+                      "GetFEM's exact nodal contact between non-matching meshes, two different "
+                      "discrete problems; only the time, the memory and the contact forces are "
+                      "compared.", ""]
             lines += table(rows) + [""]
             lines += column_agreement(rows, n) + [""]
     text = "\n".join(lines)
