@@ -274,12 +274,12 @@ def cholmod_child(nx, ny):
         Kt.data[diag[pres]] = 1.0
         vp = np.zeros(Kt.shape[0])
         vp[tdof[active]] = -d[active]
-        rhs = ft - (Kt_full_mul(base, rows, cols, vp, Kt.shape[0]))
+        rhs = ft - (stored_mul(base, rows, cols, vp, Kt.shape[0]))
         rhs[pres] = vp[pres]
         factor.cholesky_inplace(Kt)
         v = factor(rhs)
         # The contact force on the upper body: the t rows' residual.
-        force = Kt_full_mul(base, rows, cols, v, Kt.shape[0])[tdof] - ft[tdof]
+        force = stored_mul(base, rows, cols, v, Kt.shape[0])[tdof] - ft[tdof]
         gap = d + v[tdof]
         new = force - c * gap > 0.0
         if np.array_equal(new, active):
@@ -291,7 +291,7 @@ def cholmod_child(nx, ny):
                 penetration=float(max(0.0, -gap.min())))
 
 
-def Kt_full_mul(data, rows, cols, v, n):
+def stored_mul(data, rows, cols, v, n):
     """y = A v for the matrix with stored values `data` at (`rows`, `cols`)."""
     import numpy as np
 
@@ -724,7 +724,8 @@ def main():
     ok = True
     lines = ["# contactdd against its peers (`scripts/peers.py`)", "",
              f"`python3 {' '.join(['scripts/peers.py'] + sys.argv[1:])}`: {args.repeat} "
-             f"interleaved round{'s' if args.repeat > 1 else ''} on {machine()}, Python {sys.version.split()[0]}. Libraries: "
+             f"interleaved round{'s' if args.repeat > 1 else ''} on {machine()}, Python "
+             f"{sys.version.split()[0]}. Libraries: "
              + "; ".join(f"{c}: {libraries_of(c)}" for c in codes) + ".", ""]
     with tempfile.TemporaryDirectory(prefix="peers-") as folder:
         for size in args.sizes:
