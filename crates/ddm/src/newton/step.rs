@@ -330,16 +330,23 @@ impl System<'_> {
         bodies.dedup();
         for b in bodies {
             let terms = combination.iter().filter(|&&(k, _)| self.body_of[k] == b);
-            let Some(bm) = &self.response[b] else {
+            let Some(bt) = &self.response_t[b] else {
                 for &(k, c) in terms {
                     self.push_row(trip, j, k, c);
                 }
                 continue;
             };
             let range = self.range(b);
-            let terms: Vec<(usize, f64)> = terms.map(|&(k, c)| (k - range.start, c)).collect();
-            for (i, col) in range.enumerate() {
-                let v: f64 = terms.iter().map(|&(local, c)| c * bm[(local, i)]).sum();
+            // Term by term along the rows of B (contiguous in Bᵀ): every entry sums its terms in
+            // their order, as a sum over the terms per entry would.
+            let mut row = vec![0.0; range.len()];
+            for &(k, c) in terms {
+                let col = bt.col(k - range.start);
+                for (v, &x) in row.iter_mut().zip(col.iter()) {
+                    *v += c * x;
+                }
+            }
+            for (v, col) in row.into_iter().zip(range) {
                 if v != 0.0 {
                     trip.push(Triplet::new(j, col, v));
                 }
@@ -359,7 +366,7 @@ impl System<'_> {
         let b = self.body_of[k];
         let range = self.range(b);
         let local = k - range.start;
-        let Some(bm) = &self.response[b] else {
+        let Some(bt) = &self.response_t[b] else {
             if let Some((offset, dofs)) = self.sparse_dofs(k) {
                 for &(r, n) in dofs {
                     trip.push(Triplet::new(j, offset + r, c * n));
@@ -367,8 +374,8 @@ impl System<'_> {
             }
             return;
         };
-        for (i, col) in range.enumerate() {
-            let v = c * bm[(local, i)];
+        for (&x, col) in bt.col(local).iter().zip(range) {
+            let v = c * x;
             if v != 0.0 {
                 trip.push(Triplet::new(j, col, v));
             }

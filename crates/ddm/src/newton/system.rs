@@ -20,8 +20,9 @@ pub(super) struct System<'a> {
     /// The bodies this process owns.
     pub(super) bodies: &'a [Option<CondensedBody>],
     pub(super) exchange: &'a dyn Exchange,
-    /// B_b = C₀D₀ of every dense body (`None` on the sparse path).
-    pub(super) response: Vec<Option<Mat<f64>>>,
+    /// B_bᵀ, the transpose of B_b = C₀D₀, of every dense body (`None` on the sparse path): its
+    /// columns are the rows of B, which U = Bτ and the Jacobian's rows read.
+    pub(super) response_t: Vec<Option<Mat<f64>>>,
     /// The reference springs D₀ of every point.
     pub(super) d0: Vec<f64>,
     /// How every body enters the Newton system (dense block, or sparse rows of its own or of
@@ -106,10 +107,10 @@ impl<'a> System<'a> {
                     .unwrap_or_else(Mat::new)
             })
             .collect();
-        let response: Vec<Option<Mat<f64>>> = share_matrices(exchange, dense)
+        let response_t: Vec<Option<Mat<f64>>> = share_matrices(exchange, dense)
             .into_iter()
             .zip(&parts)
-            .map(|(m, part)| part.sparse_free().is_none().then_some(m))
+            .map(|(m, part)| (part.sparse_free().is_none()).then(|| m.transpose().to_owned()))
             .collect();
         let mut d0 = vec![0.0; interface.len()];
         for (b, body) in prepared.bodies.iter().enumerate() {
@@ -123,7 +124,7 @@ impl<'a> System<'a> {
             .iter()
             .map(|p| p.role != Role::OwnSide)
             .collect();
-        let rho = scales(prepared, interface, &response, &balanced);
+        let rho = scales(prepared, interface, &response_t, &balanced);
         let mut next = interface.len() + modes_bound(mode_range);
         let sparse_offset = parts
             .iter()
@@ -139,7 +140,7 @@ impl<'a> System<'a> {
             interface,
             bodies: &prepared.bodies,
             exchange,
-            response,
+            response_t,
             parts,
             sparse_offset,
             mode_range,
@@ -182,7 +183,7 @@ impl<'a> System<'a> {
             .flat_map_iter(|b| {
                 let range = self.range(b);
                 let tau_b = &tau[range.clone()];
-                let Some(bm) = &self.response[b] else {
+                let Some(bt) = &self.response_t[b] else {
                     // A sparse body (one process owns them all). A failed solve shows as
                     // non-finite values, which the run then reports.
                     let u = self.bodies[b].as_ref().map(|body| body.respond(tau_b));
@@ -197,10 +198,9 @@ impl<'a> System<'a> {
                         // Another process's body: its slot is filled in below.
                         f0.map_or(0.0, |f0| {
                             f0[i]
-                                + tau_b
-                                    .iter()
-                                    .enumerate()
-                                    .map(|(j, t)| bm[(i, j)] * t)
+                                + (bt.col(i).iter())
+                                    .zip(tau_b)
+                                    .map(|(b, t)| b * t)
                                     .sum::<f64>()
                         })
                     })
@@ -477,10 +477,10 @@ pub(super) fn modes_bound(mode_range: &[Range<usize>]) -> usize {
 fn scales(
     prepared: &Prepared,
     interface: &Interface,
-    response: &[Option<Mat<f64>>],
+    response_t: &[Option<Mat<f64>>],
     balanced: &[bool],
 ) -> Vec<f64> {
-    let mut rho: Vec<f64> = response
+    let mut rho: Vec<f64> = response_t
         .iter()
         .zip(&prepared.bodies)
         .enumerate()
