@@ -207,8 +207,7 @@ pub fn solve(args: SolveArgs) -> Result<Exit> {
             return run_steps(run, &mut prepared);
         }
         let mut sol = iterate_shown(model, &prepared, &settings, quiet)?;
-        // The factorisations are done with: their memory goes back before the output's arrives.
-        drop(prepared);
+        drop(prepared); // the factorisations' memory goes back before the output's arrives
         let usage = ranks.usage();
         if ranks.size() > 1 {
             for (r, u) in usage.iter().enumerate() {
