@@ -106,6 +106,41 @@ fn temp_file(dir: &Path, file_name: &std::ffi::OsStr) -> std::io::Result<tempfil
 /// Unix), not a temporary file's 0600. A `path` without a file name, or one that
 /// [`check_output_path`] refuses, is an [`ErrorKind::InvalidInput`] error.
 pub fn write_atomic(path: &Path, bytes: &[u8]) -> std::io::Result<()> {
+    through_temp(path, bytes, true)
+}
+
+/// [`write_atomic`] without the sync: for the data files of a result set, which
+/// [`crate::result_set::ResultSet`] syncs together ([`sync_files`]) before its `summary.json`
+/// claims them. Readers still see the old file or the complete new one.
+pub(crate) fn write_staged(path: &Path, bytes: &[u8]) -> std::io::Result<()> {
+    through_temp(path, bytes, false)
+}
+
+/// Syncs the files `paths` to the disk, several at a time: the file system then commits them
+/// together, where one file after the other waits for a commit each (256 small files: about
+/// half the time). The first error, if any.
+pub(crate) fn sync_files(paths: &[std::path::PathBuf]) -> std::io::Result<()> {
+    const AT_ONCE: usize = 16;
+    let chunk = paths.len().div_ceil(AT_ONCE).max(1);
+    std::thread::scope(|scope| {
+        let handles: Vec<_> = paths
+            .chunks(chunk)
+            .map(|part| {
+                scope.spawn(move || {
+                    part.iter()
+                        .try_for_each(|p| std::fs::File::open(p)?.sync_all())
+                })
+            })
+            .collect();
+        handles.into_iter().try_for_each(|h| {
+            h.join()
+                .unwrap_or_else(|_| Err(Error::other("a sync thread panicked")))
+        })
+    })
+}
+
+/// Writes `bytes` to `path` through a temporary file, synced first if `sync`.
+fn through_temp(path: &Path, bytes: &[u8], sync: bool) -> std::io::Result<()> {
     check_output_path(path)?;
     let file_name = path.file_name().ok_or_else(|| {
         Error::new(
@@ -119,7 +154,9 @@ pub fn write_atomic(path: &Path, bytes: &[u8]) -> std::io::Result<()> {
     };
     let mut temp = temp_file(dir, file_name)?;
     temp.write_all(bytes)?;
-    temp.as_file().sync_all()?;
+    if sync {
+        temp.as_file().sync_all()?;
+    }
     temp.persist(path).map_err(|e| e.error)?;
     Ok(())
 }

@@ -15,7 +15,8 @@ use crate::fields::{
     nodal_contact_pressure, principal, tensor, ContactPointData,
 };
 use crate::result_set::ResultSet;
-use crate::vtu::{write_vtu_as, Field, VtuData, VtuFormat};
+use crate::atomic::{write_atomic, write_staged};
+use crate::vtu::{vtu_bytes, Field, VtuData, VtuFormat};
 
 /// Writes `<body>.vtu` per body into `dir` with the nodal fields of the results alone:
 /// `displacement` (vector), `stress` (3×3 tensor), `principal_stress_1` ≥ `_2` ≥ `_3`,
@@ -27,8 +28,9 @@ use crate::vtu::{write_vtu_as, Field, VtuData, VtuFormat};
 pub fn write_body_vtus(dir: &Path, bodies: &[BodyResult]) -> std::io::Result<Vec<PathBuf>> {
     let mut written = Vec::with_capacity(bodies.len());
     let all = |_| true;
+    // Not in a result set: each file synced on its own.
     write_vtus(
-        (dir, "", VtuFormat::default()),
+        (dir, "", VtuFormat::default(), write_atomic),
         bodies,
         &all,
         |_, _| Ok(Extra::default()),
@@ -91,8 +93,10 @@ pub(crate) fn write_solution_vtus_of(
 ) -> std::io::Result<()> {
     let pressures = contact_pressures(contact, bodies);
     let friction = has_friction(model);
+    let (dir, suffix, format) = to;
+    // A result set syncs its files together before its summary claims them.
     write_vtus(
-        to,
+        (dir, suffix, format, write_staged),
         bodies,
         owns,
         |b, body| {
@@ -151,10 +155,13 @@ pub(crate) fn vtu_paths(dir: &Path, suffix: &str, bodies: &[BodyResult]) -> Vec<
     paths
 }
 
+/// How a `.vtu` file's bytes reach its path: [`write_atomic`] or [`write_staged`].
+type Writer = fn(&Path, &[u8]) -> std::io::Result<()>;
+
 /// Writes the `.vtu` of each body that `owns` selects into `dir` (file names with `suffix`, in
-/// `format`), pushing each path to `written` once the file is there.
+/// `format`, by `write`), pushing each path to `written` once the file is there.
 fn write_vtus(
-    (dir, suffix, format): (&Path, &str, VtuFormat),
+    (dir, suffix, format, write): (&Path, &str, VtuFormat, Writer),
     bodies: &[BodyResult],
     owns: &dyn Fn(usize) -> bool,
     extra: impl Fn(usize, &BodyResult) -> std::io::Result<Extra> + Sync,
@@ -167,7 +174,10 @@ fn write_vtus(
     // The bodies' files are independent: written in parallel, listed in body order.
     let results: Vec<std::io::Result<()>> = mine
         .par_iter()
-        .map(|(b, path)| write_body_vtu(path, &bodies[*b], extra(*b, &bodies[*b])?, format))
+        .map(|(b, path)| {
+            let bytes = body_vtu(&bodies[*b], extra(*b, &bodies[*b])?, format)?;
+            write(path, &bytes)
+        })
         .collect();
     let mut first_error = None;
     for ((_, path), result) in mine.into_iter().zip(results) {
@@ -179,13 +189,8 @@ fn write_vtus(
     first_error.map_or(Ok(()), Err)
 }
 
-/// Writes one body's `.vtu` with its fields and `extra`.
-fn write_body_vtu(
-    path: &Path,
-    body: &BodyResult,
-    extra: Extra,
-    format: VtuFormat,
-) -> std::io::Result<()> {
+/// The bytes of one body's `.vtu` with its fields and `extra`.
+fn body_vtu(body: &BodyResult, extra: Extra, format: VtuFormat) -> std::io::Result<Vec<u8>> {
     let component = |k: usize| body.stress.iter().map(|s| s[k]).collect::<Vec<f64>>();
     let (sxx, syy, sxy, szz) = (component(0), component(1), component(2), component(3));
     let tensors: Vec<f64> = body.stress.iter().flat_map(tensor).collect();
@@ -231,7 +236,7 @@ fn write_body_vtu(
         points: &points,
         cells: &cells,
     };
-    write_vtu_as(path, &body.mesh, data, format)
+    vtu_bytes(&body.mesh, data, format)
 }
 
 /// A name usable as a file name on every platform: letters, digits, `-`, `_` and `.` are kept,

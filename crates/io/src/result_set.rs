@@ -5,8 +5,9 @@
 //! [`ResultSet::begin`] removes what a killed run left (the staging folder [`STAGING`], temporary
 //! files of ours) and creates the staging folder, `DIR/.contactdd-staging`. The data files are
 //! written into it ([`ResultSet::write`], or [`ResultSet::record`] for files written by another
-//! function into [`ResultSet::dir`]), each atomically, and [`ResultSet::finish`] writes the new
-//! `summary.json` there last, with the manifest added, then swaps the new set in:
+//! function into [`ResultSet::dir`]), each atomically, and [`ResultSet::finish`] syncs them all
+//! to the disk at once, writes the new `summary.json` there last, with the manifest added, then
+//! swaps the new set in:
 //!
 //! 1. the previous `summary.json` is moved into the staging folder (as `PREVIOUS`): from here the
 //!    folder no longer claims a complete result;
@@ -28,7 +29,7 @@ use std::path::{Component, Path, PathBuf};
 
 use serde_json::Value;
 
-use crate::atomic::{check_output_path, is_temp_name, write_atomic};
+use crate::atomic::{check_output_path, is_temp_name, sync_files, write_atomic, write_staged};
 
 /// The file written last, holding the manifest.
 pub const SUMMARY: &str = "summary.json";
@@ -106,7 +107,7 @@ impl ResultSet {
     /// Writes the data file `name` of the set atomically.
     pub fn write(&mut self, name: &str, bytes: &[u8]) -> std::io::Result<()> {
         let path = self.staging.join(name);
-        write_atomic(&path, bytes)?;
+        write_staged(&path, bytes)?;
         self.written.push(path);
         Ok(())
     }
@@ -166,11 +167,15 @@ impl ResultSet {
             MANIFEST_KEY.into(),
             names.iter().map(|n| Value::from(n.as_str())).collect(),
         );
-        let staged = serde_json::to_string_pretty(&summary)
-            .map_err(Error::other)
+        // The data on the disk before the summary that claims it.
+        let staged = sync_files(&self.written)
+            .and_then(|()| serde_json::to_string_pretty(&summary).map_err(Error::other))
             .and_then(|mut text| {
                 text.push('\n');
-                self.write(SUMMARY, text.as_bytes())
+                let path = self.staging.join(SUMMARY);
+                write_atomic(&path, text.as_bytes())?;
+                self.written.push(path);
+                Ok(())
             })
             .and_then(|()| {
                 // Every rename target must be replaceable before anything is touched.
