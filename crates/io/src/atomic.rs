@@ -117,8 +117,8 @@ pub(crate) fn write_staged(path: &Path, bytes: &[u8]) -> std::io::Result<()> {
 }
 
 /// Syncs the files `paths` to the disk, several at a time: the file system then commits them
-/// together, where one file after the other waits for a commit each (256 small files: about
-/// half the time). The first error, if any.
+/// together, where one file after the other waits for a commit each. The first error, if any.
+/// (Opened for writing, which Windows needs to flush a file; nothing is written.)
 pub(crate) fn sync_files(paths: &[std::path::PathBuf]) -> std::io::Result<()> {
     const AT_ONCE: usize = 16;
     let chunk = paths.len().div_ceil(AT_ONCE).max(1);
@@ -127,8 +127,9 @@ pub(crate) fn sync_files(paths: &[std::path::PathBuf]) -> std::io::Result<()> {
             .chunks(chunk)
             .map(|part| {
                 scope.spawn(move || {
-                    part.iter()
-                        .try_for_each(|p| std::fs::File::open(p)?.sync_all())
+                    part.iter().try_for_each(|p| {
+                        std::fs::OpenOptions::new().write(true).open(p)?.sync_all()
+                    })
                 })
             })
             .collect();
@@ -178,6 +179,24 @@ mod tests {
             .map(|e| e.unwrap().file_name())
             .collect();
         assert_eq!(names, ["a.txt"]);
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+
+    #[test]
+    fn staged_files_are_complete_and_a_missing_one_fails_the_sync() {
+        let dir = std::env::temp_dir().join(format!("contactdd-staged-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let paths: Vec<_> = (0..40).map(|i| dir.join(format!("f{i}.csv"))).collect();
+        for (i, p) in paths.iter().enumerate() {
+            write_staged(p, format!("{i}").as_bytes()).unwrap();
+        }
+        sync_files(&paths).unwrap();
+        for (i, p) in paths.iter().enumerate() {
+            assert_eq!(std::fs::read_to_string(p).unwrap(), format!("{i}"));
+        }
+        let mut with_missing = paths.clone();
+        with_missing.insert(17, dir.join("missing.csv"));
+        assert!(sync_files(&with_missing).is_err());
         std::fs::remove_dir_all(&dir).unwrap();
     }
 

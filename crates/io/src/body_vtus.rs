@@ -10,12 +10,12 @@ use std::path::{Path, PathBuf};
 use contactdd_ddm::solution::{BodyResult, PairResult};
 use contactdd_ddm::Model;
 
+use crate::atomic::{write_atomic, write_staged};
 use crate::fields::{
     contact_point_data, contact_pressures, element_von_mises, friction_point_data, has_friction,
     nodal_contact_pressure, principal, tensor, ContactPointData,
 };
 use crate::result_set::ResultSet;
-use crate::atomic::{write_atomic, write_staged};
 use crate::vtu::{vtu_bytes, Field, VtuData, VtuFormat};
 
 /// Writes `<body>.vtu` per body into `dir` with the nodal fields of the results alone:
