@@ -52,6 +52,20 @@ BINARY = os.environ.get("CONTACTDD_BIN") or (
     Path(__file__).resolve().parent.parent / "target" / "release" / "contactdd")
 
 
+def block_supports(r, j, i, blocks, sideways=True):
+    """The supports of block i of row j (of `blocks`): the base row on the floor, the first block
+    on the left wall, the last one on the right wall half the time (always on the base row) when
+    `sideways`; draws from `r` only for a last block, as the families always have."""
+    supports = []
+    if j == 0:
+        supports.append('{ boundary = "bottom", component = "y" }')
+    if i == 0:
+        supports.append('{ boundary = "left", component = "x" }')
+    if sideways and i == blocks - 1 and (r.random() < 0.5 or j == 0):
+        supports.append('{ boundary = "right", component = "x" }')
+    return supports
+
+
 def wall(seed):
     """The problem file of one seed (TOML text)."""
     r = random.Random(seed)
@@ -78,13 +92,7 @@ def wall(seed):
             name = names[(j, i)] = f"b{j}_{i}"
             cell = r.choice([0.05, 0.1, 0.13, 0.2])
             nx, ny = max(2, round((x1 - x0) / cell)), max(2, round((y1 - y0) / cell))
-            supports = []
-            if j == 0:
-                supports.append('{ boundary = "bottom", component = "y" }')
-            if i == 0:
-                supports.append('{ boundary = "left", component = "x" }')
-            if i == len(row) - 1 and (r.random() < 0.5 or j == 0):
-                supports.append('{ boundary = "right", component = "x" }')
+            supports = block_supports(r, j, i, len(row))
             loads = []
             if j == rows - 1:
                 loads.append(f'{{ kind = "pressure", boundary = "top", value = {r.choice([1.0, 10.0, 100.0])} }}')
@@ -177,13 +185,7 @@ def hard(seed):
             name = names[(j, i)]
             size = cell if matching else width / r.choice([32, 48, 64] if column else [64, 96, 128])
             nx, ny = max(2, round((x1 - x0) / size)), max(2, round((y1 - y0) / size))
-            supports = []
-            if j == 0:
-                supports.append('{ boundary = "bottom", component = "y" }')
-            if i == 0:
-                supports.append('{ boundary = "left", component = "x" }')
-            if not column and i == len(row) - 1 and (r.random() < 0.5 or j == 0):
-                supports.append('{ boundary = "right", component = "x" }')
+            supports = block_supports(r, j, i, len(row), sideways=not column)
             loads = []
             p = soft * 10 ** r.uniform(-5, -3)
             if j == len(layout) - 1:

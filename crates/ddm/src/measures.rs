@@ -18,25 +18,30 @@ pub(crate) fn starting_values(interface: &Interface, range: Range<usize>, value:
         .collect()
 }
 
-/// The factor on the starting values u⁰ and u⁻¹: 1, unless a start of that size would bury the
-/// problem's own data in rounding. The data's displacement scale D is the largest normal
-/// displacement the loads produce on their own (f₀ of every body) or that an initial overlap
-/// asks for. An iteration that starts a distance u⁰ away carries rounding errors of about ε u⁰
-/// into its iterates; when ε u⁰ exceeds tol·D (loads of 1e-30 against a u⁰ of 1e-4, say) no
-/// iterate can meet the tolerance, and the start moves to the data's scale: the factor D / u⁰,
-/// 0 when there is no data.
-pub(crate) fn start_factor(prepared: &Prepared, interface: &Interface, settings: &Settings) -> f64 {
+/// The largest normal displacement that the bodies' loads and prescribed displacements produce
+/// on their own, max |f₀| over every body (NaN if any is NaN), the same on every process.
+pub(crate) fn free_response_scale(prepared: &Prepared) -> f64 {
     let own = (prepared.bodies.iter())
         .map(|body| {
             let f0 = body.as_ref().map_or(&[][..], |b| b.free_response());
             vec![largest(f0.iter().map(|v| v.abs()))]
         })
         .collect();
-    let response = largest(
+    largest(
         share_vectors(&*prepared.exchange, own)
             .into_iter()
             .flatten(),
-    );
+    )
+}
+
+/// The factor on the starting values u⁰ and u⁻¹: 1, unless a start of that size would bury the
+/// problem's own data in rounding. The data's displacement scale D is the largest normal
+/// displacement the loads produce on their own (`response`, [`free_response_scale`]) or that an
+/// initial overlap asks for. An iteration that starts a distance u⁰ away carries rounding errors
+/// of about ε u⁰ into its iterates; when ε u⁰ exceeds tol·D (loads of 1e-30 against a u⁰ of
+/// 1e-4, say) no iterate can meet the tolerance, and the start moves to the data's scale: the
+/// factor D / u⁰, 0 when there is no data.
+pub(crate) fn start_factor(response: f64, interface: &Interface, settings: &Settings) -> f64 {
     let overlap = largest(
         (interface.points.iter())
             .filter(|p| p.is_contact() && p.has_partner())
@@ -52,19 +57,10 @@ pub(crate) fn start_factor(prepared: &Prepared, interface: &Interface, settings:
 }
 
 /// Whether the problem has no data: no body's loads or prescribed displacements move its
-/// contact points (f₀ = 0 on every body), no load does work along a free rigid motion, no pair
-/// starts overlapping (d ≥ 0), and no friction state or multiplier carries over from an earlier
-/// solve. Then zero interface loads solve the interface problem exactly.
-pub(crate) fn unloaded(prepared: &Prepared, interface: &Interface) -> bool {
-    let own = (prepared.bodies.iter())
-        .map(|b| match b {
-            Some(body) if body.free_response().iter().any(|&f| f != 0.0) => vec![1.0],
-            _ => vec![0.0],
-        })
-        .collect();
-    let moved = share_vectors(&*prepared.exchange, own)
-        .iter()
-        .any(|v| v.first() != Some(&0.0));
+/// contact points (`response`, [`free_response_scale`], is 0), no load does work along a free
+/// rigid motion, no pair starts overlapping (d ≥ 0), and no friction state or multiplier carries
+/// over from an earlier solve. Then zero interface loads solve the interface problem exactly.
+pub(crate) fn unloaded(response: f64, prepared: &Prepared, interface: &Interface) -> bool {
     let loaded = |p: &crate::contact::ContactPoint| {
         let carried = p
             .friction
@@ -74,7 +70,7 @@ pub(crate) fn unloaded(prepared: &Prepared, interface: &Interface) -> bool {
             || p.multiplier != 0.0
             || (p.is_contact() && p.has_partner() && p.penalty_gap() < 0.0)
     };
-    !moved
+    response == 0.0
         && !interface.points.iter().any(loaded)
         && prepared.coarse.floating_loads().iter().all(|&w| w == 0.0)
 }

@@ -9,7 +9,8 @@ use super::system::{Evaluation, System};
 use crate::contact::Status;
 use crate::exchange::share_slices;
 use crate::measures::{
-    contact_summary, largest, relative_change, start_factor, starting_values, unloaded,
+    contact_summary, free_response_scale, largest, relative_change, start_factor, starting_values,
+    unloaded,
 };
 use crate::outcome::{Breakdown, Hooks, Record, Stop};
 use crate::prepared::Prepared;
@@ -84,7 +85,8 @@ impl<'s, 'a> Run<'s, 'a> {
         settings: &Settings,
     ) -> Self {
         let mut t = vec![0.0; system.len()];
-        let u0 = settings.u0 * start_factor(prepared, system.interface, settings);
+        let response = free_response_scale(prepared);
+        let u0 = settings.u0 * start_factor(response, system.interface, settings);
         for (b, body) in system.bodies.iter().enumerate() {
             let range = system.range(b);
             match (warm, body) {
@@ -120,7 +122,7 @@ impl<'s, 'a> Run<'s, 'a> {
             pulled: None,
             caches: Caches::default(),
             previous_g: Vec::new(),
-            unloaded: unloaded(prepared, system.interface),
+            unloaded: unloaded(response, prepared, system.interface),
         }
     }
 

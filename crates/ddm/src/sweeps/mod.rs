@@ -27,7 +27,7 @@ use crate::coarse::CoarseMode;
 use crate::contact::Interface;
 use crate::exchange::share_slices;
 use crate::iteration::Iteration;
-use crate::measures::{start_factor, starting_values, unloaded};
+use crate::measures::{free_response_scale, start_factor, starting_values, unloaded};
 use crate::outcome::{Hooks, Outcome, Record, Stop};
 use crate::prepared::Prepared;
 use crate::settings::Settings;
@@ -62,11 +62,16 @@ struct State {
 }
 
 impl State {
-    /// The initial values u^0, u^{−1} and the loads T^0 that reproduce u^0.
-    fn initial(prepared: &Prepared, interface: &Interface, settings: &Settings) -> State {
+    /// The initial values u^0, u^{−1} (the settings' times `factor`, [`start_factor`]) and the
+    /// loads T^0 that reproduce u^0.
+    fn initial(
+        prepared: &Prepared,
+        interface: &Interface,
+        settings: &Settings,
+        factor: f64,
+    ) -> State {
         let m = interface.len();
         let (mut t, mut u) = (vec![0.0; m], vec![0.0; m]);
-        let factor = start_factor(prepared, interface, settings);
         for (b, body) in prepared.bodies.iter().enumerate() {
             let Some(body) = body else { continue };
             let range = interface.body_range[b].clone();
@@ -108,6 +113,8 @@ struct Run<'a> {
     sums: BodySums<'a>,
     update: Update,
     state: State,
+    /// The factor on the starting values, for a restart.
+    start: f64,
     buf: Buffers,
     /// The coarse mode in use: the settings', until the guard switches it off.
     coarse: CoarseMode,
@@ -126,7 +133,13 @@ enum Swept {
 }
 
 impl<'a> Run<'a> {
-    fn new(prepared: &'a Prepared, interface: &'a Interface, settings: &'a Settings) -> Self {
+    /// `start`: the factor on the starting values ([`start_factor`]).
+    fn new(
+        prepared: &'a Prepared,
+        interface: &'a Interface,
+        settings: &'a Settings,
+        start: f64,
+    ) -> Self {
         let exchange = &*prepared.exchange;
         let accelerated = settings.accelerator != crate::settings::Accelerator::None;
         Run {
@@ -137,7 +150,8 @@ impl<'a> Run<'a> {
             sharing: Sharing::new(settings, exchange, interface),
             sums: BodySums::new(exchange, &interface.body_range),
             update: Update::new(settings),
-            state: State::initial(prepared, interface, settings),
+            state: State::initial(prepared, interface, settings, start),
+            start,
             buf: Buffers::new(interface.len()),
             coarse: settings.coarse,
             last_update: None,
@@ -182,7 +196,7 @@ impl<'a> Run<'a> {
             if let Update::Relax(relax) = &mut self.update {
                 if relax.restart() {
                     // Start over from the initial values with a smaller γ cap.
-                    self.state = State::initial(prepared, interface, settings);
+                    self.state = State::initial(prepared, interface, settings, self.start);
                     self.last_update = None;
                     return Swept::Restart;
                 }
@@ -224,10 +238,12 @@ fn run(
     hooks: Hooks<'_>,
 ) -> Outcome {
     let start = Instant::now();
-    if unloaded(prepared, interface) {
+    let response = free_response_scale(prepared);
+    if unloaded(response, prepared, interface) {
         return unloaded_outcome(interface, hooks, start);
     }
-    let mut run = Run::new(prepared, interface, settings);
+    let factor = start_factor(response, interface, settings);
+    let mut run = Run::new(prepared, interface, settings, factor);
     let mut history = Vec::new();
     let mut stop = Stop::MaxIterations;
     let mut iterations = 0;
