@@ -18,6 +18,7 @@ pub mod benchmark;
 pub mod coarse;
 pub mod condensed;
 pub mod contact;
+pub mod contact3d;
 pub mod equilibrium;
 pub mod error;
 pub mod exchange;

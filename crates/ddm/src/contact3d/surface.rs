@@ -1,0 +1,219 @@
+//! A triangulated contact surface: its nodes, its linear (3-node) triangles, the unit normal and
+//! area of every triangle, and per node the lumped weight ∫ φ_j dA and the nodal normal.
+
+use super::{cross, length, sub, Point3};
+
+/// Why a set of points and triangles is not a contact surface.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum SurfaceError {
+    /// A triangle names a node that does not exist.
+    #[error("triangle {triangle} names node {node}, but the surface has {nodes} nodes")]
+    NodeOutOfRange {
+        /// The triangle.
+        triangle: usize,
+        /// The node it names.
+        node: usize,
+        /// The number of nodes.
+        nodes: usize,
+    },
+    /// A node's coordinate is NaN or infinite.
+    #[error("node {node} has a non-finite coordinate {coordinates:?}")]
+    NotFinite {
+        /// The node.
+        node: usize,
+        /// Its coordinates.
+        coordinates: Point3,
+    },
+    /// A triangle has no area (repeated or collinear nodes).
+    #[error("triangle {triangle} (nodes {nodes:?}) is degenerate: its area is {area:e}")]
+    Degenerate {
+        /// The triangle.
+        triangle: usize,
+        /// Its nodes.
+        nodes: [usize; 3],
+        /// Its area.
+        area: f64,
+    },
+    /// The surface has no triangle.
+    #[error("the surface has no triangle")]
+    Empty,
+}
+
+/// A triangulated surface whose triangles are numbered counterclockwise seen from outside the
+/// body, so that every triangle's normal (b − a) × (c − a) points out of it.
+#[derive(Clone, Debug)]
+pub struct Surface {
+    points: Vec<Point3>,
+    triangles: Vec<[usize; 3]>,
+    /// Per triangle, the outward unit normal and the area.
+    faces: Vec<(Point3, f64)>,
+    /// Per node, ∫ φ_j dA (a third of its triangles' areas).
+    weights: Vec<f64>,
+    /// Per node, the area-weighted mean of its triangles' normals, of unit length.
+    normals: Vec<Point3>,
+}
+
+impl Surface {
+    /// The surface of `triangles` over `points`, checked: every index in range, every coordinate
+    /// finite, and every triangle of positive area (above 1e-14 of the surface's extent squared).
+    pub fn new(points: Vec<Point3>, triangles: Vec<[usize; 3]>) -> Result<Surface, SurfaceError> {
+        if triangles.is_empty() {
+            return Err(SurfaceError::Empty);
+        }
+        if let Some((node, &coordinates)) =
+            (points.iter().enumerate()).find(|(_, p)| p.iter().any(|x| !x.is_finite()))
+        {
+            return Err(SurfaceError::NotFinite { node, coordinates });
+        }
+        for (triangle, t) in triangles.iter().enumerate() {
+            if let Some(&node) = t.iter().find(|&&v| v >= points.len()) {
+                return Err(SurfaceError::NodeOutOfRange {
+                    triangle,
+                    node,
+                    nodes: points.len(),
+                });
+            }
+        }
+        let extent = extent(&points);
+        let mut faces = Vec::with_capacity(triangles.len());
+        for (triangle, &t) in triangles.iter().enumerate() {
+            let [a, b, c] = t.map(|v| points[v]);
+            let n = cross(sub(b, a), sub(c, a));
+            let area = 0.5 * length(n);
+            if area.is_nan() || area <= 1e-14 * extent * extent {
+                return Err(SurfaceError::Degenerate {
+                    triangle,
+                    nodes: t,
+                    area,
+                });
+            }
+            faces.push((n.map(|x| 0.5 * x / area), area));
+        }
+        let (weights, normals) = nodal(&points, &triangles, &faces);
+        Ok(Surface {
+            points,
+            triangles,
+            faces,
+            weights,
+            normals,
+        })
+    }
+
+    /// The nodes' coordinates.
+    pub fn points(&self) -> &[Point3] {
+        &self.points
+    }
+
+    /// The triangles (node indices, counterclockwise seen from outside).
+    pub fn triangles(&self) -> &[[usize; 3]] {
+        &self.triangles
+    }
+
+    /// Triangle t's outward unit normal and area.
+    pub fn face(&self, t: usize) -> (Point3, f64) {
+        self.faces[t]
+    }
+
+    /// Per node, ∫ φ_j dA: the weight of its contact force.
+    pub fn weights(&self) -> &[f64] {
+        &self.weights
+    }
+
+    /// Per node, the unit normal: the area-weighted mean of its triangles' normals (a node that
+    /// no triangle names has the zero vector).
+    pub fn normals(&self) -> &[Point3] {
+        &self.normals
+    }
+
+    /// The corners of the box around triangle t.
+    pub fn bounds(&self, t: usize) -> (Point3, Point3) {
+        let mut lo = [f64::INFINITY; 3];
+        let mut hi = [f64::NEG_INFINITY; 3];
+        for v in self.triangles[t] {
+            for c in 0..3 {
+                lo[c] = lo[c].min(self.points[v][c]);
+                hi[c] = hi[c].max(self.points[v][c]);
+            }
+        }
+        (lo, hi)
+    }
+}
+
+/// The largest side of the box around `points`.
+fn extent(points: &[Point3]) -> f64 {
+    (0..3)
+        .map(|c| {
+            let (lo, hi) = points
+                .iter()
+                .fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), p| {
+                    (l.min(p[c]), h.max(p[c]))
+                });
+            hi - lo
+        })
+        .fold(0.0, f64::max)
+}
+
+/// Per node, the lumped weight and the area-weighted normal of the triangles around it.
+fn nodal(
+    points: &[Point3],
+    triangles: &[[usize; 3]],
+    faces: &[(Point3, f64)],
+) -> (Vec<f64>, Vec<Point3>) {
+    let mut weights = vec![0.0; points.len()];
+    let mut sums = vec![[0.0; 3]; points.len()];
+    for (t, &(n, area)) in triangles.iter().zip(faces) {
+        for v in *t {
+            weights[v] += area / 3.0;
+            for c in 0..3 {
+                sums[v][c] += area * n[c];
+            }
+        }
+    }
+    let normals = sums
+        .into_iter()
+        .map(|s| {
+            let l = length(s);
+            if l > 0.0 {
+                s.map(|x| x / l)
+            } else {
+                [0.0; 3]
+            }
+        })
+        .collect();
+    (weights, normals)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_unit_square_has_unit_area_and_upward_normals() {
+        let points = vec![
+            [0.0, 0.0, 0.0],
+            [1.0, 0.0, 0.0],
+            [1.0, 1.0, 0.0],
+            [0.0, 1.0, 0.0],
+        ];
+        let s = Surface::new(points, vec![[0, 1, 2], [0, 2, 3]]).unwrap();
+        let total: f64 = s.weights().iter().sum();
+        assert!((total - 1.0).abs() < 1e-15);
+        for n in s.normals() {
+            assert_eq!(*n, [0.0, 0.0, 1.0]);
+        }
+    }
+
+    #[test]
+    fn bad_surfaces_are_refused_with_the_reason() {
+        let p = vec![[0.0; 3], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]];
+        let err = Surface::new(p.clone(), vec![[0, 1, 3]]).unwrap_err();
+        assert!(matches!(err, SurfaceError::NodeOutOfRange { node: 3, .. }));
+        let err = Surface::new(p.clone(), vec![[0, 1, 1]]).unwrap_err();
+        assert!(matches!(err, SurfaceError::Degenerate { triangle: 0, .. }));
+        let mut q = p.clone();
+        q[1][2] = f64::NAN;
+        let err = Surface::new(q, vec![[0, 1, 2]]).unwrap_err();
+        assert!(matches!(err, SurfaceError::NotFinite { node: 1, .. }));
+        assert_eq!(Surface::new(p, vec![]).unwrap_err(), SurfaceError::Empty);
+    }
+}
