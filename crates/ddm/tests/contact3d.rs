@@ -3,7 +3,7 @@
 //! matching meshes, consistent loads of a uniform pressure, rigid-motion invariance, and the
 //! second-order convergence of a curved gap.
 
-use contactdd_ddm::contact3d::{dual_mortar, MortarRow, Point3, Surface, TriangleIndex};
+use contactdd_ddm::contact3d::{dual_mortar, MortarRow, Point3, PointRows, Surface, TriangleIndex};
 
 /// A triangulated square [x0, x0 + size]² (n × n cells, each split along a diagonal) at height
 /// `z(x, y)`, facing up (`up`) or down, with the interior nodes moved in the plane by up to
@@ -242,4 +242,41 @@ fn distant_or_unfacing_surfaces_have_no_partner() {
     assert!(rows(&reference, &far, 0.5).iter().all(Option::is_none));
     let same_way = square(4, 0.0, 1.0, true, 0.0, &|_, _| 0.01);
     assert!(rows(&reference, &same_way, 0.5).iter().all(Option::is_none));
+}
+
+/// Touching non-matching surfaces moved together by a rigid motion (a translation and a small
+/// rotation, linearised: u = a + ω × x) neither approach nor slip at any covered point; moving
+/// the partner alone by a tangential translation slips every covered point by exactly it.
+#[test]
+fn rigid_motions_neither_approach_nor_slip() {
+    let reference = square(6, 0.0, 1.0, true, 0.2, &|_, _| 0.0);
+    let partner = square(9, -0.1, 1.2, false, 0.2, &|_, _| 0.0);
+    let rows = rows(&reference, &partner, 0.1);
+    let (a, w) = ([0.3, -0.2, 0.1], [0.02, -0.05, 0.03]);
+    let rigid = |x: Point3| {
+        [
+            a[0] + w[1] * x[2] - w[2] * x[1],
+            a[1] + w[2] * x[0] - w[0] * x[2],
+            a[2] + w[0] * x[1] - w[1] * x[0],
+        ]
+    };
+    let u_ref: Vec<Point3> = reference.points().iter().map(|&x| rigid(x)).collect();
+    let u_par: Vec<Point3> = partner.points().iter().map(|&x| rigid(x)).collect();
+    let shift = [0.01, 0.004, 0.0];
+    let still = vec![[0.0; 3]; reference.points().len()];
+    let shifted = vec![shift; partner.points().len()];
+    for (j, row) in covered(&rows) {
+        let point = PointRows::new(j, reference.normals()[j], row);
+        let [s, g1, g2] = point.read(&u_ref, &u_par);
+        assert!(
+            s.abs() < 1e-15 && g1.abs() < 1e-15 && g2.abs() < 1e-15,
+            "node {j}"
+        );
+        // The partner moves by `shift`: the reference slips by −shift relative to it.
+        let [s, g1, g2] = point.read(&still, &shifted);
+        let [_, t1, t2] = point.frame;
+        let along = |t: Point3| -(t[0] * shift[0] + t[1] * shift[1] + t[2] * shift[2]);
+        assert!(s.abs() < 1e-15, "node {j}");
+        assert!((g1 - along(t1)).abs() < 1e-15 && (g2 - along(t2)).abs() < 1e-15);
+    }
 }

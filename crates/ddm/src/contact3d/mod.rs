@@ -12,13 +12,19 @@
 //! and h the distance along that normal. The integrals are exact on flat triangles: every
 //! partner triangle is projected onto the plane of each reference triangle it faces, clipped
 //! against it ([`clipping`]), and the clipped polygon is integrated piece by piece
-//! ([`mortar`]). Data flows one way: [`Surface`] → [`TriangleIndex`] → [`dual_mortar`].
+//! ([`mortar`]). Each reference node then reads its normal approach and its two tangential slips
+//! in one frame ([`frames`]), and friction bounds the tangential traction by a disc ([`disc`]).
+//! Data flows one way: [`Surface`] → [`TriangleIndex`] → [`dual_mortar`] → [`PointRows`].
 
 pub mod clipping;
+pub mod disc;
+pub mod frames;
 pub mod mortar;
 pub mod surface;
 pub mod triangle_index;
 
+pub use disc::DiscStatus;
+pub use frames::{tangents, PointRows, Side};
 pub use mortar::{dual_mortar, MortarRow};
 pub use surface::{Surface, SurfaceError};
 pub use triangle_index::TriangleIndex;
