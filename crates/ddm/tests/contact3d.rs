@@ -280,3 +280,57 @@ fn rigid_motions_neither_approach_nor_slip() {
         assert!((g1 - along(t1)).abs() < 1e-15 && (g2 - along(t2)).abs() < 1e-15);
     }
 }
+
+/// A quadratic surface of 2 n² six-node triangles over the nodes of `square(2n)`: the side
+/// nodes are the midpoints of the coarse triangles' sides.
+fn quadratic_square(
+    n: usize,
+    x0: f64,
+    size: f64,
+    up: bool,
+    z: &dyn Fn(f64, f64) -> f64,
+) -> Surface {
+    let fine = square(2 * n, x0, size, up, 0.0, z);
+    let v = |i: usize, j: usize| j * (2 * n + 1) + i;
+    let mut triangles = Vec::new();
+    for j in 0..n {
+        for i in 0..n {
+            let (i2, j2) = (2 * i, 2 * j);
+            let (a, b, c, d) = (v(i2, j2), v(i2 + 2, j2), v(i2 + 2, j2 + 2), v(i2, j2 + 2));
+            let (ab, bc, cd, da, ac) = (
+                v(i2 + 1, j2),
+                v(i2 + 2, j2 + 1),
+                v(i2 + 1, j2 + 2),
+                v(i2, j2 + 1),
+                v(i2 + 1, j2 + 1),
+            );
+            for t in [[a, b, c, ab, bc, ac], [a, c, d, ac, cd, da]] {
+                triangles.push(match up {
+                    true => t,
+                    false => [t[0], t[2], t[1], t[5], t[4], t[3]],
+                });
+            }
+        }
+    }
+    Surface::from_quadratic(fine.points().to_vec(), &triangles).unwrap()
+}
+
+/// Quadratic surfaces, split into linear triangles: every node has a positive weight, the
+/// weights sum to the area, and non-matching flat sides reproduce linear fields and the gap.
+#[test]
+fn quadratic_surfaces_read_their_partner_as_the_linear_ones_do() {
+    let gap = 0.02;
+    let reference = quadratic_square(4, 0.0, 1.0, true, &|_, _| 0.0);
+    let partner = quadratic_square(5, -0.1, 1.2, false, &|_, _| gap);
+    assert!(reference.weights().iter().all(|&w| w > 0.0));
+    let area: f64 = reference.weights().iter().sum();
+    assert!((area - 1.0).abs() < 1e-14);
+    let rows = rows(&reference, &partner, 0.1);
+    for (j, row) in covered(&rows) {
+        let x = reference.points()[j];
+        for c in 0..2 {
+            assert!((interpolate(row, &partner, |p| p[c]) - x[c]).abs() < 1e-13);
+        }
+        assert!((row.gap - gap).abs() < 1e-14);
+    }
+}

@@ -99,6 +99,25 @@ impl Surface {
         })
     }
 
+    /// The surface of quadratic 6-node triangles (Gmsh's order: the corners, then the nodes of
+    /// the sides 0–1, 1–2 and 2–0) as four linear triangles each: the corners' triangles and
+    /// the middle one. Every node is a vertex of the result, with a positive weight (a corner
+    /// A/12 of each triangle, a side node A/4), which the quadratic shape functions would not
+    /// give (their corners integrate to zero): the contact points of a P2 body carry
+    /// piecewise-linear multipliers on the finer surface.
+    pub fn from_quadratic(
+        points: Vec<Point3>,
+        triangles: &[[usize; 6]],
+    ) -> Result<Surface, SurfaceError> {
+        let split = triangles
+            .iter()
+            .flat_map(|&[a, b, c, ab, bc, ca]| {
+                [[a, ab, ca], [ab, b, bc], [ca, bc, c], [ab, bc, ca]]
+            })
+            .collect();
+        Surface::new(points, split)
+    }
+
     /// The nodes' coordinates.
     pub fn points(&self) -> &[Point3] {
         &self.points
