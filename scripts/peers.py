@@ -30,7 +30,10 @@ the largest one (exit 1 otherwise), and each code's resultant must be q·4 = 840
 With `--columns N …` also the column of N floating blocks of scripts/columns.py (non-matching
 interfaces), contactdd (its default penalty enforcement, as columns.py) against GetFEM (its nodal
 contact brick between non-matching meshes, exact contact): different discrete problems, so only
-the times, the memory and the total contact force are compared.
+the times, the memory and the total contact force are compared. contactdd's time includes writing
+its result folder, GetFEM writes none; `--column-vtu-layout collection` has contactdd write the
+column's bodies into one `bodies.vtu` (`vtu-layout = "collection"`, docs/outputs.md) instead of
+one `.vtu` per block (`per-body`, the default).
 
 Install the peers (Debian 12; numpy, scipy and GetFEM then use OpenBLAS through
 /etc/alternatives/libblas.so.3, which the script reports per code):
@@ -511,6 +514,10 @@ def run_measured(cmd, log):
     return proc.returncode, wall, usage.ru_maxrss / 1024.0
 
 
+#: The `--vtu-layout` of contactdd's column runs (`--column-vtu-layout`).
+COLUMN_VTU_LAYOUT = ["per-body"]
+
+
 def run_code(code, problem, size, folder):
     """One measured run of `code` on `problem` ("notch" with size (nx, ny), or "column" with n
     blocks); returns (wall s, peak RSS MB, result dict)."""
@@ -520,6 +527,8 @@ def run_code(code, problem, size, folder):
         toml = os.path.join(folder, f"{problem}-{size}.toml")
         out = os.path.join(folder, tag + "-out")
         cmd = [contactdd_bin(), "solve", toml, "-o", out, "-q"]
+        if problem == "column":
+            cmd += ["--vtu-layout", COLUMN_VTU_LAYOUT[0]]
     else:
         out = os.path.join(folder, tag + ".json")
         cmd = [sys.executable, os.path.abspath(__file__), "--child", code, "--problem", problem,
@@ -712,6 +721,10 @@ def main():
     parser.add_argument("--getfem-cells", type=int, default=GETFEM_CELLS,
                         help="notch meshes above this many cells per body leave GetFEM out "
                         f"(default {GETFEM_CELLS})")
+    parser.add_argument("--column-vtu-layout", choices=["per-body", "collection"],
+                        default="per-body",
+                        help="contactdd's .vtu layout on the columns: one file per block "
+                             "(per-body, the default) or one for all blocks (collection)")
     parser.add_argument("--write", action="store_true", help="also write scripts/peers.md")
     parser.add_argument("--child", choices=["cholmod", "getfem"], help=argparse.SUPPRESS)
     parser.add_argument("--problem", default="notch", help=argparse.SUPPRESS)
@@ -720,6 +733,7 @@ def main():
     args = parser.parse_args()
     if args.child:
         return child_main(args)
+    COLUMN_VTU_LAYOUT[0] = args.column_vtu_layout
     codes = [c.strip() for c in args.only.split(",") if c.strip()]
     unknown = set(codes) - set(CODES)
     if unknown:
@@ -754,7 +768,9 @@ def main():
                       "Non-matching interfaces: contactdd's penalty contact of columns.py against "
                       "GetFEM's exact nodal contact between non-matching meshes, two different "
                       "discrete problems; only the time, the memory and the contact forces are "
-                      "compared.", ""]
+                      "compared. contactdd's time includes writing its result folder, its "
+                      f"`.vtu` files in the `{args.column_vtu_layout}` layout; GetFEM writes "
+                      "none.", ""]
             lines += table(rows) + [""]
             lines += column_agreement(rows, n) + [""]
     text = "\n".join(lines)

@@ -216,7 +216,7 @@ fn monolithic(
     };
     // The checks of a `[solver]` table for threads and gap_tol.
     let (model, base, threads) = problem.borrow().configured(&options)?;
-    let vtu = problem.borrow().spec.output.vtu.unwrap_or_default();
+    let vtu = problem.borrow().spec.output.vtu_options();
     let mut settings = MonolithicSettings {
         gap_tol: base.gap_tol,
         ..MonolithicSettings::default()

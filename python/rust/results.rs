@@ -368,6 +368,8 @@ impl SolveResult {
     ///     directory: the folder to write.
     ///     format: the encoding of the VTU files: ``"zlib"`` (appended binary in zlib blocks,
     ///         the smallest), ``"binary"`` (appended raw binary) or ``"ascii"`` (text).
+    ///     layout: ``"per-body"`` (one VTU file per body) or ``"collection"`` (one file,
+    ///         ``bodies.vtu``, holding every body as its own piece).
     ///
     /// Returns:
     ///     The paths of the files written.
@@ -375,15 +377,16 @@ impl SolveResult {
     /// Raises:
     ///     ContactddError: the result was unpickled or read by :func:`load_results` (it holds no
     ///         solver data to write from), ``format`` is not ``"zlib"``, ``"binary"`` or ``"ascii"``,
-    ///         or a file cannot be written.
-    #[pyo3(signature = (directory, format = "zlib"))]
+    ///         ``layout`` is not ``"per-body"`` or ``"collection"``, or a file cannot be written.
+    #[pyo3(signature = (directory, format = "zlib", layout = "per-body"))]
     fn write_vtu(
         &self,
         py: Python<'_>,
         directory: std::path::PathBuf,
         format: &str,
+        layout: &str,
     ) -> PyResult<Vec<String>> {
-        let vtu = vtu_format(format)?;
+        let vtu = vtu_options(format, layout)?;
         let (model, sol) = self.origin.solved()?;
         let paths = py
             .detach(move || {
@@ -498,21 +501,25 @@ impl MonolithicResult {
     ///     directory: the folder to write.
     ///     format: the encoding of the VTU files: ``"zlib"`` (appended binary in zlib blocks,
     ///         the smallest), ``"binary"`` (appended raw binary) or ``"ascii"`` (text).
+    ///     layout: ``"per-body"`` (one VTU file per body) or ``"collection"`` (one file,
+    ///         ``bodies.vtu``, holding every body as its own piece).
     ///
     /// Returns:
     ///     The paths of the files written.
     ///
     /// Raises:
     ///     ContactddError: the result was unpickled or read by :func:`load_results`, ``format`` is
-    ///         not ``"zlib"``, ``"binary"`` or ``"ascii"``, or a file cannot be written.
-    #[pyo3(signature = (directory, format = "zlib"))]
+    ///         not ``"zlib"``, ``"binary"`` or ``"ascii"``, ``layout`` is not ``"per-body"`` or
+    ///         ``"collection"``, or a file cannot be written.
+    #[pyo3(signature = (directory, format = "zlib", layout = "per-body"))]
     fn write_vtu(
         &self,
         py: Python<'_>,
         directory: std::path::PathBuf,
         format: &str,
+        layout: &str,
     ) -> PyResult<Vec<String>> {
-        let vtu = vtu_format(format)?;
+        let vtu = vtu_options(format, layout)?;
         let (model, sol) = self.origin.solved()?;
         let paths = py
             .detach(move || {
@@ -564,10 +571,12 @@ impl MonolithicResult {
     }
 }
 
-/// The VTU encoding named `format` (`write_vtu(format=...)`); another name is a
-/// `ContactddError` naming the three.
-fn vtu_format(format: &str) -> PyResult<contactdd_io::vtu::VtuFormat> {
-    format
-        .parse()
-        .map_err(|e| input_error(format!("write_vtu: {e}")))
+/// The VTU encoding named `format` and the layout named `layout` (`write_vtu(format=...,
+/// layout=...)`); another name is a `ContactddError` naming the valid ones.
+fn vtu_options(format: &str, layout: &str) -> PyResult<contactdd_io::vtu::VtuOptions> {
+    let error = |e: &dyn std::fmt::Display| input_error(format!("write_vtu: {e}"));
+    Ok(contactdd_io::vtu::VtuOptions {
+        format: format.parse().map_err(|e| error(&e))?,
+        layout: layout.parse().map_err(|e| error(&e))?,
+    })
 }

@@ -14,7 +14,7 @@ use contactdd_ddm::history::{Increment, LoadHistory};
 use contactdd_ddm::{Hooks, Model, Record, SetupError};
 use contactdd_io::setup::Monitor;
 use contactdd_io::steps::{monitored_displacement, HistoryLabels};
-use contactdd_io::vtu::VtuFormat;
+use contactdd_io::vtu::VtuOptions;
 
 use crate::error::{convergence_error, input_error, setup_error};
 use crate::options::{friction_arg, GammaArg, SolverOptions};
@@ -132,7 +132,7 @@ pub fn solve(
     let (model, settings, threads) = p.configured(&options)?;
     let monitor = monitored(&p, monitor, &model)?;
     let units = p.units().map(str::to_string);
-    let vtu = p.spec.output.vtu.unwrap_or_default();
+    let vtu = p.spec.output.vtu_options();
     drop(p);
     let model = Arc::new(model);
     let m = model.clone();
@@ -351,7 +351,7 @@ pub fn solve_steps<'py>(
     let (history, factors) = plan(&p, &model, load_steps)?;
     let monitor = monitored(&p, monitor, &model)?;
     let units = p.units().map(str::to_string);
-    let vtu = p.spec.output.vtu.unwrap_or_default();
+    let vtu = p.spec.output.vtu_options();
     drop(p);
     if let Some(history) = history {
         let run = HistoryRun {
@@ -467,8 +467,8 @@ struct HistoryRun {
     monitor: Option<Monitor>,
     /// The problem's units note.
     units: Option<String>,
-    /// The encoding of the `.vtu` files.
-    vtu: VtuFormat,
+    /// The encoding and layout of the `.vtu` files.
+    vtu: VtuOptions,
     /// The folder to write the results into.
     out: Option<std::path::PathBuf>,
     /// Raise if the last increment does not converge.

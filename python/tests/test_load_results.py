@@ -252,3 +252,49 @@ def test_a_binary_vtu_that_lies_or_is_cut_is_refused(tmp_path, encoding):
         contactdd.load_results(tmp_path / "run")
     path.write_bytes(data)
     assert contactdd.load_results(tmp_path / "run").bodies[0].name == "lower"
+
+
+@pytest.mark.parametrize("encoding", ["zlib", "binary", "ascii"])
+def test_one_file_for_all_bodies_loads_as_the_files_per_body(tmp_path, encoding):
+    """layout="collection": one bodies.vtu with a piece per body reads back to the result of the
+    per-body folder, every array bit for bit, and to the solve's own result. cylinder_plates: P2,
+    three bodies, points without a partner (NaN and infinite arrays)."""
+    problem = contactdd.Problem.from_toml(REPO / "examples" / "cylinder_plates.toml")
+    problem.solver(load_steps=1)
+    result = contactdd.solve(problem)
+    result.write_vtu(tmp_path / "per-body", format=encoding)
+    result.write_vtu(tmp_path / "collection", format=encoding, layout="collection")
+    summary = json.loads((tmp_path / "collection" / "summary.json").read_text())
+    assert summary["files"] == ["contact.csv", "history.csv", "bodies.vtu", "results.pvd"]
+    per_body = contactdd.load_results(tmp_path / "per-body")
+    collection = contactdd.load_results(tmp_path / "collection")
+    assert_same_result(per_body, collection)
+    assert_same_result(result, collection)
+    assert per_body.summary() == collection.summary()
+    for a, b in zip(per_body.bodies, collection.bodies):
+        for name in ["nodes", "triangles", "displacement", "stress", "von_mises",
+                     "contact_pressure"]:
+            x, y = getattr(a, name), getattr(b, name)
+            assert x.dtype == y.dtype and x.tobytes() == y.tobytes(), (a.name, name)
+
+
+def test_one_file_for_all_bodies_of_a_monolithic_solve_and_of_load_steps(notch, tmp_path):
+    result = contactdd.monolithic(notch)
+    result.write_vtu(tmp_path / "mono", layout="collection")
+    assert_same_result(result, contactdd.load_results(tmp_path / "mono"))
+    with pytest.raises(contactdd.ContactddError, match="'per-body' or 'collection'"):
+        result.write_vtu(tmp_path / "bad", layout="pieces")
+    if not CLI.is_file():
+        pytest.skip(f"{CLI} is not built (cargo build --release)")
+    toml = REPO / "examples" / "recess_steps.toml"
+    for layout in ["per-body", "collection"]:
+        out = subprocess.run([str(CLI), "solve", str(toml), "--out", str(tmp_path / layout),
+                              "--vtu-layout", layout, "-q"],
+                             capture_output=True, text=True, timeout=600)
+        assert out.returncode == 0, out.stderr
+    files = json.loads((tmp_path / "collection" / "summary.json").read_text())["files"]
+    steps = len(json.loads((tmp_path / "collection" / "summary.json").read_text())["steps"])
+    assert [f for f in files if f.endswith(".vtu")] == [f"bodies-step{k}.vtu"
+                                                       for k in range(1, steps + 1)]
+    assert_same_result(contactdd.load_results(tmp_path / "per-body"),
+                       contactdd.load_results(tmp_path / "collection"), timing=False)

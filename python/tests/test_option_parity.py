@@ -31,6 +31,8 @@ CLI_ONLY = {
     "file": "the problem file: Python's `problem` argument (Problem.from_toml reads one)",
     "quiet": "Python prints nothing; progress= reports every iteration",
     "vtu-format": "the .vtu encoding: write_vtu(format=...); out= follows the problem's [output] vtu",
+    "vtu-layout": "the .vtu layout: write_vtu(layout=...); out= follows the problem's [output] "
+                  "vtu-layout",
 }
 
 #: [solver] keys that a function does not take, and why.

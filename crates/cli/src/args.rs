@@ -8,7 +8,7 @@ use clap::{Args, Parser, Subcommand};
 use contactdd_ddm::settings::ANDERSON_DEPTH;
 use contactdd_ddm::{Accelerator, CoarseMode, Enforcement, Friction, Gamma, Method};
 use contactdd_io::setup::MAX_THREADS;
-use contactdd_io::vtu::VtuFormat;
+use contactdd_io::vtu::{VtuFormat, VtuLayout};
 
 const EXIT_CODES: &str = "\
 Exit codes:
@@ -103,6 +103,10 @@ pub struct SolveArgs {
     /// (appended raw binary) or ascii (text, to read or diff); overrides output.vtu.
     #[arg(long, value_name = "E", value_parser = parse_vtu_format)]
     pub vtu_format: Option<VtuFormat>,
+    /// Layout of the .vtu files: per-body (one file per body, the default) or collection (one
+    /// file per result, bodies.vtu, with each body as its own piece); overrides output.vtu-layout.
+    #[arg(long, value_name = "L", value_parser = parse_vtu_layout)]
+    pub vtu_layout: Option<VtuLayout>,
     /// Solver options.
     #[command(flatten)]
     pub common: Common,
@@ -181,6 +185,10 @@ pub struct MonolithicArgs {
     /// (appended raw binary) or ascii (text, to read or diff); overrides output.vtu.
     #[arg(long, value_name = "E", value_parser = parse_vtu_format)]
     pub vtu_format: Option<VtuFormat>,
+    /// Layout of the .vtu files: per-body (one file per body, the default) or collection (one
+    /// file per result, bodies.vtu, with each body as its own piece); overrides output.vtu-layout.
+    #[arg(long, value_name = "L", value_parser = parse_vtu_layout)]
+    pub vtu_layout: Option<VtuLayout>,
     /// Print only the final result line (no per-step lines).
     #[arg(long, short)]
     pub quiet: bool,
@@ -266,6 +274,10 @@ fn parse_accelerator(s: &str) -> Result<Accelerator, String> {
 
 fn parse_vtu_format(s: &str) -> Result<VtuFormat, String> {
     s.parse::<VtuFormat>().map_err(|e| e.to_string())
+}
+
+fn parse_vtu_layout(s: &str) -> Result<VtuLayout, String> {
+    s.parse::<VtuLayout>().map_err(|e| e.to_string())
 }
 
 fn parse_coarse(s: &str) -> Result<CoarseMode, String> {

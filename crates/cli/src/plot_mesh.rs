@@ -1,6 +1,6 @@
 //! The deformed bodies of `contactdd plot`, each element coloured by its von Mises stress, over
 //! the undeformed outlines, read back from the bodies' `.vtu` files (the last load step's with
-//! load steps). The reader (`contactdd_io::vtu_read`) knows only what `crates/io/src/vtu.rs`
+//! load steps), one body per `Piece` (a file per body, or one file for all of them). The reader (`contactdd_io::vtu_read`) knows only what `crates/io/src/vtu.rs`
 //! writes, ASCII or binary; the figure draws triangles (the corners of a quadratic triangle), a
 //! curved edge of a quadratic triangle (its mid-side node off the chord's midpoint) as two
 //! segments through its mid-side node.
@@ -14,7 +14,7 @@ use plotters::prelude::*;
 
 use crate::args::Format;
 use contactdd_io::result_set::read_result_file;
-use contactdd_io::vtu_read::{parse_vtu, Section};
+use contactdd_io::vtu_read::{parse_vtu_pieces, Section, VtuFile};
 
 use crate::plot_data::{Units, VTU_LIMIT};
 use crate::plot_draw::{linear, ok, render, span, tick, Figure, Frame};
@@ -49,13 +49,19 @@ pub fn figures(
     }
     let mut bodies = Vec::new();
     for name in &names {
-        match read_body(&dir.join(name))? {
-            Some(body) => bodies.push(body),
-            None => {
-                // Not an error of the folder: a field holding NaN (the iterate of a failed solve)
-                // cannot be drawn; the other figures are still worth having.
-                eprintln!("note: {name} has non-finite values; the bodies figure is left out");
-                return Ok(Vec::new());
+        // A file of one body, or of every body (one piece each).
+        let path = dir.join(name);
+        let bytes = read_result_file(&path, VTU_LIMIT)?;
+        let pieces = parse_vtu_pieces(&bytes).map_err(|e| anyhow!("'{}': {e}", path.display()))?;
+        for piece in &pieces {
+            match read_body(&path, piece)? {
+                Some(body) => bodies.push(body),
+                None => {
+                    // Not an error of the folder: a field holding NaN (the iterate of a failed
+                    // solve) cannot be drawn; the other figures are still worth having.
+                    eprintln!("note: {name} has non-finite values; the bodies figure is left out");
+                    return Ok(Vec::new());
+                }
             }
         }
     }
@@ -69,7 +75,8 @@ pub fn figures(
     render(&fig, out, "bodies", formats)
 }
 
-/// The `.vtu` files of the last load step (`<body>-step<k>.vtu` with the largest k), or all.
+/// The `.vtu` files of the last load step (`<body>-step<k>.vtu`, or `bodies-step<k>.vtu`, with
+/// the largest k), or all.
 fn last_step(files: &[String]) -> Vec<String> {
     let vtu: Vec<&String> = files.iter().filter(|f| f.ends_with(".vtu")).collect();
     let step =
@@ -84,11 +91,9 @@ fn last_step(files: &[String]) -> Vec<String> {
     }
 }
 
-/// A body's mesh and stress, or `None` when an array it draws holds a non-finite value (the
-/// iterate of a failed solve).
-fn read_body(path: &Path) -> Result<Option<Body>> {
-    let bytes = read_result_file(path, VTU_LIMIT)?;
-    let file = parse_vtu(&bytes).map_err(|e| anyhow!("'{}': {e}", path.display()))?;
+/// A body's mesh and stress from its piece `file` of the file `path`, or `None` when an array
+/// it draws holds a non-finite value (the iterate of a failed solve).
+fn read_body(path: &Path, file: &VtuFile) -> Result<Option<Body>> {
     let arrays = [
         (Section::Points, ""),
         (Section::PointData, "displacement"),

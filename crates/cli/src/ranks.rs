@@ -13,7 +13,7 @@ use contactdd_io::distributed_results::{
 use contactdd_io::reactions::BodyReactions;
 use contactdd_io::setup::Monitor;
 use contactdd_io::steps::HistoryLabels;
-use contactdd_io::vtu::VtuFormat;
+use contactdd_io::vtu::{CollectionOverRanks, VtuFormat, VtuLayout, VtuOptions};
 use contactdd_io::Loaded;
 
 use crate::rank_use::peak_mib;
@@ -26,8 +26,8 @@ use contactdd_io::{distributed_setup::estimated_costs, read_problem};
 pub struct Ranks {
     exchange: Arc<dyn Exchange>,
     size: usize,
-    /// The encoding of the `.vtu` files every rank writes.
-    vtu: VtuFormat,
+    /// The encoding and layout of the `.vtu` files every rank writes.
+    vtu: VtuOptions,
     #[cfg(feature = "mpi")]
     mpi: Option<Arc<crate::mpi_exchange::MpiExchange>>,
 }
@@ -36,10 +36,22 @@ impl Ranks {
     /// Reads the problem file `path` for this run: in one process every body is meshed; under
     /// `mpirun` with more than one rank the bodies are partitioned by their estimated
     /// factorisation cost, and each rank meshes only its own and holds the others as their
-    /// contact skins (a collective). The `.vtu` files are written in `vtu`, or else in the file's `[output] vtu`.
-    pub fn load(path: &Path, vtu: Option<VtuFormat>) -> anyhow::Result<(Loaded, Ranks)> {
+    /// contact skins (a collective). The `.vtu` files are written in the encoding and layout
+    /// of `vtu`, or else in the file's `[output] vtu` and `vtu-layout`. The one-file layout over
+    /// several ranks is refused before the solve ([`CollectionOverRanks`]), on every rank.
+    pub fn load(
+        path: &Path,
+        (format, layout): (Option<VtuFormat>, Option<VtuLayout>),
+    ) -> anyhow::Result<(Loaded, Ranks)> {
         let (loaded, mut ranks) = Ranks::load_file(path)?;
-        ranks.vtu = vtu.or(loaded.problem.output.vtu).unwrap_or_default();
+        let output = loaded.problem.output;
+        ranks.vtu = VtuOptions {
+            format: format.or(output.vtu).unwrap_or_default(),
+            layout: layout.or(output.vtu_layout).unwrap_or_default(),
+        };
+        if ranks.size > 1 && ranks.vtu.layout == VtuLayout::Collection {
+            return Err(CollectionOverRanks.into());
+        }
         Ok((loaded, ranks))
     }
 
@@ -55,7 +67,7 @@ impl Ranks {
                 let ranks = Ranks {
                     exchange: mpi.clone(),
                     size: mpi.size(),
-                    vtu: VtuFormat::default(),
+                    vtu: VtuOptions::default(),
                     mpi: Some(mpi),
                 };
                 if ranks.is_root() {
@@ -81,7 +93,7 @@ impl Ranks {
         Ranks {
             exchange: Arc::new(Local::new(model.bodies.len())),
             size: 1,
-            vtu: VtuFormat::default(),
+            vtu: VtuOptions::default(),
             #[cfg(feature = "mpi")]
             mpi: None,
         }

@@ -18,6 +18,7 @@ use contactdd_ddm::{
 use contactdd_io::output::{safe_file_name, write_monolithic_results};
 use contactdd_io::reactions::BodyReactions;
 use contactdd_io::setup::Loaded;
+use contactdd_io::vtu::VtuOptions;
 
 use crate::args::{Common, MonolithicArgs, SolveArgs};
 use crate::console::Status;
@@ -170,7 +171,7 @@ fn iterate_shown(
 /// `contactdd solve`.
 pub fn solve(args: SolveArgs) -> Result<Exit> {
     let start = Instant::now();
-    let (loaded, ranks) = Ranks::load(&args.file, args.vtu_format)?;
+    let (loaded, ranks) = Ranks::load(&args.file, (args.vtu_format, args.vtu_layout))?;
     let t_load = start.elapsed().as_secs_f64();
     let (settings, threads) = cli_settings(&args, &loaded);
     let mut model = loaded.model;
@@ -420,10 +421,11 @@ fn monolithic_model(args: &MonolithicArgs, mut model: Model) -> Result<Model> {
 pub fn monolithic(args: MonolithicArgs) -> Result<Exit> {
     let start = Instant::now();
     let loaded = load(&args.file)?;
-    let vtu = args
-        .vtu_format
-        .or(loaded.problem.output.vtu)
-        .unwrap_or_default();
+    let output = loaded.problem.output;
+    let vtu = VtuOptions {
+        format: args.vtu_format.or(output.vtu).unwrap_or_default(),
+        layout: args.vtu_layout.or(output.vtu_layout).unwrap_or_default(),
+    };
     let (settings, threads) = monolithic_settings(&args, &loaded);
     let model = &monolithic_model(&args, loaded.model)?;
     let out = args

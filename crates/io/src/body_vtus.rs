@@ -7,6 +7,7 @@ use std::collections::HashSet;
 use std::io::{Error, ErrorKind};
 use std::path::{Path, PathBuf};
 
+use contactdd_core::Mesh;
 use contactdd_ddm::solution::{BodyResult, PairResult};
 use contactdd_ddm::Model;
 
@@ -16,7 +17,9 @@ use crate::fields::{
     nodal_contact_pressure, principal, tensor, ContactPointData,
 };
 use crate::result_set::ResultSet;
-use crate::vtu::{vtu_bytes, Field, VtuData, VtuFormat};
+use crate::vtu::{
+    vtu_bytes, vtu_pieces_bytes, Field, VtuData, VtuFormat, VtuLayout, VtuOptions, COLLECTION_STEM,
+};
 
 /// Writes `<body>.vtu` per body into `dir` with the nodal fields of the results alone:
 /// `displacement` (vector), `stress` (3×3 tensor), `principal_stress_1` ≥ `_2` ≥ `_3`,
@@ -58,24 +61,29 @@ pub fn write_solution_vtus(
 }
 
 /// [`write_solution_vtus`] with `suffix` after each body's file name (`<body><suffix>.vtu`, e.g.
-/// the `-step3` of a load step), in `format`.
+/// the `-step3` of a load step), in the encoding and layout of `vtu` (a [`VtuFormat`] alone
+/// keeps one file per body; with [`VtuLayout::Collection`] every body goes into the one file
+/// `bodies<suffix>.vtu`).
 pub fn write_solution_vtus_as(
     set: &mut ResultSet,
     model: &Model,
     bodies: &[BodyResult],
     contact: &[PairResult],
     suffix: &str,
-    format: VtuFormat,
+    vtu: impl Into<VtuOptions>,
 ) -> std::io::Result<()> {
+    let vtu = vtu.into();
     let mut written = Vec::with_capacity(bodies.len());
     let dir = set.dir().to_path_buf();
-    let result = write_solution_vtus_of(
-        (&dir, suffix, format),
-        model,
-        (bodies, contact),
-        &|_| true,
-        &mut written,
-    );
+    let to = (dir.as_path(), suffix, vtu.format);
+    let result = match vtu.layout {
+        VtuLayout::PerBody => {
+            write_solution_vtus_of(to, model, (bodies, contact), &|_| true, &mut written)
+        }
+        VtuLayout::Collection => {
+            write_solution_collection(to, model, (bodies, contact), &mut written)
+        }
+    };
     set.record(written);
     result
 }
@@ -99,32 +107,72 @@ pub(crate) fn write_solution_vtus_of(
         (dir, suffix, format, write_staged),
         bodies,
         owns,
-        |b, body| {
-            let elastic = model.bodies.get(b).ok_or_else(|| {
-                Error::new(
-                    ErrorKind::InvalidInput,
-                    "more body results than model bodies",
-                )
-            })?;
-            Ok(Extra {
-                pressure: Some(nodal_contact_pressure(
-                    &body.name,
-                    body.mesh.num_nodes(),
-                    contact,
-                    &pressures,
-                )),
-                contact: Some(contact_point_data(
-                    &body.name,
-                    body.mesh.num_nodes(),
-                    contact,
-                )),
-                element_von_mises: Some(element_von_mises(elastic, &body.displacement)),
-                friction: friction
-                    .then(|| friction_point_data(&body.name, body.mesh.num_nodes(), contact)),
-            })
-        },
+        |b, body| solution_extra(model, (contact, &pressures, friction), b, body),
         written,
     )
+}
+
+/// Writes the [`VtuLayout::Collection`] file of one result into `dir` (with `suffix` and
+/// `format`: `to`): [`collection_path`], one `Piece` per body in body order, each with the arrays
+/// of the body's file of [`write_solution_vtus_of`]; its path joins `written` once it is there.
+pub(crate) fn write_solution_collection(
+    to: (&Path, &str, VtuFormat),
+    model: &Model,
+    (bodies, contact): (&[BodyResult], &[PairResult]),
+    written: &mut Vec<PathBuf>,
+) -> std::io::Result<()> {
+    let pressures = contact_pressures(contact, bodies);
+    let friction = has_friction(model);
+    let (dir, suffix, format) = to;
+    // The bodies' arrays are independent: computed in parallel, written in body order.
+    let arrays = (bodies.par_iter().enumerate())
+        .map(|(b, body)| {
+            let extra = solution_extra(model, (contact, &pressures, friction), b, body)?;
+            Ok(BodyArrays::new(body, extra))
+        })
+        .collect::<std::io::Result<Vec<BodyArrays>>>()?;
+    let fields: Vec<_> = (arrays.iter().zip(bodies))
+        .map(|(a, body)| a.fields(body))
+        .collect();
+    let pieces: Vec<(&Mesh, VtuData<'_>)> = (bodies.iter().zip(&fields))
+        .map(|(body, (points, cells))| (&body.mesh, body_data(body, points, cells)))
+        .collect();
+    let bytes = vtu_pieces_bytes(&pieces, format)?;
+    let path = collection_path(dir, suffix);
+    write_staged(&path, &bytes)?;
+    written.push(path);
+    Ok(())
+}
+
+/// The path of the [`VtuLayout::Collection`] file of a result in `dir`:
+/// `<COLLECTION_STEM><suffix>.vtu` ([`COLLECTION_STEM`]).
+pub(crate) fn collection_path(dir: &Path, suffix: &str) -> PathBuf {
+    dir.join(format!("{COLLECTION_STEM}{suffix}.vtu"))
+}
+
+/// The [`Extra`] arrays of body `b` of a solution, from the model and the pairs' results
+/// (`contact`, their contact `pressures` and whether some pair has `friction`).
+fn solution_extra(
+    model: &Model,
+    (contact, pressures, friction): (&[PairResult], &[Vec<f64>], bool),
+    b: usize,
+    body: &BodyResult,
+) -> std::io::Result<Extra> {
+    let elastic = model.bodies.get(b).ok_or_else(|| {
+        Error::new(
+            ErrorKind::InvalidInput,
+            "more body results than model bodies",
+        )
+    })?;
+    let nodes = body.mesh.num_nodes();
+    Ok(Extra {
+        pressure: Some(nodal_contact_pressure(
+            &body.name, nodes, contact, pressures,
+        )),
+        contact: Some(contact_point_data(&body.name, nodes, contact)),
+        element_von_mises: Some(element_von_mises(elastic, &body.displacement)),
+        friction: friction.then(|| friction_point_data(&body.name, nodes, contact)),
+    })
 }
 
 /// The fields of a body's `.vtu` that need more than its [`BodyResult`].
@@ -191,52 +239,86 @@ fn write_vtus(
 
 /// The bytes of one body's `.vtu` with its fields and `extra`.
 fn body_vtu(body: &BodyResult, extra: Extra, format: VtuFormat) -> std::io::Result<Vec<u8>> {
-    let component = |k: usize| body.stress.iter().map(|s| s[k]).collect::<Vec<f64>>();
-    let (sxx, syy, sxy, szz) = (component(0), component(1), component(2), component(3));
-    let tensors: Vec<f64> = body.stress.iter().flat_map(tensor).collect();
-    let principals: Vec<[f64; 3]> = body.stress.iter().map(principal).collect();
-    let principal_k = |k: usize| principals.iter().map(|p| p[k]).collect::<Vec<f64>>();
-    let (p1, p2, p3) = (principal_k(0), principal_k(1), principal_k(2));
-    let field = |name, components, values| Field {
-        name,
-        components,
-        values,
-    };
-    let mut points = vec![
-        field("stress", 9, &tensors),
-        field("principal_stress_1", 1, &p1),
-        field("principal_stress_2", 1, &p2),
-        field("principal_stress_3", 1, &p3),
-        field("sigma_xx", 1, &sxx),
-        field("sigma_yy", 1, &syy),
-        field("sigma_xy", 1, &sxy),
-        field("sigma_zz", 1, &szz),
-        field("von_mises", 1, &body.von_mises),
-        field("sigma_n", 1, &body.contact_pressure),
-    ];
-    if let Some(p) = &extra.pressure {
-        points.push(field("contact_pressure", 1, p));
-    }
-    if let Some(c) = &extra.contact {
-        points.push(field("gap", 1, &c.gap));
-        points.push(field("contact_status", 1, &c.status));
-    }
-    if let Some((tangential, status)) = &extra.friction {
-        points.push(field("contact_tangential", 1, tangential));
-        points.push(field("friction_status", 1, status));
-    }
-    let cells: Vec<Field<'_>> = extra
-        .element_von_mises
-        .as_deref()
-        .map(|v| field("element_von_mises", 1, v))
-        .into_iter()
-        .collect();
-    let data = VtuData {
+    let arrays = BodyArrays::new(body, extra);
+    let (points, cells) = arrays.fields(body);
+    vtu_bytes(&body.mesh, body_data(body, &points, &cells), format)
+}
+
+/// The arrays of a body's `.vtu`: the displacement and `points` per node, `cells` per cell.
+fn body_data<'a>(
+    body: &'a BodyResult,
+    points: &'a [Field<'a>],
+    cells: &'a [Field<'a>],
+) -> VtuData<'a> {
+    VtuData {
         displacement: Some(&body.displacement),
-        points: &points,
-        cells: &cells,
-    };
-    vtu_bytes(&body.mesh, data, format)
+        points,
+        cells,
+    }
+}
+
+/// The arrays of a body's `.vtu` computed from its [`BodyResult`], with its [`Extra`] ones.
+struct BodyArrays {
+    tensors: Vec<f64>,
+    /// The principal stresses, largest first.
+    principals: [Vec<f64>; 3],
+    /// σ_xx, σ_yy, σ_xy, σ_zz.
+    components: [Vec<f64>; 4],
+    extra: Extra,
+}
+
+impl BodyArrays {
+    fn new(body: &BodyResult, extra: Extra) -> BodyArrays {
+        let component = |k: usize| body.stress.iter().map(|s| s[k]).collect::<Vec<f64>>();
+        let principals: Vec<[f64; 3]> = body.stress.iter().map(principal).collect();
+        let principal_k = |k: usize| principals.iter().map(|p| p[k]).collect::<Vec<f64>>();
+        BodyArrays {
+            tensors: body.stress.iter().flat_map(tensor).collect(),
+            principals: [principal_k(0), principal_k(1), principal_k(2)],
+            components: [component(0), component(1), component(2), component(3)],
+            extra,
+        }
+    }
+
+    /// The point fields and the cell fields of the file of `body`, in file order.
+    fn fields<'a>(&'a self, body: &'a BodyResult) -> (Vec<Field<'a>>, Vec<Field<'a>>) {
+        let field = |name, components, values| Field {
+            name,
+            components,
+            values,
+        };
+        let [p1, p2, p3] = &self.principals;
+        let [sxx, syy, sxy, szz] = &self.components;
+        let mut points = vec![
+            field("stress", 9, &self.tensors),
+            field("principal_stress_1", 1, p1),
+            field("principal_stress_2", 1, p2),
+            field("principal_stress_3", 1, p3),
+            field("sigma_xx", 1, sxx),
+            field("sigma_yy", 1, syy),
+            field("sigma_xy", 1, sxy),
+            field("sigma_zz", 1, szz),
+            field("von_mises", 1, &body.von_mises),
+            field("sigma_n", 1, &body.contact_pressure),
+        ];
+        let extra = &self.extra;
+        if let Some(p) = &extra.pressure {
+            points.push(field("contact_pressure", 1, p));
+        }
+        if let Some(c) = &extra.contact {
+            points.push(field("gap", 1, &c.gap));
+            points.push(field("contact_status", 1, &c.status));
+        }
+        if let Some((tangential, status)) = &extra.friction {
+            points.push(field("contact_tangential", 1, tangential));
+            points.push(field("friction_status", 1, status));
+        }
+        let cells: Vec<Field<'_>> = (extra.element_von_mises.as_deref())
+            .map(|v| field("element_von_mises", 1, v))
+            .into_iter()
+            .collect();
+        (points, cells)
+    }
 }
 
 /// A name usable as a file name on every platform: letters, digits, `-`, `_` and `.` are kept,

@@ -16,7 +16,9 @@ use serde_json::{json, Value};
 
 use contactdd_ddm::{Model, Solution};
 
-use crate::body_vtus::{vtu_paths, write_solution_vtus_of};
+use crate::body_vtus::{
+    collection_path, vtu_paths, write_solution_collection, write_solution_vtus_of,
+};
 use crate::csv_tables::{contact_csv, history_csv};
 use crate::load_steps::Monitor;
 use crate::packed::{pack_reactions, unpack_reactions};
@@ -24,7 +26,7 @@ use crate::reactions::{body_reactions, BodyReactions};
 use crate::result_set::{staging_dir, ResultSet};
 use crate::steps::{monitored_displacement, pvd, steps_csv, steps_json, HistoryLabels};
 use crate::summary::summary_json_with;
-use crate::vtu::VtuFormat;
+use crate::vtu::{CollectionOverRanks, VtuFormat, VtuLayout, VtuOptions};
 
 /// How this process takes part in writing a shared result folder.
 pub struct Part<'a> {
@@ -37,8 +39,10 @@ pub struct Part<'a> {
     /// The collective that hands every process every body's values, given this process's own
     /// bodies' in body order (`contactdd_ddm::exchange::Exchange::gather`).
     pub gather: Box<dyn Fn(Vec<Vec<f64>>) -> Vec<Vec<f64>> + 'a>,
-    /// The encoding of the `.vtu` files (the same on every process).
-    pub vtu: VtuFormat,
+    /// The encoding and the layout of the `.vtu` files (the same on every process). The
+    /// [`VtuLayout::Collection`] layout needs every body's fields in this process: a process
+    /// that does not own every body refuses it ([`CollectionOverRanks`]).
+    pub vtu: VtuOptions,
 }
 
 impl Part<'static> {
@@ -47,14 +51,15 @@ impl Part<'static> {
         Part::alone_as(VtuFormat::default())
     }
 
-    /// A single process writing the `.vtu` files in `vtu`.
-    pub fn alone_as(vtu: VtuFormat) -> Part<'static> {
+    /// A single process writing the `.vtu` files in `vtu` (a [`VtuFormat`], one file per
+    /// body, or [`VtuOptions`]).
+    pub fn alone_as(vtu: impl Into<VtuOptions>) -> Part<'static> {
         Part {
             root: true,
             owns: Box::new(|_| true),
             agree: Box::new(|error| error),
             gather: Box::new(|own| own),
-            vtu,
+            vtu: vtu.into(),
         }
     }
 }
@@ -175,6 +180,14 @@ fn write_shared(
     units: Option<&str>,
     part: &Part<'_>,
 ) -> std::io::Result<Vec<PathBuf>> {
+    let collection = part.vtu.layout == VtuLayout::Collection;
+    if collection {
+        // Every process takes this turn (the layout is the same on every one).
+        let bodies = model.bodies.len();
+        let refused = (!(0..bodies).all(|b| (part.owns)(b)))
+            .then(|| Error::new(ErrorKind::Unsupported, CollectionOverRanks));
+        agreed(part, refused.as_ref())?;
+    }
     let begun = if part.root {
         ResultSet::begin(dir).map(Some)
     } else {
@@ -185,14 +198,15 @@ fn write_shared(
     // Every process writes into the set's staging folder, which the root created.
     let staging = staging_dir(dir);
     let mut own = Vec::new();
+    let format = part.vtu.format;
     let written = contents.vtus.iter().try_for_each(|(_, suffix, sol)| {
-        write_solution_vtus_of(
-            (&staging, suffix, part.vtu),
-            model,
-            (&sol.bodies, &sol.contact),
-            &*part.owns,
-            &mut own,
-        )
+        let to = (staging.as_path(), suffix.as_str(), format);
+        let of = (sol.bodies.as_slice(), sol.contact.as_slice());
+        match collection {
+            false => write_solution_vtus_of(to, model, of, &*part.owns, &mut own),
+            // Only one process writes the file (the check above leaves one).
+            true => write_solution_collection(to, model, of, &mut own),
+        }
     });
     if let Err(e) = agreed(part, written.as_ref().err()) {
         own.iter().for_each(|p| drop(std::fs::remove_file(p)));
@@ -217,7 +231,10 @@ fn write_shared(
         let mut entries = Vec::new();
         for (time, suffix, sol) in &contents.vtus {
             let before = set.len();
-            set.record(vtu_paths(&staging, suffix, &sol.bodies));
+            match collection {
+                false => set.record(vtu_paths(&staging, suffix, &sol.bodies)),
+                true => set.record([collection_path(&staging, suffix)]),
+            }
             for (part, name) in set.names_since(before).into_iter().enumerate() {
                 entries.push((*time, part, name));
             }

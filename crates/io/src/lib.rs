@@ -47,6 +47,7 @@ pub mod solver_settings;
 pub mod steps;
 pub mod summary;
 pub mod vtu;
+pub mod vtu_options;
 pub mod vtu_read;
 pub mod write_problem;
 

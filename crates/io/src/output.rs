@@ -1,5 +1,5 @@
-//! Result files of a solve: `summary.json`, `contact.csv`, `history.csv` and one `.vtu` per body,
-//! plus the CSV table of a γ sweep.
+//! Result files of a solve: `summary.json`, `contact.csv`, `history.csv` and one `.vtu` per body
+//! (or one for all bodies, [`VtuLayout::Collection`]), plus the CSV table of a γ sweep.
 //!
 //! The text builders ([`summary_json`], [`contact_csv`], [`history_csv`], [`sweep_csv`]) only
 //! format; [`write_results`] writes a whole result folder. Every file is written by
@@ -36,7 +36,7 @@ pub use crate::summary::{
     json_number, monolithic_summary_json, point_status, reactions_json, stop_name, summary_json,
     summary_json_with,
 };
-pub use crate::vtu::VtuFormat;
+pub use crate::vtu::{VtuFormat, VtuLayout, VtuOptions};
 pub use contactdd_core::loads::applied_load;
 
 /// Writes a solve's result folder (created if needed) as a set ([`write_set`]): `contact.csv`,
@@ -48,13 +48,14 @@ pub fn write_results(dir: &Path, model: &Model, sol: &Solution) -> std::io::Resu
 }
 
 /// [`write_results`] with the problem's units note (`units` of the problem file) in
-/// `summary.json`, for the axes of `contactdd plot`, and the `.vtu` files in `vtu`.
+/// `summary.json`, for the axes of `contactdd plot`, and the `.vtu` files in `vtu` (a
+/// [`VtuFormat`], one file per body, or [`VtuOptions`] with the layout).
 pub fn write_results_noted(
     dir: &Path,
     model: &Model,
     sol: &Solution,
     units: Option<&str>,
-    vtu: VtuFormat,
+    vtu: impl Into<VtuOptions>,
 ) -> std::io::Result<Vec<PathBuf>> {
     let reactions = reactions(model, &sol.bodies, &sol.contact);
     write_results_shared(dir, model, sol, &reactions, units, &Part::alone_as(vtu))
@@ -63,13 +64,15 @@ pub fn write_results_noted(
 /// Writes a monolithic solve's result folder as a set, like [`write_results`]: `contact.csv`
 /// (frictionless: the monolithic reference refuses friction) and
 /// `<body>.vtu` per body, then `summary.json` ([`monolithic_summary_json`] with the reactions and
-/// the manifest) last, the `.vtu` files in `vtu`. Returns the paths written, `summary.json` last.
+/// the manifest) last, the `.vtu` files in `vtu` (as [`write_results_noted`]). Returns the paths
+/// written, `summary.json` last.
 pub fn write_monolithic_results(
     dir: &Path,
     model: &Model,
     sol: &MonolithicSolution,
-    vtu: VtuFormat,
+    vtu: impl Into<VtuOptions>,
 ) -> std::io::Result<Vec<PathBuf>> {
+    let vtu = vtu.into();
     let mut summary = monolithic_summary_json(model, sol);
     summary["reactions"] = reactions_json(model, &sol.bodies, &sol.contact);
     write_set(dir, summary, |set| {
@@ -82,14 +85,14 @@ pub fn write_monolithic_results(
 }
 
 /// Writes the result folder of a load-step run as a set (see [`crate::steps`]), with the problem's
-/// `units` note in `summary.json` and the `.vtu` files in `vtu`. Returns the paths written,
-/// `summary.json` last.
+/// `units` note in `summary.json` and the `.vtu` files in `vtu` (as [`write_results_noted`]).
+/// Returns the paths written, `summary.json` last.
 pub fn write_step_results(
     dir: &Path,
     model: &Model,
     steps: &[(f64, Solution)],
     (monitor, units): (Option<&Monitor>, Option<&str>),
-    vtu: VtuFormat,
+    vtu: impl Into<VtuOptions>,
 ) -> std::io::Result<Vec<PathBuf>> {
     let part = Part::alone_as(vtu);
     write_step_results_shared(dir, model, steps, monitor, units, None, &part)
@@ -103,7 +106,7 @@ pub fn write_history_results(
     steps: &[(f64, Solution)],
     (monitor, units): (Option<&Monitor>, Option<&str>),
     labels: &HistoryLabels,
-    vtu: VtuFormat,
+    vtu: impl Into<VtuOptions>,
 ) -> std::io::Result<Vec<PathBuf>> {
     let part = Part::alone_as(vtu);
     write_step_results_shared(dir, model, steps, monitor, units, Some(labels), &part)

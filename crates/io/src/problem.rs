@@ -47,7 +47,7 @@ use contactdd_core::{Component, Diagonal, Load, Order, Plane, Vector};
 use contactdd_ddm::contact::gap_profile::Along;
 use contactdd_ddm::{Gamma, Method};
 
-use crate::vtu::VtuFormat;
+use crate::vtu::{VtuFormat, VtuLayout, VtuOptions};
 
 /// A whole problem file.
 #[derive(Clone, Debug, PartialEq, Deserialize, Serialize)]
@@ -88,12 +88,25 @@ pub struct OutputSpec {
     /// default), `"binary"` (appended raw binary) or `"ascii"`.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub vtu: Option<VtuFormat>,
+    /// The layout of the `.vtu` files: `"per-body"` (one file per body, the default) or
+    /// `"collection"` (one file per result holding every body as its own `Piece`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub vtu_layout: Option<VtuLayout>,
 }
 
 impl OutputSpec {
     /// Whether no key is set (the table is then left out of a written problem file).
     pub fn is_default(&self) -> bool {
         *self == OutputSpec::default()
+    }
+
+    /// The encoding and layout of the `.vtu` files the table asks for (the defaults for the keys
+    /// it leaves out).
+    pub fn vtu_options(&self) -> VtuOptions {
+        VtuOptions {
+            format: self.vtu.unwrap_or_default(),
+            layout: self.vtu_layout.unwrap_or_default(),
+        }
     }
 }
 

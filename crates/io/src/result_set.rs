@@ -367,10 +367,14 @@ fn previous_manifest(summary: &Path) -> Vec<String> {
     let Ok(text) = std::fs::read_to_string(summary) else {
         return Vec::new();
     };
-    let Ok(value) = serde_json::from_str::<Value>(&text) else {
-        return Vec::new();
-    };
-    let Some(files) = value.get(MANIFEST_KEY).and_then(Value::as_array) else {
+    // Only the manifest (`files`, [`MANIFEST_KEY`]): the rest of the summary (megabytes with
+    // thousands of bodies) is
+    // skipped without building its values.
+    #[derive(serde::Deserialize)]
+    struct Manifest {
+        files: Option<Vec<Value>>,
+    }
+    let Ok(Manifest { files: Some(files) }) = serde_json::from_str::<Manifest>(&text) else {
         return Vec::new();
     };
     files

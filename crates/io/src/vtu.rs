@@ -41,7 +41,6 @@
 use std::fmt::Write as _;
 use std::io::{Error, ErrorKind};
 
-use serde::{Deserialize, Serialize};
 use std::path::Path;
 
 use contactdd_core::mesh::{Mesh, Order};
@@ -49,6 +48,10 @@ use contactdd_core::DIM;
 
 use crate::atomic::write_atomic;
 use crate::number::push_f64;
+pub use crate::vtu_options::{
+    CollectionOverRanks, UnknownVtuFormat, UnknownVtuLayout, VtuFormat, VtuLayout, VtuOptions,
+    COLLECTION_STEM, ZLIB_BLOCK, ZLIB_LEVEL,
+};
 
 /// A field to write, per node (point data) or per cell (cell data): `components` values per
 /// item, item-major (`values[item * components + c]`).
@@ -72,72 +75,6 @@ pub struct VtuData<'a> {
     pub points: &'a [Field<'a>],
     /// Element fields.
     pub cells: &'a [Field<'a>],
-}
-
-/// How the data arrays of a `.vtu` file are stored.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Deserialize, Serialize)]
-#[serde(rename_all = "kebab-case")]
-pub enum VtuFormat {
-    /// Every array as text inside its `DataArray` element (the non-finite exception above), for
-    /// those who read or diff the files.
-    Ascii,
-    /// Every array as little-endian raw bytes in one `<AppendedData encoding="raw">` section at
-    /// the end of the file, each preceded by its `UInt64` byte count (0.58 of the ASCII size on
-    /// the notch at 1000 × 500 cells per body, written in about half the time of ASCII).
-    Binary,
-    /// The appended section of [`VtuFormat::Binary`] with every array cut into blocks of
-    /// [`ZLIB_BLOCK`] bytes, each compressed by zlib at level [`ZLIB_LEVEL`], as VTK's
-    /// `vtkZLibDataCompressor` writes it (the default: 0.27 of the ASCII size on the notch at
-    /// 1000 × 500 cells per body, written in three quarters of the time of ASCII;
-    /// `scripts/vtu_encodings.py` measures it, docs/outputs.md has the table).
-    #[default]
-    Zlib,
-}
-
-/// The uncompressed size of the blocks of a [`VtuFormat::Zlib`] array (the last one may be
-/// shorter): 32 KiB, VTK's own. Blocks of up to 1 MiB save less than 0.3 % of the raw bytes on
-/// the notch and leave fewer pieces to share between threads.
-pub const ZLIB_BLOCK: usize = 1 << 15;
-
-/// The zlib compression level of [`VtuFormat::Zlib`]. Level 1 of the zlib-rs back end codes
-/// with static Huffman tables only: on the notch's arrays it leaves 0.54 of the raw bytes
-/// against 0.46 at level 2, which takes about twice its time (still a fraction of writing
-/// ASCII); levels 3 to 6 gain less than 1 % more at up to twice level 2's time.
-pub const ZLIB_LEVEL: u32 = 2;
-
-impl VtuFormat {
-    /// The name of the format in problem files and on the command line.
-    pub fn name(self) -> &'static str {
-        match self {
-            VtuFormat::Ascii => "ascii",
-            VtuFormat::Binary => "binary",
-            VtuFormat::Zlib => "zlib",
-        }
-    }
-}
-
-impl std::fmt::Display for VtuFormat {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.write_str(self.name())
-    }
-}
-
-/// A VTU format name that is not `ascii`, `binary` or `zlib`.
-#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
-#[error("unknown VTU format '{0}': expected 'zlib', 'binary' or 'ascii'")]
-pub struct UnknownVtuFormat(pub String);
-
-impl std::str::FromStr for VtuFormat {
-    type Err = UnknownVtuFormat;
-
-    fn from_str(s: &str) -> Result<VtuFormat, UnknownVtuFormat> {
-        match s {
-            "ascii" => Ok(VtuFormat::Ascii),
-            "binary" => Ok(VtuFormat::Binary),
-            "zlib" => Ok(VtuFormat::Zlib),
-            other => Err(UnknownVtuFormat(other.to_string())),
-        }
-    }
 }
 
 /// Writes `mesh` as an ASCII `.vtu` file at `path` with the arrays of `data`
@@ -164,7 +101,7 @@ pub fn write_vtu_as(
 /// Errors ([`ErrorKind::InvalidInput`]) if the displacement does not hold 2 values per node, or a
 /// field has zero components or not `components` values per node (per cell).
 pub fn vtu_string(mesh: &Mesh, data: VtuData<'_>) -> std::io::Result<String> {
-    let out = document(mesh, data, Arrays::new(VtuFormat::Ascii, 0))?;
+    let out = document(&[(mesh, data)], Arrays::new(VtuFormat::Ascii, 0))?;
     Ok(out.text)
 }
 
@@ -173,17 +110,33 @@ pub fn vtu_string(mesh: &Mesh, data: VtuData<'_>) -> std::io::Result<String> {
 /// every `DataArray` empty (`format="appended"` and the `offset` of its block), followed by the
 /// appended section.
 pub fn vtu_bytes(mesh: &Mesh, data: VtuData<'_>, format: VtuFormat) -> std::io::Result<Vec<u8>> {
+    vtu_pieces_bytes(&[(mesh, data)], format)
+}
+
+/// The bytes of a `.vtu` file holding one `Piece` per mesh of `pieces`, in order, each with its
+/// arrays, encoded as `format` (the appended arrays of every piece share one appended section).
+/// With one piece, the bytes of [`vtu_bytes`]. VTK and ParaView read the pieces of such a file
+/// as one grid, their points and cells one after the other.
+pub fn vtu_pieces_bytes(
+    pieces: &[(&Mesh, VtuData<'_>)],
+    format: VtuFormat,
+) -> std::io::Result<Vec<u8>> {
     // The appended bytes: per node the points and the fields, per cell its connectivity.
-    let per_node = 3
-        + data
-            .points
-            .iter()
-            .map(|f| f.components.max(3))
-            .sum::<usize>()
-        + 3;
-    let per_cell = 2 + mesh.order().nodes_per_cell() + data.cells.len();
-    let capacity = 8 * (per_node * mesh.num_nodes() + per_cell * mesh.num_cells());
-    let out = document(mesh, data, Arrays::new(format, capacity))?;
+    let capacity = pieces
+        .iter()
+        .map(|(mesh, data)| {
+            let per_node = 3
+                + data
+                    .points
+                    .iter()
+                    .map(|f| f.components.max(3))
+                    .sum::<usize>()
+                + 3;
+            let per_cell = 2 + mesh.order().nodes_per_cell() + data.cells.len();
+            8 * (per_node * mesh.num_nodes() + per_cell * mesh.num_cells())
+        })
+        .sum();
+    let out = document(pieces, Arrays::new(format, capacity))?;
     let Some(appended) = out.appended else {
         return Ok(out.text.into_bytes());
     };
@@ -291,30 +244,34 @@ fn compress_block(bytes: &[u8]) -> std::io::Result<Vec<u8>> {
     })
 }
 
-/// The XML of the file through `</UnstructuredGrid>` (and `</VTKFile>` for ASCII), with the
-/// appended bytes of a binary file.
-fn document(mesh: &Mesh, data: VtuData<'_>, mut out: Arrays) -> std::io::Result<Arrays> {
-    let n = mesh.num_nodes();
-    let mut arrays: Vec<Field<'_>> = Vec::with_capacity(data.points.len() + 1);
-    if let Some(values) = data.displacement {
-        arrays.push(Field {
-            name: "displacement",
-            components: DIM,
-            values,
-        });
+/// The XML of the file through `</UnstructuredGrid>` (and `</VTKFile>` for ASCII), one `Piece`
+/// per mesh of `pieces`, with the appended bytes of a binary file.
+fn document(pieces: &[(&Mesh, VtuData<'_>)], mut out: Arrays) -> std::io::Result<Arrays> {
+    for (mesh, data) in pieces {
+        check_lengths(&node_fields(data), mesh.num_nodes(), "nodes")?;
+        check_lengths(data.cells, mesh.num_cells(), "cells")?;
     }
-    arrays.extend_from_slice(data.points);
-    check_lengths(&arrays, n, "nodes")?;
-    check_lengths(data.cells, mesh.num_cells(), "cells")?;
-
     out.open_file();
     out.text.push_str("  <UnstructuredGrid>\n");
+    for (mesh, data) in pieces {
+        piece(mesh, *data, &mut out);
+    }
+    out.text.push_str("  </UnstructuredGrid>\n");
+    if out.appended.is_none() {
+        out.text.push_str("</VTKFile>\n");
+    }
+    Ok(out)
+}
+
+/// Writes the `Piece` of `mesh` with the arrays of `data`, whose lengths are checked.
+fn piece(mesh: &Mesh, data: VtuData<'_>, out: &mut Arrays) {
+    let n = mesh.num_nodes();
+    let arrays = node_fields(&data);
     let _ = writeln!(
         out.text,
         "    <Piece NumberOfPoints=\"{n}\" NumberOfCells=\"{}\">",
         mesh.num_cells()
     );
-
     // Marking the displacement as the active vectors lets ParaView's "Warp By Vector" use it.
     if data.displacement.is_some() {
         out.text
@@ -322,11 +279,11 @@ fn document(mesh: &Mesh, data: VtuData<'_>, mut out: Arrays) -> std::io::Result<
     } else {
         out.text.push_str("      <PointData>\n");
     }
-    field_arrays(&mut out, &arrays);
+    field_arrays(out, &arrays);
     out.text.push_str("      </PointData>\n");
     if !data.cells.is_empty() {
         out.text.push_str("      <CellData>\n");
-        field_arrays(&mut out, data.cells);
+        field_arrays(out, data.cells);
         out.text.push_str("      </CellData>\n");
     }
 
@@ -363,11 +320,20 @@ fn document(mesh: &Mesh, data: VtuData<'_>, mut out: Arrays) -> std::io::Result<
     out.text.push_str("      </Cells>\n");
 
     out.text.push_str("    </Piece>\n");
-    out.text.push_str("  </UnstructuredGrid>\n");
-    if out.appended.is_none() {
-        out.text.push_str("</VTKFile>\n");
+}
+
+/// The nodal arrays of `data`: the displacement (if any), then the point fields.
+fn node_fields<'a>(data: &VtuData<'a>) -> Vec<Field<'a>> {
+    let mut arrays: Vec<Field<'a>> = Vec::with_capacity(data.points.len() + 1);
+    if let Some(values) = data.displacement {
+        arrays.push(Field {
+            name: "displacement",
+            components: DIM,
+            values,
+        });
     }
-    Ok(out)
+    arrays.extend_from_slice(data.points);
+    arrays
 }
 
 /// Errors unless every field has `components` > 0 values for each of the `count` items.

@@ -68,14 +68,27 @@ impl VtuFile {
     }
 }
 
-/// Reads the arrays of the `.vtu` file `bytes`.
+/// Reads the arrays of the `.vtu` file `bytes`, those of every `Piece` one after the other.
 pub fn parse_vtu(bytes: &[u8]) -> Result<VtuFile, VtuReadError> {
+    let arrays = parse_vtu_pieces(bytes)?
+        .into_iter()
+        .flat_map(|piece| piece.arrays)
+        .collect();
+    Ok(VtuFile { arrays })
+}
+
+/// Reads the arrays of each `Piece` of the `.vtu` file `bytes`, in file order: one per body of
+/// a file of [`crate::vtu::VtuLayout::Collection`], one for a body's own file (arrays outside
+/// any `Piece` count as a piece of their own).
+pub fn parse_vtu_pieces(bytes: &[u8]) -> Result<Vec<VtuFile>, VtuReadError> {
     let head_end = find(bytes, b"<AppendedData").unwrap_or(bytes.len());
     let Ok(head) = std::str::from_utf8(&bytes[..head_end]) else {
         return bad("the XML part is not UTF-8 text");
     };
     let appended = appended_data(&bytes[head_end..])?;
-    let mut file = VtuFile::default();
+    let mut pieces: Vec<VtuFile> = Vec::new();
+    // Whether an array goes into a new piece: before the first, and after each `<Piece>` tag.
+    let mut new_piece = true;
     let mut section = None;
     let mut zlib = false;
     let mut rest = head;
@@ -88,6 +101,10 @@ pub fn parse_vtu(bytes: &[u8]) -> Result<VtuFile, VtuReadError> {
         let name = tag.split(|c: char| c.is_whitespace() || c == '/').next();
         match name {
             Some("VTKFile") => zlib = compressed(tag)?,
+            Some("Piece") => {
+                new_piece = true;
+                section = None;
+            }
             Some("PointData") => section = Some(Section::PointData),
             Some("CellData") => section = Some(Section::CellData),
             Some("Points") => section = Some(Section::Points),
@@ -99,7 +116,12 @@ pub fn parse_vtu(bytes: &[u8]) -> Result<VtuFile, VtuReadError> {
                 let body = &rest[end + 1..];
                 let appended = appended.map(|raw| (raw, zlib));
                 let (array, used) = data_array(section, tag, body, appended)?;
-                file.arrays.push(array);
+                if std::mem::take(&mut new_piece) {
+                    pieces.push(VtuFile::default());
+                }
+                if let Some(piece) = pieces.last_mut() {
+                    piece.arrays.push(array);
+                }
                 rest = &body[used..];
                 continue;
             }
@@ -107,7 +129,7 @@ pub fn parse_vtu(bytes: &[u8]) -> Result<VtuFile, VtuReadError> {
         }
         rest = &rest[end + 1..];
     }
-    Ok(file)
+    Ok(pieces)
 }
 
 /// Whether the arrays of the file whose `VTKFile` tag is `tag` are zlib-compressed: an error

@@ -376,9 +376,10 @@ class Result:
     @property
     def monitor(self) -> Optional[Tuple[float, float]]:
         """The mean displacement (ux, uy) of the monitored boundary, or None without one."""
-    def write_vtu(self, directory: _StrPath, format: Literal["zlib", "binary", "ascii"] = "zlib") -> list[str]:
-        """Writes summary.json, contact.csv, history.csv and one VTU file per body, encoded as
-        format (not for a result unpickled or read by load_results: ContactddError)."""
+    def write_vtu(self, directory: _StrPath, format: Literal["zlib", "binary", "ascii"] = "zlib", layout: Literal["per-body", "collection"] = "per-body") -> list[str]:
+        """Writes summary.json, contact.csv, history.csv and one VTU file per body (layout
+        "collection": one file, bodies.vtu, with a piece per body), encoded as format (not for a
+        result unpickled or read by load_results: ContactddError)."""
     def summary(self) -> dict[str, Any]:
         """The content of the summary.json file the command line writes."""
 
@@ -396,8 +397,9 @@ class MonolithicResult:
     def contact(self) -> list[Contact]: ...
     @property
     def seconds(self) -> float: ...
-    def write_vtu(self, directory: _StrPath, format: Literal["zlib", "binary", "ascii"] = "zlib") -> list[str]:
-        """Writes summary.json, contact.csv and one VTU file per body, encoded as format."""
+    def write_vtu(self, directory: _StrPath, format: Literal["zlib", "binary", "ascii"] = "zlib", layout: Literal["per-body", "collection"] = "per-body") -> list[str]:
+        """Writes summary.json, contact.csv and one VTU file per body (layout "collection": one
+        file, bodies.vtu, with a piece per body), encoded as format."""
     def summary(self) -> dict[str, Any]:
         """The summary.json of a monolithic solve."""
 

@@ -5,8 +5,9 @@ A result folder is what ``contactdd solve --out DIR``, ``contactdd monolithic --
 holds a complete result exactly when ``summary.json`` exists, and then only the files its
 manifest (the ``files`` key) lists belong to it. This module reads such a folder into the result
 objects :func:`contactdd.solve` and :func:`contactdd.monolithic` return: the fields of every body
-from its VTU file, the contact tables and everything else from ``summary.json``, the iteration
-history from ``history.csv``. Only the standard library and numpy are used.
+from its VTU file (one per body, or one for all bodies with a piece each), the contact tables
+and everything else from ``summary.json``, the iteration history from ``history.csv``. Only the
+standard library and numpy are used.
 
 The folder is untrusted input: every file is read by the reader ``contactdd plot`` uses, which
 follows no symbolic link, opens no FIFO or device and reads at most 256 MiB of a JSON or CSV file
@@ -104,14 +105,21 @@ def _load(folder: Path, summary: dict[str, Any]) -> Union[Result, MonolithicResu
                 "missing (write the results again)"
             )
     vtus = [name for name in files if name.endswith(".vtu")]
-    names = [b["name"] for b in _key(summary, "bodies", folder)]
-    if len(vtus) < len(names):
-        raise ContactddError(f"{folder}: summary.json lists {len(vtus)} VTU files for "
-                             f"{len(names)} bodies")
-    # The manifest lists the VTU files in body order, step after step: the last ones are the
+    infos = _key(summary, "bodies", folder)
+    # The manifest lists the VTU files in body order, step after step, each file holding one
+    # body (one piece) or every body of its step (one piece each): the last pieces are the
     # bodies of the last step, the one summary.json describes.
-    last = vtus[len(vtus) - len(names):]
-    bodies = [_body(folder / f, b) for f, b in zip(last, _key(summary, "bodies", folder))]
+    pieces: list[tuple[Path, Union[bytes, None], ET.Element, bool]] = []
+    for name in reversed(vtus):
+        if len(pieces) >= len(infos):
+            break
+        pieces[:0] = _pieces(folder / name)
+    if len(pieces) < len(infos):
+        raise ContactddError(f"{folder}: summary.json lists VTU files of {len(pieces)} bodies "
+                             f"for {len(infos)} bodies")
+    last = pieces[len(pieces) - len(infos):]
+    bodies = [_body(piece, info) for piece, info in zip(last, infos)]
+    names = [b["name"] for b in infos]
     contact = [_contact(p, folder) for p in _key(summary, "contact", folder)]
     if summary.get("solver") == "monolithic":
         return _monolithic(summary, bodies, contact, folder)
@@ -282,25 +290,40 @@ def _data_array(element: ET.Element, raw: Union[bytes, None] = None,
     return values.reshape(-1, components) if components > 1 else values
 
 
-def _body(path: Path, info: dict[str, Any]) -> Body:
+def _pieces(path: Path) -> list[tuple[Path, Union[bytes, None], ET.Element, bool]]:
+    """The ``Piece`` elements of the VTU file ``path``, one per body it holds, each with the
+    file's path, its raw appended bytes and whether they are zlib-compressed."""
     data = _read_result_file(os.fspath(path), "vtu")
     try:
-        return _parse_body(data, info)
-    except (ET.ParseError, KeyError, ValueError, IndexError, TypeError) as e:
+        text, raw = _split_appended(data)
+        root = ET.fromstring(text)
+        compressor = root.get("compressor")
+        if compressor not in (None, "vtkZLibDataCompressor"):
+            raise ValueError(f"compressor {compressor!r} is not read (only vtkZLibDataCompressor)")
+        compressed = compressor is not None
+        if compressed and root.get("header_type") != "UInt64":
+            raise ValueError('zlib-compressed arrays need header_type="UInt64"')
+        pieces = root.findall("./UnstructuredGrid/Piece")
+        if not pieces:
+            raise ValueError("no Piece")
+    except (ET.ParseError, ValueError, UnicodeDecodeError) as e:
+        raise ContactddError(f"{path}: not a VTU file of contactdd ({type(e).__name__}: {e})") from e
+    return [(path, raw, piece, compressed) for piece in pieces]
+
+
+def _body(piece: tuple[Path, Union[bytes, None], ET.Element, bool], info: dict[str, Any]) -> Body:
+    path, raw, element, compressed = piece
+    try:
+        return _parse_body(element, raw, compressed, info)
+    except (KeyError, ValueError, IndexError, TypeError) as e:
         raise ContactddError(f"{path}: not a VTU file of contactdd ({type(e).__name__}: {e})") from e
 
 
-def _parse_body(data: bytes, info: dict[str, Any]) -> Body:
-    text, raw = _split_appended(data)
-    root = ET.fromstring(text)
-    compressor = root.get("compressor")
-    if compressor not in (None, "vtkZLibDataCompressor"):
-        raise ValueError(f"compressor {compressor!r} is not read (only vtkZLibDataCompressor)")
-    compressed = compressor is not None
-    if compressed and root.get("header_type") != "UInt64":
-        raise ValueError('zlib-compressed arrays need header_type="UInt64"')
-    arrays = {a.get("Name"): _data_array(a, raw, compressed) for a in root.iter("DataArray")}
-    points = root.find(".//Points/DataArray")
+def _parse_body(piece: ET.Element, raw: Union[bytes, None], compressed: bool,
+                info: dict[str, Any]) -> Body:
+    """The body of the ``Piece`` element ``piece`` (``raw``: its file's appended bytes)."""
+    arrays = {a.get("Name"): _data_array(a, raw, compressed) for a in piece.iter("DataArray")}
+    points = piece.find("./Points/DataArray")
     if points is None:
         raise ValueError("no Points")
     types = arrays["types"]
