@@ -80,7 +80,10 @@ fn run(order: TetOrder, cells: usize) -> Result<(), Box<dyn std::error::Error>> 
         .flat_map(|(v, x)| (0..3).map(move |c| (v, c, exact(*x)[c])))
         .map(|(v, c, e)| (u[dof(v, c)] - e).abs())
         .fold(0.0, f64::max);
-    println!("  largest error against the uniaxial solution {:.2e} (relative)", worst / scale);
+    println!(
+        "  largest error against the uniaxial solution {:.2e} (relative)",
+        worst / scale
+    );
     if worst > 1e-8 * scale {
         return Err(format!("error {worst:e} against the uniaxial solution").into());
     }
