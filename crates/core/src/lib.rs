@@ -33,6 +33,7 @@ pub mod ordering;
 pub mod post;
 pub mod rectangle;
 pub mod rigid;
+pub mod solid;
 mod subtrees;
 pub mod supports;
 

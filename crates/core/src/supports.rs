@@ -57,6 +57,24 @@ impl Constraints {
         }
     }
 
+    /// No DOF constrained among `num_dofs` DOFs, whatever their number per node (the 3D layer,
+    /// [`crate::solid`], has three); set them with [`Constraints::prescribe`].
+    pub fn for_dofs(num_dofs: usize) -> Constraints {
+        Constraints {
+            values: vec![None; num_dofs],
+            inclined: BTreeMap::new(),
+        }
+    }
+
+    /// Prescribes `value` for DOF `dof` directly, whatever the number of DOFs per node (no
+    /// inclined support involved).
+    ///
+    /// # Panics
+    /// If `dof` is not below [`Constraints::len`].
+    pub fn prescribe(&mut self, dof: usize, value: f64) {
+        self.values[dof] = Some(value);
+    }
+
     /// Prescribes `value` for `component` on every node of boundary (or node set) `name`.
     ///
     /// Each support prescribes one or two directions per node (x, y, or an inclined normal). A
