@@ -50,10 +50,13 @@ pub struct PointRows {
 }
 
 impl PointRows {
-    /// The rows of reference node `node` with normal `normal` and mortar row `row`.
+    /// The rows of reference node `node` with normal `normal` and mortar row `row` (its own side
+    /// read through `row.own`).
     pub fn new(node: usize, normal: Point3, row: &MortarRow) -> PointRows {
         let [t1, t2] = tangents(normal);
-        let mut terms = vec![(Side::Reference, node, 1.0)];
+        let mut terms: Vec<(Side, usize, f64)> = (row.own.iter())
+            .map(|&(k, e)| (Side::Reference, k, e))
+            .collect();
         terms.extend(
             row.coefficients
                 .iter()

@@ -14,6 +14,8 @@
 
 use std::collections::HashMap;
 
+use contactdd_core::element::TRIANGLE_DEGREE_5;
+
 use super::clipping::{area, clip_convex, orient, Point2};
 use super::surface::Surface;
 use super::triangle_index::TriangleIndex;
@@ -29,6 +31,11 @@ const RULE: [[f64; 3]; 3] = [
 /// A reference node's view of the partner surface.
 #[derive(Clone, Debug, PartialEq)]
 pub struct MortarRow {
+    /// (reference node, e_jk) by node: how point j reads its own side, Σ_k e_jk u_k. The node
+    /// alone (e_jj = 1) on a linear surface, where biorthogonality makes the others vanish; on a
+    /// quadratic one ∫ ψ_j N_k / ∫ ψ_j with N_k the quadratic shape functions, which ψ_j is not
+    /// biorthogonal to. They sum to 1.
+    pub own: Vec<(usize, f64)>,
     /// (partner node, c_jk), by partner node; they sum to 1.
     pub coefficients: Vec<(usize, f64)>,
     /// The weighted distance to the partner along the reference normals (negative: overlap).
@@ -42,6 +49,7 @@ pub struct MortarRow {
 #[derive(Clone, Debug, Default)]
 struct Integrals {
     coupling: HashMap<usize, f64>,
+    own: HashMap<usize, f64>,
     gap: f64,
 }
 
@@ -68,14 +76,14 @@ pub fn dual_mortar(
         }
         for p in index.near(lo, hi) {
             if let Some(overlap) = frame.overlap(partner, p, search) {
-                frame.integrate(&overlap, reference.triangles()[t], &mut integrals);
+                let sides = (reference, t, partner, p);
+                frame.integrate(&overlap, sides, &mut integrals);
             }
         }
     }
-    integrals
-        .iter()
-        .zip(reference.weights())
-        .map(|(node, &w)| normalised(node, w))
+    let quadratic = reference.is_quadratic();
+    (integrals.iter().enumerate())
+        .map(|(j, node)| normalised(node, (j, reference.weights()[j]), quadratic))
         .collect()
 }
 
@@ -89,10 +97,9 @@ struct Frame {
 }
 
 /// A partner triangle clipped against a reference triangle: the polygon, and the partner's
-/// nodes with their projected positions and heights.
+/// corners' projected positions and heights.
 struct Overlap {
     polygon: Vec<Point2>,
-    nodes: [usize; 3],
     projected: [Point2; 3],
     heights: [f64; 3],
 }
@@ -145,14 +152,26 @@ impl Frame {
         let polygon = clip_convex(&[q0, q2, q1], &self.corners);
         (polygon.len() >= 3 && area(&polygon) > 1e-14 * own).then_some(Overlap {
             polygon,
-            nodes,
             projected,
             heights,
         })
     }
 
-    /// Adds the overlap's integrals to the reference triangle's `nodes`.
-    fn integrate(&self, overlap: &Overlap, nodes: [usize; 3], integrals: &mut [Integrals]) {
+    /// Adds the overlap's integrals to the nodes of reference triangle t: `sides` is
+    /// (reference, t, partner, p). The rule is exact for the integrands: degree 2 between linear
+    /// surfaces, degree 5 where a side is quadratic (ψ times a quadratic shape function).
+    fn integrate(
+        &self,
+        overlap: &Overlap,
+        (reference, t, partner, p): (&Surface, usize, &Surface, usize),
+        integrals: &mut [Integrals],
+    ) {
+        let quadratic = reference.is_quadratic() || partner.is_quadratic();
+        let (points, weights) = match quadratic {
+            true => (TRIANGLE_DEGREE_5.points, TRIANGLE_DEGREE_5.weights),
+            false => (&RULE[..], &[1.0 / 3.0; 3][..]),
+        };
+        let nodes = reference.triangles()[t];
         let poly = &overlap.polygon;
         let m = poly.len() as f64;
         let centre = poly
@@ -161,17 +180,22 @@ impl Frame {
         for i in 0..poly.len() {
             let piece = [centre, poly[i], poly[(i + 1) % poly.len()]];
             let size = orient(piece[0], piece[1], piece[2]) / 2.0;
-            for bary in RULE {
+            for (&bary, &wq) in points.iter().zip(weights) {
                 let y = combine(&piece, bary);
                 let lambda = barycentric(&self.corners, y);
                 let mu = barycentric(&overlap.projected, y);
                 let h: f64 = (0..3).map(|l| mu[l] * overlap.heights[l]).sum();
-                let w = size / 3.0;
+                let theirs = partner.shape(p, mu);
+                let ours = reference.is_quadratic().then(|| reference.shape(t, lambda));
+                let w = size * wq;
                 for (i, &v) in nodes.iter().enumerate() {
                     let psi = 4.0 * lambda[i] - 1.0;
                     let node = &mut integrals[v];
-                    for (l, &k) in overlap.nodes.iter().enumerate() {
-                        *node.coupling.entry(k).or_insert(0.0) += w * psi * mu[l];
+                    for &(k, phi) in &theirs {
+                        *node.coupling.entry(k).or_insert(0.0) += w * psi * phi;
+                    }
+                    for &(k, phi) in ours.iter().flatten() {
+                        *node.own.entry(k).or_insert(0.0) += w * psi * phi;
                     }
                     node.gap += w * psi * h;
                 }
@@ -202,19 +226,36 @@ fn barycentric(triangle: &[Point2; 3], y: Point2) -> [f64; 3] {
 }
 
 /// A node's integrals normalised by ∫ ψ over the covered part (`None` where that is not a
-/// positive share of the integrals' size, or not finite); `weight` is the node's ∫ φ.
-fn normalised(node: &Integrals, weight: f64) -> Option<MortarRow> {
-    let mut coefficients: Vec<(usize, f64)> = node.coupling.iter().map(|(&k, &c)| (k, c)).collect();
-    coefficients.sort_by_key(|e| e.0);
+/// positive share of the integrals' size, or not finite): `node` is (j, its ∫ φ), and the own
+/// row is the node alone unless the surface is `quadratic`.
+fn normalised(
+    integrals: &Integrals,
+    (j, weight): (usize, f64),
+    quadratic: bool,
+) -> Option<MortarRow> {
+    let sorted = |map: &HashMap<usize, f64>| {
+        let mut row: Vec<(usize, f64)> = map.iter().map(|(&k, &c)| (k, c)).collect();
+        row.sort_by_key(|e| e.0);
+        row
+    };
+    let mut coefficients = sorted(&integrals.coupling);
     let total: f64 = coefficients.iter().map(|e| e.1).sum();
     let size: f64 = coefficients.iter().map(|e| e.1.abs()).sum();
     if !total.is_finite() || total <= 1e-9 * size {
         return None;
     }
     coefficients.iter_mut().for_each(|e| e.1 /= total);
+    let own = match quadratic {
+        true => sorted(&integrals.own)
+            .into_iter()
+            .map(|(k, c)| (k, c / total))
+            .collect(),
+        false => vec![(j, 1.0)],
+    };
     Some(MortarRow {
+        own,
         coefficients,
-        gap: node.gap / total,
+        gap: integrals.gap / total,
         coverage: total / weight,
     })
 }

@@ -51,7 +51,19 @@ pub struct Surface {
     weights: Vec<f64>,
     /// Per node, the area-weighted mean of its triangles' normals, of unit length.
     normals: Vec<Point3>,
+    /// The 6-node triangles a quadratic surface was split from (triangle t is the part
+    /// t mod 4 of parent t / 4, [`SUB`]); `None` for a linear surface.
+    parents: Option<Vec<[usize; 6]>>,
 }
+
+/// The corners of the four parts of a 6-node triangle in its barycentric coordinates: the
+/// corners' triangles, then the middle one (the order of [`Surface::from_quadratic`]).
+const SUB: [[[f64; 3]; 3]; 4] = [
+    [[1.0, 0.0, 0.0], [0.5, 0.5, 0.0], [0.5, 0.0, 0.5]],
+    [[0.5, 0.5, 0.0], [0.0, 1.0, 0.0], [0.0, 0.5, 0.5]],
+    [[0.5, 0.0, 0.5], [0.0, 0.5, 0.5], [0.0, 0.0, 1.0]],
+    [[0.5, 0.5, 0.0], [0.0, 0.5, 0.5], [0.5, 0.0, 0.5]],
+];
 
 impl Surface {
     /// The surface of `triangles` over `points`, checked: every index in range, every coordinate
@@ -96,6 +108,7 @@ impl Surface {
             faces,
             weights,
             normals,
+            parents: None,
         })
     }
 
@@ -115,7 +128,38 @@ impl Surface {
                 [[a, ab, ca], [ab, b, bc], [ca, bc, c], [ab, bc, ca]]
             })
             .collect();
-        Surface::new(points, split)
+        let mut surface = Surface::new(points, split)?;
+        surface.parents = Some(triangles.to_vec());
+        Ok(surface)
+    }
+
+    /// True for a surface split from 6-node triangles.
+    pub fn is_quadratic(&self) -> bool {
+        self.parents.is_some()
+    }
+
+    /// The surface's shape functions at the point of triangle t with barycentric coordinates
+    /// `bary` (in t): (node, value) of the three linear ones, or of the six quadratic ones of t's
+    /// parent on a quadratic surface (whose displacement they interpolate).
+    pub fn shape(&self, t: usize, bary: [f64; 3]) -> Vec<(usize, f64)> {
+        let Some(parents) = &self.parents else {
+            return (0..3).map(|i| (self.triangles[t][i], bary[i])).collect();
+        };
+        let mut l = [0.0; 3];
+        for (corner, b) in SUB[t % 4].iter().zip(bary) {
+            for c in 0..3 {
+                l[c] += b * corner[c];
+            }
+        }
+        let [a, b, c, ab, bc, ca] = parents[t / 4];
+        vec![
+            (a, l[0] * (2.0 * l[0] - 1.0)),
+            (b, l[1] * (2.0 * l[1] - 1.0)),
+            (c, l[2] * (2.0 * l[2] - 1.0)),
+            (ab, 4.0 * l[0] * l[1]),
+            (bc, 4.0 * l[1] * l[2]),
+            (ca, 4.0 * l[2] * l[0]),
+        ]
     }
 
     /// The nodes' coordinates.
