@@ -111,35 +111,56 @@ pub struct SolidContactSolution {
     pub points: Vec<SolidContactPoint>,
     /// The Newton steps taken (the last one confirms the closed set).
     pub newton_steps: usize,
+    /// (phase, seconds) of the solve, in order.
+    pub timings: Vec<(&'static str, f64)>,
 }
 
 /// The most Newton steps before the closed set counts as not settling.
 pub const MAX_STEPS: usize = 60;
 
-/// A contact point's normal row over the coupled DOFs and its data.
-struct Row {
-    point: SolidContactPoint,
-    a: Vec<(usize, f64)>,
-    spring: f64,
+/// A contact point's normal row over the coupled DOFs (the bodies' DOFs one after the other)
+/// and its data.
+pub(crate) struct Row {
+    pub(crate) point: SolidContactPoint,
+    pub(crate) a: Vec<(usize, f64)>,
+    pub(crate) spring: f64,
 }
 
-/// Solves the contact of `bodies` through `pairs` by the semismooth Newton method.
+/// Where every body's DOFs start in the coupled numbering, and their total.
+pub(crate) fn offsets(bodies: &[SolidBodySpec<'_>]) -> (Vec<usize>, usize) {
+    let mut at = 0;
+    let offsets = (bodies.iter())
+        .map(|b| {
+            let o = at;
+            at += 3 * b.mesh.num_nodes();
+            o
+        })
+        .collect();
+    (offsets, at)
+}
+
+/// The rows of the contact points of every pair.
+pub(crate) fn contact_rows(
+    bodies: &[SolidBodySpec<'_>],
+    offsets: &[usize],
+    pairs: &[SolidPairSpec],
+) -> Result<Vec<Row>, SolidContactError> {
+    let mut rows = Vec::new();
+    for (p, pair) in pairs.iter().enumerate() {
+        rows.extend(pair_rows(bodies, offsets, p, pair)?);
+    }
+    Ok(rows)
+}
+
+/// Solves the contact of `bodies` through `pairs` by the semismooth Newton method, starting
+/// from the points whose gap is closed (d_j ≤ 0).
 pub fn solve_solid_monolithic(
     bodies: &[SolidBodySpec<'_>],
     pairs: &[SolidPairSpec],
 ) -> Result<SolidContactSolution, SolidContactError> {
-    let offsets: Vec<usize> = (bodies.iter())
-        .scan(0, |at, b| {
-            let o = *at;
-            *at += 3 * b.mesh.num_nodes();
-            Some(o)
-        })
-        .collect();
-    let n = offsets.last().map_or(0, |&o| o) + bodies.last().map_or(0, |b| 3 * b.mesh.num_nodes());
-    let mut rows = Vec::new();
-    for (p, pair) in pairs.iter().enumerate() {
-        rows.extend(pair_rows(bodies, &offsets, p, pair)?);
-    }
+    let started = std::time::Instant::now();
+    let (offsets, n) = offsets(bodies);
+    let rows = contact_rows(bodies, &offsets, pairs)?;
     let mut trip = Vec::new();
     for (b, at) in bodies.iter().zip(&offsets) {
         push_matrix(&stiffness(b.mesh, &b.elasticity), *at, &mut trip);
@@ -184,7 +205,9 @@ pub fn solve_solid_monolithic(
             .map(|(r, &s)| s > r.point.gap)
             .collect();
         if next == closed {
-            return Ok(solution(bodies, &offsets, rows, &s, u, step));
+            let mut sol = solution(bodies, &offsets, rows, &s, u, step);
+            sol.timings = vec![("solve", started.elapsed().as_secs_f64())];
+            return Ok(sol);
         }
         closed = next;
     }
@@ -334,5 +357,6 @@ fn solution(
         displacements,
         points,
         newton_steps: steps,
+        timings: Vec::new(),
     }
 }
