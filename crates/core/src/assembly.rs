@@ -11,7 +11,7 @@ use faer::sparse::{SparseColMat, SymbolicSparseColMat};
 use rayon::prelude::*;
 
 use crate::element::{self, Affine, Geometry, EDGE_GAUSS_3, TRIANGLE_DEGREE_5};
-use crate::geometry::{dof, num_dofs, Point, Vector, DIM};
+use crate::geometry::{dof, Point, Vector, DIM};
 use crate::mesh::{Edge, Mesh};
 
 /// Node-to-triangle incidence of a mesh: for node i, the triangles
@@ -177,21 +177,7 @@ impl Pattern {
     /// Builds the pattern of the `2n × 2n` stiffness matrix of `mesh`.
     pub fn new(mesh: &Mesh) -> Pattern {
         let adjacency = Adjacency::new(mesh);
-        let n = mesh.num_nodes();
-        let mut col_ptr = Vec::with_capacity(num_dofs(n) + 1);
-        col_ptr.push(0usize);
-        let mut row_idx = Vec::with_capacity(DIM * DIM * adjacency.nbrs.len());
-        for i in 0..n {
-            for _ in 0..DIM {
-                for &j in adjacency.neighbours(i) {
-                    row_idx.extend((0..DIM).map(|c| dof(j, c)));
-                }
-                col_ptr.push(row_idx.len());
-            }
-        }
-        // Safe by construction: rows sorted and unique within each column, all < 2n.
-        let symbolic =
-            SymbolicSparseColMat::new_checked(num_dofs(n), num_dofs(n), col_ptr, None, row_idx);
+        let symbolic = node_pattern(mesh.num_nodes(), DIM, |i| adjacency.neighbours(i));
         Pattern {
             adjacency,
             symbolic,
@@ -209,20 +195,56 @@ impl Pattern {
         let adj = &self.adjacency;
         let col_ptr = self.symbolic.col_ptr();
         let mut values = vec![0.0; self.symbolic.row_idx().len()];
-        // Split the value array into the two columns of each node.
-        let mut chunks: Vec<&mut [f64]> = Vec::with_capacity(n);
-        let mut rest = values.as_mut_slice();
-        for i in 0..n {
-            let (head, tail) = rest.split_at_mut(col_ptr[dof(i + 1, 0)] - col_ptr[dof(i, 0)]);
-            chunks.push(head);
-            rest = tail;
-        }
+        let chunks = node_chunks(&mut values, col_ptr, n, DIM);
         chunks.into_par_iter().enumerate().for_each(|(i, cols)| {
             let cells = adj.incidence.cells_of(i);
             node_columns(mesh, d, (i, cells, adj.neighbours(i)), cols);
         });
         SparseColMat::new(self.symbolic.clone(), values)
     }
+}
+
+/// The symbolic pattern of the stiffness matrix of `n` nodes with `dofs` DOFs each (DOF
+/// `dofs · node + component`), node i's columns holding the DOFs of `neighbours(i)` (sorted, i
+/// included): each node's columns are contiguous, so its values are filled on their own
+/// ([`node_chunks`]).
+pub fn node_pattern<'a>(
+    n: usize,
+    dofs: usize,
+    neighbours: impl Fn(usize) -> &'a [usize],
+) -> SymbolicSparseColMat<usize> {
+    let mut col_ptr = Vec::with_capacity(dofs * n + 1);
+    col_ptr.push(0usize);
+    let entries: usize = (0..n).map(|i| neighbours(i).len()).sum();
+    let mut row_idx = Vec::with_capacity(dofs * dofs * entries);
+    for i in 0..n {
+        for _ in 0..dofs {
+            for &j in neighbours(i) {
+                row_idx.extend((0..dofs).map(|c| dofs * j + c));
+            }
+            col_ptr.push(row_idx.len());
+        }
+    }
+    // Safe by construction: rows sorted and unique within each column, all < dofs · n.
+    SymbolicSparseColMat::new_checked(dofs * n, dofs * n, col_ptr, None, row_idx)
+}
+
+/// The values of a [`node_pattern`] matrix split into each node's columns, for the nodes to fill
+/// in parallel.
+pub fn node_chunks<'a>(
+    values: &'a mut [f64],
+    col_ptr: &[usize],
+    n: usize,
+    dofs: usize,
+) -> Vec<&'a mut [f64]> {
+    let mut chunks: Vec<&mut [f64]> = Vec::with_capacity(n);
+    let mut rest = values;
+    for i in 0..n {
+        let (head, tail) = rest.split_at_mut(col_ptr[dofs * (i + 1)] - col_ptr[dofs * i]);
+        chunks.push(head);
+        rest = tail;
+    }
+    chunks
 }
 
 /// Straight-sided geometry of triangle `c` (its first three nodes are the vertices); a curved

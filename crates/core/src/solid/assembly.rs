@@ -14,6 +14,7 @@ use super::element::{stiffness_columns, tet_shape, TET_DEGREE_5};
 use super::error::SolidError;
 use super::mesh::{SolidMesh, TetOrder};
 use super::{cross, dof, num_dofs, Point3, Vector3};
+use crate::assembly::{node_chunks, node_pattern};
 use crate::element::TRIANGLE_DEGREE_5;
 
 /// Node-to-tetrahedron incidence and the sorted neighbours of every node (itself included).
@@ -87,21 +88,7 @@ impl SolidPattern {
     /// Builds the pattern of the `3n × 3n` stiffness matrix of `mesh`.
     pub fn new(mesh: &SolidMesh) -> SolidPattern {
         let adjacency = Adjacency::new(mesh);
-        let n = mesh.num_nodes();
-        let mut col_ptr = Vec::with_capacity(num_dofs(n) + 1);
-        col_ptr.push(0usize);
-        let mut row_idx = Vec::with_capacity(9 * adjacency.nbrs.len());
-        for i in 0..n {
-            for _ in 0..3 {
-                for &j in adjacency.neighbours(i) {
-                    row_idx.extend((0..3).map(|c| dof(j, c)));
-                }
-                col_ptr.push(row_idx.len());
-            }
-        }
-        // Rows sorted and unique within each column, all < 3n by construction.
-        let symbolic =
-            SymbolicSparseColMat::new_checked(num_dofs(n), num_dofs(n), col_ptr, None, row_idx);
+        let symbolic = node_pattern(mesh.num_nodes(), 3, |i| adjacency.neighbours(i));
         SolidPattern {
             adjacency,
             symbolic,
@@ -119,13 +106,7 @@ impl SolidPattern {
         let adj = &self.adjacency;
         let col_ptr = self.symbolic.col_ptr();
         let mut values = vec![0.0; self.symbolic.row_idx().len()];
-        let mut chunks: Vec<&mut [f64]> = Vec::with_capacity(n);
-        let mut rest = values.as_mut_slice();
-        for i in 0..n {
-            let (head, tail) = rest.split_at_mut(col_ptr[dof(i + 1, 0)] - col_ptr[dof(i, 0)]);
-            chunks.push(head);
-            rest = tail;
-        }
+        let chunks = node_chunks(&mut values, col_ptr, n, 3);
         chunks.into_par_iter().enumerate().for_each(|(i, cols)| {
             node_columns(mesh, d, (i, adj.tets_of(i), adj.neighbours(i)), cols);
         });
