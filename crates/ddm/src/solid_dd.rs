@@ -19,10 +19,12 @@
 use contactdd_core::factor::FactoredBody;
 use contactdd_core::solid::assembly::stiffness;
 use contactdd_core::supports::Constraints;
+use faer::linalg::matmul::matmul;
 use faer::linalg::triangular_solve::solve_lower_triangular_in_place;
-use faer::{Mat, Par};
+use faer::{Accum, Mat, Par};
 use rayon::prelude::*;
 
+use crate::newton::linear::lu_solve_in_place;
 use crate::solid_monolithic::{
     contact_rows, offsets, Row, SolidBodySpec, SolidContactError, SolidContactPoint,
     SolidContactSolution, SolidPairSpec, MAX_STEPS,
@@ -155,7 +157,16 @@ fn condense(
         }
     }
     solve_lower_triangular_in_place(l.as_ref(), x.as_mut(), Par::Seq);
-    let g = x.transpose() * &x;
+    // Sequential: the same bits on any number of threads.
+    let mut g = Mat::<f64>::zeros(rows.len(), rows.len());
+    matmul(
+        g.as_mut(),
+        Accum::Replace,
+        x.transpose(),
+        x.as_ref(),
+        1.0,
+        Par::Seq,
+    );
     Ok(Condensed {
         factor,
         range,
@@ -180,12 +191,10 @@ fn newton(rows: &[Row], g: &Mat<f64>, s0: &[f64]) -> Result<(Vec<f64>, usize), S
             for (x, &j) in set.iter().enumerate() {
                 a[(x, x)] += theta_of(&rows[j]);
             }
-            let lu = a.partial_piv_lu();
-            faer::linalg::solvers::SolveCore::solve_in_place_with_conj(
-                &lu,
-                faer::Conj::No,
-                rhs.as_mut(),
-            );
+            lu_solve_in_place(a, &mut rhs).ok_or(SolidContactError::Factor {
+                step,
+                message: "no memory for the Newton system".into(),
+            })?;
             set.iter()
                 .enumerate()
                 .for_each(|(x, &j)| p[j] = rhs[(x, 0)]);

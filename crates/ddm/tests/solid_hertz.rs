@@ -169,3 +169,25 @@ fn a_sphere_on_a_half_space_follows_hertz() {
     assert!((a / a_hertz - 1.0).abs() < 0.02);
     assert!((peak / p_hertz - 1.0).abs() < 0.03);
 }
+
+/// The decomposition gives the same bits on one thread and on two (bodies in parallel).
+#[test]
+fn the_decomposition_is_the_same_on_any_number_of_threads() {
+    let case = (4, 3, TetOrder::P2, 0.004);
+    let run = |threads: usize| {
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .unwrap();
+        pool.install(|| hertz(case, solve_solid_dd)).0
+    };
+    let (one, two) = (run(1), run(2));
+    assert!(one.iter().any(|p| p.pressure > 0.0));
+    for (a, b) in one.iter().zip(&two) {
+        assert_eq!(
+            a.pressure.to_bits(),
+            b.pressure.to_bits(),
+            "{a:?} against {b:?}"
+        );
+    }
+}

@@ -155,14 +155,22 @@ pub(super) fn dense_solve(
     n: usize,
     rhs: &mut Mat<f64>,
 ) -> Option<()> {
-    use faer::linalg::lu::partial_pivoting::{factor, solve};
     let mut a = Mat::<f64>::zeros(n, n);
     for t in trip {
         a[(t.row, t.col)] += t.val;
     }
+    lu_solve_in_place(a, rhs)
+}
+
+/// Solves `a x = rhs` in place of `rhs` by LU with partial pivoting, sequentially (the same bits on
+/// any number of threads); `None` if the workspace cannot be allocated.
+pub(crate) fn lu_solve_in_place(mut a: Mat<f64>, rhs: &mut Mat<f64>) -> Option<()> {
+    use faer::linalg::lu::partial_pivoting::{factor, solve};
+    let n = a.nrows();
     let (mut perm, mut perm_inv) = (vec![0usize; n], vec![0usize; n]);
-    let req = factor::lu_in_place_scratch::<usize, f64>(n, n, Par::Seq, Default::default())
-        .or(solve::solve_in_place_scratch::<usize, f64>(n, 1, Par::Seq));
+    let req = factor::lu_in_place_scratch::<usize, f64>(n, n, Par::Seq, Default::default()).or(
+        solve::solve_in_place_scratch::<usize, f64>(n, rhs.ncols(), Par::Seq),
+    );
     let mut mem = MemBuffer::try_new(req).ok()?;
     let (_, p) = factor::lu_in_place(
         a.as_mut(),

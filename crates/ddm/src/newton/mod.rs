@@ -38,7 +38,7 @@
 //! the same Newton system (`crate::exchange`).
 
 mod algebra;
-mod linear;
+pub(crate) mod linear;
 mod null_space;
 mod primal;
 mod rigid;
