@@ -189,7 +189,7 @@ fn newton(rows: &[Row], g: &Mat<f64>, s0: &[f64]) -> Result<(Vec<f64>, usize), S
             let mut rhs =
                 Mat::<f64>::from_fn(set.len(), 1, |x, _| s0[set[x]] - rows[set[x]].point.gap);
             for (x, &j) in set.iter().enumerate() {
-                a[(x, x)] += theta_of(&rows[j]);
+                a[(x, x)] += rows[j].theta;
             }
             lu_solve_in_place(a, &mut rhs).ok_or(SolidContactError::Factor {
                 step,
@@ -205,18 +205,13 @@ fn newton(rows: &[Row], g: &Mat<f64>, s0: &[f64]) -> Result<(Vec<f64>, usize), S
         let next: Vec<bool> = (0..m).map(|j| s[j] > rows[j].point.gap).collect();
         if next == closed {
             let p = (0..m)
-                .map(|j| ((s[j] - rows[j].point.gap) / theta_of(&rows[j])).max(0.0))
+                .map(|j| ((s[j] - rows[j].point.gap) / rows[j].theta).max(0.0))
                 .collect();
             return Ok((p, step));
         }
         closed = next;
     }
     Err(SolidContactError::NotSettled { steps: MAX_STEPS })
-}
-
-/// The penalty θ of a point.
-fn theta_of(r: &Row) -> f64 {
-    r.point.weight / r.spring
 }
 
 /// Body `c`'s displacement under its loads and the contact forces of the pressures `p`.

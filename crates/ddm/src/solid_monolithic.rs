@@ -123,7 +123,8 @@ pub const MAX_STEPS: usize = 60;
 pub(crate) struct Row {
     pub(crate) point: SolidContactPoint,
     pub(crate) a: Vec<(usize, f64)>,
-    pub(crate) spring: f64,
+    /// The pair's penalty θ.
+    pub(crate) theta: f64,
 }
 
 /// Where every body's DOFs start in the coupled numbering, and their total.
@@ -263,7 +264,7 @@ fn pair_rows(
                 pressure: 0.0,
             },
             a,
-            spring: weight / pair.theta,
+            theta: pair.theta,
         });
     }
     Ok(rows)
@@ -321,11 +322,12 @@ fn closed_system(rows: &[Row], closed: &[bool], f: &[f64]) -> (Vec<(usize, usize
     let mut additions = Vec::new();
     let mut rhs = f.to_vec();
     for (r, _) in rows.iter().zip(closed).filter(|(_, &c)| c) {
+        let spring = r.point.weight / r.theta;
         for (x, &(i, ai)) in r.a.iter().enumerate() {
             for &(k, ak) in &r.a[..=x] {
-                additions.push((i, k, r.spring * ai * ak));
+                additions.push((i, k, spring * ai * ak));
             }
-            rhs[i] += r.spring * r.point.gap * ai;
+            rhs[i] += spring * r.point.gap * ai;
         }
     }
     (additions, rhs)
@@ -349,7 +351,7 @@ fn solution(
         .collect();
     let points = (rows.into_iter().zip(s))
         .map(|(r, &s)| SolidContactPoint {
-            pressure: (s - r.point.gap).max(0.0) * r.spring / r.point.weight,
+            pressure: (s - r.point.gap).max(0.0) / r.theta,
             ..r.point
         })
         .collect();
