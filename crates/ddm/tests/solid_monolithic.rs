@@ -143,3 +143,28 @@ fn a_missing_face_is_refused() {
     let err = solve_solid_monolithic(&stack(&meshes, Some(0.0), 0.0), &pairs).unwrap_err();
     assert!(err.to_string().contains("bottom"), "{err}");
 }
+
+/// A press fit: the boxes overlap by o at the start and nothing moves them; both solvers find
+/// the closed form's pressure o/(θ + H_A/E_A + H_B/E_B) at every point, P1 and P2.
+#[test]
+fn an_initial_overlap_is_pressed_apart_by_the_closed_form_pressure() {
+    let overlap = 1e-3;
+    for order in [TetOrder::P1, TetOrder::P2] {
+        let meshes = boxes([[3, 3, 2], [4, 5, 2]], order, -overlap);
+        let theta = 1e-6;
+        let compliance = theta + HEIGHTS[0] / MATERIALS[0].0 + HEIGHTS[1] / MATERIALS[1].0;
+        let exact = overlap / compliance;
+        let specs = stack(&meshes, Some(0.0), 0.0);
+        let mono = solve_solid_monolithic(&specs, &pair(theta)).unwrap();
+        let dd = solve_solid_dd(&specs, &pair(theta)).unwrap();
+        for sol in [mono, dd] {
+            for p in &sol.points {
+                assert!(
+                    (p.pressure / exact - 1.0).abs() < 1e-9,
+                    "{p:?} against {exact}"
+                );
+                assert!((p.gap + overlap).abs() < 1e-15);
+            }
+        }
+    }
+}
