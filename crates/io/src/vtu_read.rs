@@ -10,6 +10,10 @@
 //! file. A compressed block may expand to at most [`MAX_EXPANSION`] times its compressed size
 //! (zlib's own limit is 1032) and at most [`MAX_BLOCK`] bytes, and must expand to exactly the
 //! size its header declares: the output of the decompression is bounded before it starts.
+//!
+//! [`parse_vtu`] and [`parse_vtu_pieces`] give the arrays as they are; [`VtuFile::points`] and
+//! [`VtuFile::cells`] give a piece's points and its cells, checked: triangles (types 5 and 22) of
+//! a planar body, tetrahedra (types 10 and 24, [`crate::solid_vtu`]) of a 3D body.
 
 /// The largest uncompressed size of a zlib block read, relative to its compressed size (deflate
 /// cannot expand data by more than 1032 times, and the stream's few bytes of framing allow a
@@ -65,6 +69,111 @@ impl VtuFile {
     /// The array named `name` in `section` (`""` for the `Points` array).
     pub fn array(&self, section: Section, name: &str) -> Option<&VtuArray> {
         (self.arrays.iter()).find(|a| a.section == section && a.name == name)
+    }
+}
+
+/// The VTK cell types a piece's cells are read as ([`VtuFile::cells`]), with their nodes per
+/// cell: the triangles of a planar body, 5 (P1, 3 nodes) and 22 (P2, 6), and the tetrahedra of a
+/// 3D body, 10 (P1, 4) and 24 (P2, 10).
+pub const CELL_TYPES: [(u8, usize); 4] = [(5, 3), (22, 6), (10, 4), (24, 10)];
+
+/// The nodes per cell of the VTK cell type `cell_type`, if it is one of [`CELL_TYPES`].
+pub fn nodes_per_cell(cell_type: u8) -> Option<usize> {
+    (CELL_TYPES.iter()).find_map(|&(t, n)| (t == cell_type).then_some(n))
+}
+
+/// The cells of a piece, checked: each of a type of [`CELL_TYPES`], with its type's number of
+/// nodes, each node one of the piece's points.
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub struct VtuCells {
+    /// The flat connectivity, in the file's (VTK's) node order.
+    pub connectivity: Vec<usize>,
+    /// The end of each cell in `connectivity`.
+    pub offsets: Vec<usize>,
+    /// The VTK type of each cell.
+    pub types: Vec<u8>,
+}
+
+impl VtuCells {
+    /// Number of cells.
+    pub fn len(&self) -> usize {
+        self.types.len()
+    }
+
+    /// Whether there is no cell.
+    pub fn is_empty(&self) -> bool {
+        self.types.is_empty()
+    }
+
+    /// The nodes of cell `k`, if there is such a cell.
+    pub fn cell(&self, k: usize) -> Option<&[usize]> {
+        let end = *self.offsets.get(k)?;
+        let start = if k == 0 { 0 } else { self.offsets[k - 1] };
+        self.connectivity.get(start..end)
+    }
+}
+
+impl VtuFile {
+    /// The points of the piece, `x y z` each: an error if the `Points` array is missing or
+    /// does not hold 3 components.
+    pub fn points(&self) -> Result<Vec<[f64; 3]>, VtuReadError> {
+        let Some(points) = self.array(Section::Points, "") else {
+            return bad("no Points array");
+        };
+        if points.components != 3 || points.values.len() % 3 != 0 {
+            return bad("the Points array does not hold x y z triples");
+        }
+        Ok((points.values.chunks_exact(3))
+            .map(|p| [p[0], p[1], p[2]])
+            .collect())
+    }
+
+    /// The cells of the piece (whose arrays `self` holds), checked against its points: the
+    /// `connectivity`, `offsets` and `types` arrays, each cell of a type of [`CELL_TYPES`] with
+    /// that type's number of nodes, every node an index of a point.
+    pub fn cells(&self) -> Result<VtuCells, VtuReadError> {
+        let array = |name: &str| {
+            self.array(Section::Cells, name)
+                .map(|a| &a.values)
+                .ok_or_else(|| VtuReadError(format!("no Cells array '{name}'")))
+        };
+        let (conn, offsets, types) = (array("connectivity")?, array("offsets")?, array("types")?);
+        let points = self
+            .array(Section::Points, "")
+            .map_or(0, |p| p.values.len() / 3);
+        let index = |v: f64, limit: usize| {
+            (v >= 0.0 && v.fract() == 0.0 && v < limit as f64).then_some(v as usize)
+        };
+        if offsets.len() != types.len() {
+            return bad(format!(
+                "{} offsets for {} cell types",
+                offsets.len(),
+                types.len()
+            ));
+        }
+        let mut cells = VtuCells::default();
+        let mut start = 0;
+        for (k, (&end, &ty)) in offsets.iter().zip(types).enumerate() {
+            let ty = index(ty, 256).map(|t| t as u8);
+            let Some((ty, n)) = ty.and_then(|t| Some((t, nodes_per_cell(t)?))) else {
+                return bad(format!("cell {k}: its type is not one of 5, 22, 10, 24"));
+            };
+            if index(end, conn.len() + 1) != Some(start + n) {
+                return bad(format!("cell {k}: its offset does not end {n} nodes on"));
+            }
+            for &v in &conn[start..start + n] {
+                let node = index(v, points)
+                    .ok_or_else(|| VtuReadError(format!("cell {k}: node {v} is not a point")))?;
+                cells.connectivity.push(node);
+            }
+            start += n;
+            cells.offsets.push(start);
+            cells.types.push(ty);
+        }
+        if start != conn.len() {
+            return bad("the connectivity holds nodes after the last cell");
+        }
+        Ok(cells)
     }
 }
 
