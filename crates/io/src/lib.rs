@@ -43,6 +43,7 @@ pub mod problem;
 pub mod reactions;
 pub mod result_set;
 pub mod setup;
+pub mod solid_vtu;
 pub mod solver_settings;
 pub mod steps;
 pub mod summary;

@@ -2,12 +2,13 @@
 //!
 //! A `.vtu` file is an XML document `VTKFile` → `UnstructuredGrid` → `Piece` holding:
 //!
-//! - `Points`: one `x y z` triple per node (`z` = 0 here);
+//! - `Points`: one `x y z` triple per node (`z` = 0 for a planar mesh);
 //! - `Cells`: the flat `connectivity`, the `offsets` (end of each cell in `connectivity`) and the
 //!   VTK cell `types`: 5 (`VTK_TRIANGLE`) for P1 and 22 (`VTK_QUADRATIC_TRIANGLE`) for P2, whose
 //!   node order (vertices, then the mid-side nodes of edges (0,1), (1,2), (2,0)) is the mesh's;
 //!   the mid-side nodes are points of their own, so a curved (isoparametric) P2 triangle comes out
 //!   with its curved edges (ParaView draws a quadratic triangle's edges through its mid-side nodes);
+//!   the tetrahedra of a 3D body are written by [`crate::solid_vtu`] through the same [`Grid`];
 //! - `PointData`: one array per nodal field, node-major (all components of node 0 first);
 //! - `CellData`: one array per element field, in cell order.
 //!
@@ -44,7 +45,7 @@ use std::io::{Error, ErrorKind};
 use std::path::Path;
 
 use contactdd_core::mesh::{Mesh, Order};
-use contactdd_core::DIM;
+use contactdd_core::{Point, DIM};
 
 use crate::atomic::write_atomic;
 use crate::number::push_f64;
@@ -68,13 +69,71 @@ pub struct Field<'a> {
 /// The arrays of a `.vtu` file besides the mesh.
 #[derive(Clone, Copy, Debug, Default)]
 pub struct VtuData<'a> {
-    /// Nodal displacement (2 values per node), written as the 3-component vector
-    /// `"displacement"`, the active vectors.
+    /// Nodal displacement (2 values per node of a planar mesh, 3 of a tetrahedral one), written
+    /// as the 3-component vector `"displacement"`, the active vectors.
     pub displacement: Option<&'a [f64]>,
     /// Nodal fields.
     pub points: &'a [Field<'a>],
     /// Element fields.
     pub cells: &'a [Field<'a>],
+}
+
+/// The mesh of a `Piece`: its points, its cells and their VTK cell type. [`Grid::planar`] gives
+/// a planar mesh's, [`crate::solid_vtu::solid_grid`] a tetrahedral mesh's.
+#[derive(Clone, Copy, Debug)]
+pub struct Grid<'a> {
+    pub(crate) points: GridPoints<'a>,
+    /// `nodes_per_cell` (> 0) indices of `points` per cell, all in range.
+    pub(crate) cells: &'a [usize],
+    pub(crate) nodes_per_cell: usize,
+    pub(crate) cell_type: u8,
+    /// Cell `c` is written as the nodes `c[node_order[k]]` (as `c` without `node_order`).
+    pub(crate) node_order: Option<&'a [usize]>,
+}
+
+/// The points of a [`Grid`]: in the plane (written with z = 0) or in space.
+#[derive(Clone, Copy, Debug)]
+pub(crate) enum GridPoints<'a> {
+    Plane(&'a [Point]),
+    Space(&'a [[f64; 3]]),
+}
+
+impl<'a> Grid<'a> {
+    /// The grid of a planar mesh: triangles of type 5 (P1) or 22 (P2) in the mesh's node order.
+    pub fn planar(mesh: &'a Mesh) -> Grid<'a> {
+        let cell_type = match mesh.order() {
+            Order::P1 => 5,
+            Order::P2 => 22,
+        };
+        Grid {
+            points: GridPoints::Plane(mesh.nodes()),
+            cells: mesh.cells(),
+            nodes_per_cell: mesh.order().nodes_per_cell(),
+            cell_type,
+            node_order: None,
+        }
+    }
+
+    /// Number of points.
+    pub fn num_points(&self) -> usize {
+        match self.points {
+            GridPoints::Plane(p) => p.len(),
+            GridPoints::Space(p) => p.len(),
+        }
+    }
+
+    /// Number of cells.
+    pub fn num_cells(&self) -> usize {
+        self.cells.len() / self.nodes_per_cell
+    }
+
+    /// Displacement components per node: 2 in the plane, 3 in space.
+    pub fn displacement_components(&self) -> usize {
+        match self.points {
+            GridPoints::Plane(_) => DIM,
+            GridPoints::Space(_) => 3,
+        }
+    }
 }
 
 /// Writes `mesh` as an ASCII `.vtu` file at `path` with the arrays of `data`
@@ -101,7 +160,10 @@ pub fn write_vtu_as(
 /// Errors ([`ErrorKind::InvalidInput`]) if the displacement does not hold 2 values per node, or a
 /// field has zero components or not `components` values per node (per cell).
 pub fn vtu_string(mesh: &Mesh, data: VtuData<'_>) -> std::io::Result<String> {
-    let out = document(&[(mesh, data)], Arrays::new(VtuFormat::Ascii, 0))?;
+    let out = document(
+        &[(Grid::planar(mesh), data)],
+        Arrays::new(VtuFormat::Ascii, 0),
+    )?;
     Ok(out.text)
 }
 
@@ -121,6 +183,21 @@ pub fn vtu_pieces_bytes(
     pieces: &[(&Mesh, VtuData<'_>)],
     format: VtuFormat,
 ) -> std::io::Result<Vec<u8>> {
+    let grids: Vec<(Grid<'_>, VtuData<'_>)> = (pieces.iter())
+        .map(|(mesh, data)| (Grid::planar(mesh), *data))
+        .collect();
+    grid_pieces_bytes(&grids, format)
+}
+
+/// The bytes of a `.vtu` file holding one `Piece` per grid of `pieces` (planar or tetrahedral,
+/// mixed as they come), in order, each with its arrays, encoded as `format`: the file of
+/// [`vtu_pieces_bytes`] for any [`Grid`]. Errors ([`ErrorKind::InvalidInput`]) if a displacement
+/// does not hold [`Grid::displacement_components`] values per node, or a field has zero
+/// components or not `components` values per node (per cell).
+pub fn grid_pieces_bytes(
+    pieces: &[(Grid<'_>, VtuData<'_>)],
+    format: VtuFormat,
+) -> std::io::Result<Vec<u8>> {
     // The appended bytes: per node the points and the fields, per cell its connectivity.
     let capacity = pieces
         .iter()
@@ -132,8 +209,8 @@ pub fn vtu_pieces_bytes(
                     .map(|f| f.components.max(3))
                     .sum::<usize>()
                 + 3;
-            let per_cell = 2 + mesh.order().nodes_per_cell() + data.cells.len();
-            8 * (per_node * mesh.num_nodes() + per_cell * mesh.num_cells())
+            let per_cell = 2 + mesh.nodes_per_cell + data.cells.len();
+            8 * (per_node * mesh.num_points() + per_cell * mesh.num_cells())
         })
         .sum();
     let out = document(pieces, Arrays::new(format, capacity))?;
@@ -246,9 +323,9 @@ fn compress_block(bytes: &[u8]) -> std::io::Result<Vec<u8>> {
 
 /// The XML of the file through `</UnstructuredGrid>` (and `</VTKFile>` for ASCII), one `Piece`
 /// per mesh of `pieces`, with the appended bytes of a binary file.
-fn document(pieces: &[(&Mesh, VtuData<'_>)], mut out: Arrays) -> std::io::Result<Arrays> {
+fn document(pieces: &[(Grid<'_>, VtuData<'_>)], mut out: Arrays) -> std::io::Result<Arrays> {
     for (mesh, data) in pieces {
-        check_lengths(&node_fields(data), mesh.num_nodes(), "nodes")?;
+        check_lengths(&node_fields(mesh, data), mesh.num_points(), "nodes")?;
         check_lengths(data.cells, mesh.num_cells(), "cells")?;
     }
     out.open_file();
@@ -264,9 +341,9 @@ fn document(pieces: &[(&Mesh, VtuData<'_>)], mut out: Arrays) -> std::io::Result
 }
 
 /// Writes the `Piece` of `mesh` with the arrays of `data`, whose lengths are checked.
-fn piece(mesh: &Mesh, data: VtuData<'_>, out: &mut Arrays) {
-    let n = mesh.num_nodes();
-    let arrays = node_fields(&data);
+fn piece(mesh: &Grid<'_>, data: VtuData<'_>, out: &mut Arrays) {
+    let n = mesh.num_points();
+    let arrays = node_fields(mesh, &data);
     let _ = writeln!(
         out.text,
         "    <Piece NumberOfPoints=\"{n}\" NumberOfCells=\"{}\">",
@@ -288,23 +365,23 @@ fn piece(mesh: &Mesh, data: VtuData<'_>, out: &mut Arrays) {
     }
 
     out.text.push_str("      <Points>\n");
-    let points = mesh.nodes().iter().flat_map(|p| [p[0], p[1], 0.0]);
-    out.float_array(None, 3, points);
+    match mesh.points {
+        GridPoints::Plane(p) => out.float_array(None, 3, p.iter().flat_map(|p| [p[0], p[1], 0.0])),
+        GridPoints::Space(p) => out.float_array(None, 3, p.iter().flat_map(|p| *p)),
+    }
     out.text.push_str("      </Points>\n");
 
-    let npc = mesh.order().nodes_per_cell();
-    let cell_type = match mesh.order() {
-        Order::P1 => 5,
-        Order::P2 => 22,
-    };
+    let (npc, cell_type) = (mesh.nodes_per_cell, mesh.cell_type);
     out.text.push_str("      <Cells>\n");
     // One cell per line.
-    out.int_array(
-        Int::Int64,
-        "connectivity",
-        npc,
-        mesh.cells().iter().copied(),
-    );
+    let cells = mesh.cells;
+    match mesh.node_order {
+        None => out.int_array(Int::Int64, "connectivity", npc, cells.iter().copied()),
+        Some(order) => {
+            let nodes = (cells.chunks_exact(npc)).flat_map(|c| order.iter().map(move |&k| c[k]));
+            out.int_array(Int::Int64, "connectivity", npc, nodes);
+        }
+    }
     out.int_array(
         Int::Int64,
         "offsets",
@@ -315,20 +392,20 @@ fn piece(mesh: &Mesh, data: VtuData<'_>, out: &mut Arrays) {
         Int::UInt8,
         "types",
         24,
-        (0..mesh.num_cells()).map(|_| cell_type),
+        (0..mesh.num_cells()).map(|_| usize::from(cell_type)),
     );
     out.text.push_str("      </Cells>\n");
 
     out.text.push_str("    </Piece>\n");
 }
 
-/// The nodal arrays of `data`: the displacement (if any), then the point fields.
-fn node_fields<'a>(data: &VtuData<'a>) -> Vec<Field<'a>> {
+/// The nodal arrays of `data` on `mesh`: the displacement (if any), then the point fields.
+fn node_fields<'a>(mesh: &Grid<'_>, data: &VtuData<'a>) -> Vec<Field<'a>> {
     let mut arrays: Vec<Field<'a>> = Vec::with_capacity(data.points.len() + 1);
     if let Some(values) = data.displacement {
         arrays.push(Field {
             name: "displacement",
-            components: DIM,
+            components: mesh.displacement_components(),
             values,
         });
     }
