@@ -92,7 +92,7 @@ impl RawMsh {
 
     /// Checks that every `$PhysicalNames` entry names a group some element belongs to: a name
     /// with a mistyped tag would otherwise leave its boundary unnamed (called by its number).
-    fn check_names_used(&self) -> Result<(), GmshError> {
+    pub(super) fn check_names_used(&self) -> Result<(), GmshError> {
         let mut used = BTreeSet::new();
         for element in &self.elements {
             let dim = kind_dim(element.kind);
@@ -116,7 +116,7 @@ impl RawMsh {
     }
 
     /// The index in `coords` of node `tag` of `element`.
-    fn node_position(&self, element: &RawElement, tag: u64) -> Result<usize, GmshError> {
+    pub(super) fn node_position(&self, element: &RawElement, tag: u64) -> Result<usize, GmshError> {
         self.node_index.get(tag).ok_or_else(|| GmshError::Parse {
             line: element.line,
             message: format!("element refers to node {tag}, which is not in $Nodes"),

@@ -24,6 +24,18 @@ pub(super) enum Kind {
     Point,
     Line,
     Triangle(Order),
+    /// A 4-node (P1) or 10-node (P2) tetrahedron: read by the solid reader only.
+    Tetrahedron(Order),
+}
+
+/// The space of the mesh the file is read for: the planar reader refuses tetrahedra where they
+/// appear, the solid reader takes them.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(super) enum Space {
+    /// A planar triangle mesh ([`crate::mesh::Mesh`]).
+    Planar,
+    /// A tetrahedral mesh ([`crate::solid::SolidMesh`]).
+    Solid,
 }
 
 /// One element as read, with node tags not yet resolved.
@@ -60,10 +72,13 @@ pub(super) struct RawMsh {
     pub(super) num_lines: usize,
 }
 
-/// The nodes of one element (at most 6), without an allocation of their own.
+/// Most nodes of an element read (a 10-node tetrahedron).
+const MAX_NODES: usize = 10;
+
+/// The nodes of one element (at most [`MAX_NODES`]), without an allocation of their own.
 #[derive(Clone, Copy, Debug)]
 pub(super) struct Few<T> {
-    items: [T; 6],
+    items: [T; MAX_NODES],
     len: u8,
 }
 
@@ -71,12 +86,12 @@ impl<T: Copy + Default> Few<T> {
     /// No items.
     pub(super) fn new() -> Self {
         Few {
-            items: [T::default(); 6],
+            items: [T::default(); MAX_NODES],
             len: 0,
         }
     }
 
-    /// Appends `item`; the caller keeps to 6 items (more would panic).
+    /// Appends `item`; the caller keeps to [`MAX_NODES`] items (more would panic).
     pub(super) fn push(&mut self, item: T) {
         self.items[usize::from(self.len)] = item;
         self.len += 1;
@@ -144,24 +159,34 @@ impl NodeIndex {
     }
 }
 
-/// Number of nodes of a Gmsh element type, and what it is; unsupported types are errors.
-fn element_kind(ty: usize, line: usize) -> Result<(Kind, usize), GmshError> {
+/// Number of nodes of a Gmsh element type, and what it is; types the reader of `space` does not
+/// read are errors.
+fn element_kind(ty: usize, line: usize, space: Space) -> Result<(Kind, usize), GmshError> {
     let unsupported = |what: &str| {
+        let reads = match space {
+            Space::Planar => "3- and 6-node triangles with 2- or 3-node boundary lines and points",
+            Space::Solid => "4- and 10-node tetrahedra with 3- or 6-node face triangles",
+        };
         Err(GmshError::Unsupported(format!(
-            "line {line}: element type {ty} ({what}); contactdd reads 3- and 6-node triangles \
-             with 2- or 3-node boundary lines and points"
+            "line {line}: element type {ty} ({what}); contactdd reads {reads}"
         )))
     };
-    match ty {
-        15 => Ok((Kind::Point, 1)),
-        1 => Ok((Kind::Line, 2)),
-        8 => Ok((Kind::Line, 3)),
-        2 => Ok((Kind::Triangle(Order::P1), 3)),
-        9 => Ok((Kind::Triangle(Order::P2), 6)),
-        3 | 10 | 16 => unsupported("quadrilateral"),
-        4..=7 | 11..=14 | 17..=19 => unsupported("3D element"),
-        20..=25 => unsupported("higher-order or incomplete triangle"),
-        26..=28 => unsupported("higher-order line"),
+    match (ty, space) {
+        (15, _) => Ok((Kind::Point, 1)),
+        (1, _) => Ok((Kind::Line, 2)),
+        (8, _) => Ok((Kind::Line, 3)),
+        (2, _) => Ok((Kind::Triangle(Order::P1), 3)),
+        (9, _) => Ok((Kind::Triangle(Order::P2), 6)),
+        (4, Space::Solid) => Ok((Kind::Tetrahedron(Order::P1), 4)),
+        (11, Space::Solid) => Ok((Kind::Tetrahedron(Order::P2), 10)),
+        (3 | 10 | 16, _) => unsupported("quadrilateral"),
+        (4..=7 | 11..=14 | 17..=19, Space::Planar) => unsupported("3D element"),
+        (29..=31, Space::Solid) => unsupported("higher-order tetrahedron"),
+        (5..=7 | 12..=14 | 17..=19, Space::Solid) => {
+            unsupported("3D element other than a tetrahedron")
+        }
+        (20..=25, _) => unsupported("higher-order or incomplete triangle"),
+        (26..=28, _) => unsupported("higher-order line"),
         _ => unsupported("unknown or higher-order element"),
     }
 }
@@ -172,6 +197,7 @@ pub(super) fn kind_dim(kind: Kind) -> u8 {
         Kind::Point => 0,
         Kind::Line => 1,
         Kind::Triangle(_) => 2,
+        Kind::Tetrahedron(_) => 3,
     }
 }
 
@@ -181,8 +207,8 @@ fn capacity(count: usize) -> usize {
 }
 
 impl RawMsh {
-    /// Reads every section of the file `text`.
-    pub(super) fn parse(text: &str) -> Result<RawMsh, GmshError> {
+    /// Reads every section of the file `text`, for a mesh of `space`.
+    pub(super) fn parse(text: &str, space: Space) -> Result<RawMsh, GmshError> {
         let mut tokens = Tokens::new(text);
         let mut raw = RawMsh {
             num_lines: tokens.num_lines(),
@@ -234,8 +260,8 @@ impl RawMsh {
                     seen_elements = true;
                     tokens.section = "Elements";
                     match version {
-                        Version::V4 => raw.read_elements_v4(&mut tokens)?,
-                        Version::V2 => raw.read_elements_v2(&mut tokens)?,
+                        Version::V4 => raw.read_elements_v4(&mut tokens, space)?,
+                        Version::V2 => raw.read_elements_v2(&mut tokens, space)?,
                     }
                 }
                 _ if name.starts_with("End") => {
@@ -424,7 +450,7 @@ impl RawMsh {
         Ok(nodes)
     }
 
-    fn read_elements_v4(&mut self, tokens: &mut Tokens<'_>) -> Result<(), GmshError> {
+    fn read_elements_v4(&mut self, tokens: &mut Tokens<'_>, space: Space) -> Result<(), GmshError> {
         let num_blocks = tokens.usize("the number of element blocks")?;
         let (header, num_elements) = tokens.parse_at::<usize>("the number of elements")?;
         tokens.usize("the smallest element tag")?;
@@ -440,7 +466,7 @@ impl RawMsh {
             if count == 0 {
                 continue;
             }
-            let (kind, len) = element_kind(ty, line)?;
+            let (kind, len) = element_kind(ty, line, space)?;
             if kind_dim(kind) != dim {
                 return Err(tokens.error(
                     line,
@@ -470,13 +496,14 @@ impl RawMsh {
         Ok(())
     }
 
-    fn read_elements_v2(&mut self, tokens: &mut Tokens<'_>) -> Result<(), GmshError> {
+    fn read_elements_v2(&mut self, tokens: &mut Tokens<'_>, space: Space) -> Result<(), GmshError> {
         // An element takes a tag, a type, a tag count and a node: at least 8 bytes.
         let count = tokens.usize("the number of elements")?;
         self.elements.reserve(tokens.room_for(count, 8));
         for _ in 0..count {
             let (line, tag) = tokens.parse_at::<u64>("an element tag")?;
-            let (kind, len) = element_kind(tokens.usize("an element type")?, line)?;
+            let ty = tokens.usize("an element type")?;
+            let (kind, len) = element_kind(ty, line, space)?;
             let num_tags = tokens.usize("the number of element tags")?;
             let mut physical = None;
             for k in 0..num_tags {
