@@ -46,8 +46,10 @@ pub(super) struct RawElement {
     /// The element's tag (its number in the file).
     pub(super) tag: u64,
     pub(super) kind: Kind,
-    /// Node tags.
-    pub(super) nodes: Few<u64>,
+    /// Where its node tags start in [`RawMsh::tags`].
+    pub(super) first_tag: usize,
+    /// Its number of nodes.
+    pub(super) num_nodes: u8,
     /// MSH 4.1: the (dimension, tag) of the entity the element belongs to.
     pub(super) entity: Option<(u8, i64)>,
     /// MSH 2.2: the physical tag of the element, if any (0 means none).
@@ -68,6 +70,8 @@ pub(super) struct RawMsh {
     /// Node tag to index into `coords`.
     pub(super) node_index: NodeIndex,
     pub(super) elements: Vec<RawElement>,
+    /// The node tags of every element, one after the other (no allocation per element).
+    pub(super) tags: Vec<u64>,
     /// Number of lines of the file (for errors at the end of the file).
     pub(super) num_lines: usize,
 }
@@ -75,7 +79,8 @@ pub(super) struct RawMsh {
 /// Most nodes of an element read (a 10-node tetrahedron).
 const MAX_NODES: usize = 10;
 
-/// The nodes of one element (at most [`MAX_NODES`]), without an allocation of their own.
+/// The nodes of one element (at most [`MAX_NODES`]) in a new numbering, without an allocation of
+/// their own.
 #[derive(Clone, Copy, Debug)]
 pub(super) struct Few<T> {
     items: [T; MAX_NODES],
@@ -441,13 +446,22 @@ impl RawMsh {
         Ok(())
     }
 
-    /// Reads the node tags of one element of `len` nodes.
-    fn read_element_nodes(tokens: &mut Tokens<'_>, len: usize) -> Result<Few<u64>, GmshError> {
-        let mut nodes = Few::new();
+    /// Reads the `len` node tags of one element into `tags`, and returns where they start.
+    fn read_element_nodes(
+        &mut self,
+        tokens: &mut Tokens<'_>,
+        len: usize,
+    ) -> Result<usize, GmshError> {
+        let first = self.tags.len();
         for _ in 0..len {
-            nodes.push(tokens.parse("a node tag")?);
+            self.tags.push(tokens.parse("a node tag")?);
         }
-        Ok(nodes)
+        Ok(first)
+    }
+
+    /// The node tags of `element`.
+    pub(super) fn nodes(&self, element: &RawElement) -> &[u64] {
+        &self.tags[element.first_tag..element.first_tag + usize::from(element.num_nodes)]
     }
 
     fn read_elements_v4(&mut self, tokens: &mut Tokens<'_>, space: Space) -> Result<(), GmshError> {
@@ -473,14 +487,18 @@ impl RawMsh {
                     format!("element type {ty} in a block of dimension {dim}"),
                 ));
             }
+            // A node tag takes at least 2 bytes.
+            (self.tags).reserve(tokens.room_for(count.saturating_mul(len), 2));
             for _ in 0..count {
                 let (line, tag) = tokens.parse_at::<u64>("an element tag")?;
-                let nodes = Self::read_element_nodes(tokens, len)?;
+                let first_tag = self.read_element_nodes(tokens, len)?;
                 self.elements.push(RawElement {
                     line,
                     tag,
                     kind,
-                    nodes,
+                    first_tag,
+                    // At most 10 (`element_kind`).
+                    num_nodes: len as u8,
                     entity: Some((dim, entity)),
                     physical: None,
                 });
@@ -500,6 +518,8 @@ impl RawMsh {
         // An element takes a tag, a type, a tag count and a node: at least 8 bytes.
         let count = tokens.usize("the number of elements")?;
         self.elements.reserve(tokens.room_for(count, 8));
+        // Most elements of a file are triangles: three node tags each, or more.
+        (self.tags).reserve(tokens.room_for(count, 8).saturating_mul(3));
         for _ in 0..count {
             let (line, tag) = tokens.parse_at::<u64>("an element tag")?;
             let ty = tokens.usize("an element type")?;
@@ -512,12 +532,14 @@ impl RawMsh {
                     physical = Some(tag);
                 }
             }
-            let nodes = Self::read_element_nodes(tokens, len)?;
+            let first_tag = self.read_element_nodes(tokens, len)?;
             self.elements.push(RawElement {
                 line,
                 tag,
                 kind,
-                nodes,
+                first_tag,
+                // At most 10 (`element_kind`).
+                num_nodes: len as u8,
                 entity: None,
                 physical,
             });

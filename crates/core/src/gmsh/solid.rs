@@ -115,12 +115,12 @@ impl RawMsh {
                 return Err(GmshError::MixedTetrahedra {
                     line: element.line,
                     tag: element.tag,
-                    nodes: element.nodes.len(),
+                    nodes: usize::from(element.num_nodes),
                     first_line: first.line,
-                    first_nodes: first.nodes.len(),
+                    first_nodes: usize::from(first.num_nodes),
                 });
             }
-            for &tag in element.nodes.iter() {
+            for &tag in self.nodes(element).iter() {
                 used[self.node_position(element, tag)?] = true;
             }
         }
@@ -175,7 +175,7 @@ impl RawMsh {
         new_index: &[usize],
     ) -> Result<Few<Option<usize>>, GmshError> {
         let mut ids = Few::new();
-        for &tag in element.nodes.iter() {
+        for &tag in self.nodes(element).iter() {
             let i = self.node_position(element, tag)?;
             ids.push(new_index.get(i).copied().filter(|&n| n != usize::MAX));
         }
