@@ -129,6 +129,83 @@ pub enum GmshError {
     /// The resulting mesh is invalid.
     #[error(transparent)]
     Mesh(#[from] MeshError),
+    /// 3D reader: no physical volume of the requested name, or several physical volumes and
+    /// none requested.
+    #[error("{0}")]
+    Volume(String),
+    /// 3D reader: the file has no tetrahedra.
+    #[error(
+        "the file has no tetrahedra (4- or 10-node); contactdd needs a 3D tetrahedral mesh. \
+         When a model has physical groups, Gmsh saves only their elements: add a physical volume \
+         for each body (Physical Volume(\"name\") = {{...}}), or set Mesh.SaveAll = 1"
+    )]
+    NoTetrahedra,
+    /// 3D reader: 4-node and 10-node tetrahedra in one body.
+    #[error(
+        "line {line}: tetrahedron {tag} has {nodes} nodes, but the body's first tetrahedron \
+         (line {first_line}) has {first_nodes}; a mesh has tetrahedra of one order"
+    )]
+    MixedTetrahedra {
+        /// 1-based line of the tetrahedron.
+        line: usize,
+        /// The tetrahedron's element tag.
+        tag: u64,
+        /// Its number of nodes.
+        nodes: usize,
+        /// 1-based line of the body's first tetrahedron.
+        first_line: usize,
+        /// The first tetrahedron's number of nodes.
+        first_nodes: usize,
+    },
+    /// 3D reader: a face triangle of another order than the tetrahedra.
+    #[error(
+        "line {line}: triangle {tag} of physical surface '{group}' has {nodes} nodes, but the \
+         tetrahedra have {tet_nodes}; the faces of 4-node tetrahedra are 3-node triangles, \
+         those of 10-node tetrahedra 6-node triangles"
+    )]
+    FaceOrder {
+        /// 1-based line of the triangle.
+        line: usize,
+        /// The triangle's element tag.
+        tag: u64,
+        /// The physical surface's name (its tag number if unnamed).
+        group: String,
+        /// The triangle's number of nodes.
+        nodes: usize,
+        /// The tetrahedra's number of nodes.
+        tet_nodes: usize,
+    },
+    /// 3D reader: a triangle of a physical surface that is not a boundary face of the body.
+    #[error(
+        "line {line}: triangle {tag} of physical surface '{group}' is not a boundary face of the \
+         body: {reason}"
+    )]
+    NotABoundaryFace {
+        /// 1-based line of the triangle.
+        line: usize,
+        /// The triangle's element tag.
+        tag: u64,
+        /// The physical surface's name (its tag number if unnamed).
+        group: String,
+        /// Why not.
+        reason: String,
+    },
+    /// 3D reader: the tetrahedral mesh is invalid. `source` is the
+    /// `contactdd_core::solid::SolidError` of `SolidMesh::new` (boxed so that this module does
+    /// not depend on the 3D layer, which depends on it: `source.downcast_ref::<SolidError>()`
+    /// gives it back); `line` is the file line of the tetrahedron it names, if any.
+    #[error("{}{source}", at_line(*.line))]
+    Solid {
+        /// 1-based line of the tetrahedron the error names, if it names one.
+        line: Option<usize>,
+        /// The `SolidError`.
+        source: Box<dyn std::error::Error + Send + Sync>,
+    },
+}
+
+/// `"line N: "`, or nothing without a line.
+fn at_line(line: Option<usize>) -> String {
+    line.map_or_else(String::new, |l| format!("line {l}: "))
 }
 
 /// Bad material constants.

@@ -1,4 +1,6 @@
-//! Reader of Gmsh `.msh` files (ASCII MSH 4.1, and the older ASCII MSH 2.2).
+//! Reader of Gmsh `.msh` files (ASCII MSH 4.1, and the older ASCII MSH 2.2): planar triangle
+//! meshes into a [`Mesh`] ([`read_msh`]), tetrahedral meshes into a [`SolidMesh`]
+//! ([`read_solid_msh`]).
 //!
 //! A `.msh` file is a sequence of sections, each opened by a line `$Name` and closed by a line
 //! `$EndName`; within a section, values are separated by white space. This reader uses:
@@ -18,8 +20,12 @@
 //!
 //! Element types read: 2 (3-node triangle, P1), 9 (6-node triangle, P2: vertices then the mid-side
 //! nodes of edges (0,1), (1,2), (2,0), as [`crate::mesh::Order::P2`]), 1 (2-node line), 8 (3-node
-//! line: ends, then middle) and 15 (point). Quadrilaterals, higher-order and 3D elements are
-//! unsupported.
+//! line: ends, then middle) and 15 (point); the 3D reader also reads 4 (4-node tetrahedron) and
+//! 11 (10-node tetrahedron, Gmsh's order as [`crate::solid::element`]). Quadrilaterals,
+//! higher-order elements and other 3D elements are unsupported, and so are tetrahedra in the
+//! planar reader.
+//!
+//! # Planar meshes
 //!
 //! The mesh is a set of triangles: those of one physical surface (2D physical group) when
 //! [`read_msh_surface`] names one, otherwise all of them, which is an error if the triangles
@@ -35,8 +41,23 @@
 //! whose quadratic map folds (a Jacobian not positive everywhere) is reported as
 //! [`GmshError::Unsupported`] at its line.
 //!
-//! The reader runs in three steps: `tokens` splits the text, `raw` reads the sections and
-//! `build` assembles the mesh.
+//! # Tetrahedral meshes
+//!
+//! The body is a set of tetrahedra: those of one physical volume (3D physical group) when
+//! [`read_solid_msh`] names one, otherwise all of them, which is an error
+//! ([`GmshError::Volume`], listing the volumes) if they belong to several physical volumes. They
+//! share one order ([`GmshError::MixedTetrahedra`]); negatively oriented ones are reoriented.
+//! Node tags are renumbered `0..n` in file order, keeping only nodes of a chosen tetrahedron.
+//! Every physical surface (2D physical group, named by `$PhysicalNames` or by its tag number)
+//! becomes a face of the [`SolidMesh`] made of its triangles: 3-node ones for 4-node tetrahedra,
+//! 6-node ones for 10-node tetrahedra ([`GmshError::FaceOrder`]), each a boundary face of exactly
+//! one tetrahedron with the same mid-edge nodes ([`GmshError::NotABoundaryFace`]). With a chosen
+//! volume, the triangles that are no face of its tetrahedra belong to another body and are left
+//! out. Lines and points are read and left out. [`SolidMesh::new`] checks the result; its
+//! error comes as [`GmshError::Solid`], with the file line of the tetrahedron it names.
+//!
+//! The reader runs in three steps: `tokens` splits the text, `raw` reads the sections, and
+//! `build` (planar) or `solid` (tetrahedral) assembles the mesh.
 //!
 //! Why this reader lives in the numerical core while every other file format lives in
 //! `contactdd-io`: it is a mesh source like [`crate::rectangle`], not a front end. It needs no
@@ -48,12 +69,14 @@ use std::path::Path;
 
 use crate::error::GmshError;
 use crate::mesh::Mesh;
+use crate::solid::SolidMesh;
 
 mod build;
 mod raw;
+mod solid;
 mod tokens;
 
-use raw::RawMsh;
+use raw::{RawMsh, Space};
 
 /// Reads a Gmsh ASCII mesh file (MSH 4.1 or 2.2) holding one body into a validated [`Mesh`].
 pub fn read_msh(path: &Path) -> Result<Mesh, GmshError> {
@@ -63,13 +86,17 @@ pub fn read_msh(path: &Path) -> Result<Mesh, GmshError> {
 /// Reads the body of physical surface `surface` (a name, or a tag number for an unnamed group)
 /// of a Gmsh ASCII mesh file; `None` reads a file holding one body. See the module documentation.
 pub fn read_msh_surface(path: &Path, surface: Option<&str>) -> Result<Mesh, GmshError> {
+    parse_msh_surface(&read_text(path)?, surface)
+}
+
+/// The text of file `path`. Binary files have an ASCII header, so a lossy conversion still lets
+/// the parser see the file type in `$MeshFormat` and report them as unsupported.
+fn read_text(path: &Path) -> Result<String, GmshError> {
     let bytes = std::fs::read(path).map_err(|source| GmshError::Io {
         path: path.display().to_string(),
         source,
     })?;
-    // Binary files have an ASCII header, so a lossy conversion still lets `parse_msh` see the
-    // file type in `$MeshFormat` and report them as unsupported.
-    parse_msh_surface(&String::from_utf8_lossy(&bytes), surface)
+    Ok(String::from_utf8_lossy(&bytes).into_owned())
 }
 
 /// Parses the text of a Gmsh ASCII mesh file (MSH 4.1 or 2.2) holding one body into a validated
@@ -82,6 +109,23 @@ pub fn parse_msh(text: &str) -> Result<Mesh, GmshError> {
 /// Gmsh ASCII mesh file into a validated [`Mesh`].
 pub fn parse_msh_surface(text: &str, surface: Option<&str>) -> Result<Mesh, GmshError> {
     let text = text.strip_prefix('\u{feff}').unwrap_or(text);
-    let raw = RawMsh::parse(text)?;
+    let raw = RawMsh::parse(text, Space::Planar)?;
     raw.build(surface)
+}
+
+/// Reads the tetrahedral body of physical volume `volume` (a name, or a tag number for an
+/// unnamed group) of a Gmsh ASCII mesh file (MSH 4.1 or 2.2) into a validated [`SolidMesh`];
+/// `None` reads all tetrahedra of a file with at most one physical volume. See the module
+/// documentation.
+pub fn read_solid_msh(path: &Path, volume: Option<&str>) -> Result<SolidMesh, GmshError> {
+    parse_solid_msh(&read_text(path)?, volume)
+}
+
+/// Parses the tetrahedral body of physical volume `volume` (`None`: all tetrahedra of a file
+/// with at most one physical volume) of the text of a Gmsh ASCII mesh file into a validated
+/// [`SolidMesh`].
+pub fn parse_solid_msh(text: &str, volume: Option<&str>) -> Result<SolidMesh, GmshError> {
+    let text = text.strip_prefix('\u{feff}').unwrap_or(text);
+    let raw = RawMsh::parse(text, Space::Solid)?;
+    raw.build_solid(volume)
 }

@@ -92,7 +92,7 @@ impl RawMsh {
 
     /// Checks that every `$PhysicalNames` entry names a group some element belongs to: a name
     /// with a mistyped tag would otherwise leave its boundary unnamed (called by its number).
-    fn check_names_used(&self) -> Result<(), GmshError> {
+    pub(super) fn check_names_used(&self) -> Result<(), GmshError> {
         let mut used = BTreeSet::new();
         for element in &self.elements {
             let dim = kind_dim(element.kind);
@@ -116,7 +116,7 @@ impl RawMsh {
     }
 
     /// The index in `coords` of node `tag` of `element`.
-    fn node_position(&self, element: &RawElement, tag: u64) -> Result<usize, GmshError> {
+    pub(super) fn node_position(&self, element: &RawElement, tag: u64) -> Result<usize, GmshError> {
         self.node_index.get(tag).ok_or_else(|| GmshError::Parse {
             line: element.line,
             message: format!("element refers to node {tag}, which is not in $Nodes"),
@@ -125,7 +125,7 @@ impl RawMsh {
 
     /// Whether every node of `element` is a node of the body (`new_index` is set).
     fn touches(&self, element: &RawElement, new_index: &[usize]) -> bool {
-        element.nodes.iter().all(|&tag| {
+        self.nodes(element).iter().all(|&tag| {
             self.node_index
                 .get(tag)
                 .and_then(|i| new_index.get(i))
@@ -137,7 +137,7 @@ impl RawMsh {
     /// error.
     fn new_ids(&self, element: &RawElement, new_index: &[usize]) -> Result<Few<usize>, GmshError> {
         let mut ids = Few::new();
-        for &tag in element.nodes.iter() {
+        for &tag in self.nodes(element).iter() {
             let i = self.node_position(element, tag)?;
             let id = new_index.get(i).copied().filter(|&n| n != usize::MAX);
             ids.push(id.ok_or_else(|| GmshError::Parse {
@@ -154,7 +154,7 @@ impl RawMsh {
     /// bits (`-0.0` as `0.0`): equal for two triangles on the same three points.
     fn vertex_key(&self, element: &RawElement) -> Result<VertexKey, GmshError> {
         let mut key = [[0; 2]; 3];
-        for (k, &tag) in key.iter_mut().zip(element.nodes.iter()) {
+        for (k, &tag) in key.iter_mut().zip(self.nodes(element).iter()) {
             let xyz = self.coords[self.node_position(element, tag)?];
             *k = [(xyz[0] + 0.0).to_bits(), (xyz[1] + 0.0).to_bits()];
         }
@@ -246,7 +246,7 @@ impl RawMsh {
             }
             Some(_) => {}
         }
-        for &tag in element.nodes.iter() {
+        for &tag in self.nodes(element).iter() {
             let i = self.node_position(element, tag)?;
             if let Some(u) = used.get_mut(i) {
                 *u = true;

@@ -24,6 +24,18 @@ pub(super) enum Kind {
     Point,
     Line,
     Triangle(Order),
+    /// A 4-node (P1) or 10-node (P2) tetrahedron: read by the solid reader only.
+    Tetrahedron(Order),
+}
+
+/// The space of the mesh the file is read for: the planar reader refuses tetrahedra where they
+/// appear, the solid reader takes them.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(super) enum Space {
+    /// A planar triangle mesh ([`crate::mesh::Mesh`]).
+    Planar,
+    /// A tetrahedral mesh ([`crate::solid::SolidMesh`]).
+    Solid,
 }
 
 /// One element as read, with node tags not yet resolved.
@@ -34,8 +46,10 @@ pub(super) struct RawElement {
     /// The element's tag (its number in the file).
     pub(super) tag: u64,
     pub(super) kind: Kind,
-    /// Node tags.
-    pub(super) nodes: Few<u64>,
+    /// Where its node tags start in [`RawMsh::tags`].
+    pub(super) first_tag: usize,
+    /// Its number of nodes.
+    pub(super) num_nodes: u8,
     /// MSH 4.1: the (dimension, tag) of the entity the element belongs to.
     pub(super) entity: Option<(u8, i64)>,
     /// MSH 2.2: the physical tag of the element, if any (0 means none).
@@ -56,14 +70,20 @@ pub(super) struct RawMsh {
     /// Node tag to index into `coords`.
     pub(super) node_index: NodeIndex,
     pub(super) elements: Vec<RawElement>,
+    /// The node tags of every element, one after the other (no allocation per element).
+    pub(super) tags: Vec<u64>,
     /// Number of lines of the file (for errors at the end of the file).
     pub(super) num_lines: usize,
 }
 
-/// The nodes of one element (at most 6), without an allocation of their own.
+/// Most nodes of an element read (a 10-node tetrahedron).
+const MAX_NODES: usize = 10;
+
+/// The nodes of one element (at most [`MAX_NODES`]) in a new numbering, without an allocation of
+/// their own.
 #[derive(Clone, Copy, Debug)]
 pub(super) struct Few<T> {
-    items: [T; 6],
+    items: [T; MAX_NODES],
     len: u8,
 }
 
@@ -71,12 +91,12 @@ impl<T: Copy + Default> Few<T> {
     /// No items.
     pub(super) fn new() -> Self {
         Few {
-            items: [T::default(); 6],
+            items: [T::default(); MAX_NODES],
             len: 0,
         }
     }
 
-    /// Appends `item`; the caller keeps to 6 items (more would panic).
+    /// Appends `item`; the caller keeps to [`MAX_NODES`] items (more would panic).
     pub(super) fn push(&mut self, item: T) {
         self.items[usize::from(self.len)] = item;
         self.len += 1;
@@ -144,24 +164,34 @@ impl NodeIndex {
     }
 }
 
-/// Number of nodes of a Gmsh element type, and what it is; unsupported types are errors.
-fn element_kind(ty: usize, line: usize) -> Result<(Kind, usize), GmshError> {
+/// Number of nodes of a Gmsh element type, and what it is; types the reader of `space` does not
+/// read are errors.
+fn element_kind(ty: usize, line: usize, space: Space) -> Result<(Kind, usize), GmshError> {
     let unsupported = |what: &str| {
+        let reads = match space {
+            Space::Planar => "3- and 6-node triangles with 2- or 3-node boundary lines and points",
+            Space::Solid => "4- and 10-node tetrahedra with 3- or 6-node face triangles",
+        };
         Err(GmshError::Unsupported(format!(
-            "line {line}: element type {ty} ({what}); contactdd reads 3- and 6-node triangles \
-             with 2- or 3-node boundary lines and points"
+            "line {line}: element type {ty} ({what}); contactdd reads {reads}"
         )))
     };
-    match ty {
-        15 => Ok((Kind::Point, 1)),
-        1 => Ok((Kind::Line, 2)),
-        8 => Ok((Kind::Line, 3)),
-        2 => Ok((Kind::Triangle(Order::P1), 3)),
-        9 => Ok((Kind::Triangle(Order::P2), 6)),
-        3 | 10 | 16 => unsupported("quadrilateral"),
-        4..=7 | 11..=14 | 17..=19 => unsupported("3D element"),
-        20..=25 => unsupported("higher-order or incomplete triangle"),
-        26..=28 => unsupported("higher-order line"),
+    match (ty, space) {
+        (15, _) => Ok((Kind::Point, 1)),
+        (1, _) => Ok((Kind::Line, 2)),
+        (8, _) => Ok((Kind::Line, 3)),
+        (2, _) => Ok((Kind::Triangle(Order::P1), 3)),
+        (9, _) => Ok((Kind::Triangle(Order::P2), 6)),
+        (4, Space::Solid) => Ok((Kind::Tetrahedron(Order::P1), 4)),
+        (11, Space::Solid) => Ok((Kind::Tetrahedron(Order::P2), 10)),
+        (3 | 10 | 16, _) => unsupported("quadrilateral"),
+        (4..=7 | 11..=14 | 17..=19, Space::Planar) => unsupported("3D element"),
+        (29..=31, Space::Solid) => unsupported("higher-order tetrahedron"),
+        (5..=7 | 12..=14 | 17..=19, Space::Solid) => {
+            unsupported("3D element other than a tetrahedron")
+        }
+        (20..=25, _) => unsupported("higher-order or incomplete triangle"),
+        (26..=28, _) => unsupported("higher-order line"),
         _ => unsupported("unknown or higher-order element"),
     }
 }
@@ -172,6 +202,7 @@ pub(super) fn kind_dim(kind: Kind) -> u8 {
         Kind::Point => 0,
         Kind::Line => 1,
         Kind::Triangle(_) => 2,
+        Kind::Tetrahedron(_) => 3,
     }
 }
 
@@ -181,8 +212,8 @@ fn capacity(count: usize) -> usize {
 }
 
 impl RawMsh {
-    /// Reads every section of the file `text`.
-    pub(super) fn parse(text: &str) -> Result<RawMsh, GmshError> {
+    /// Reads every section of the file `text`, for a mesh of `space`.
+    pub(super) fn parse(text: &str, space: Space) -> Result<RawMsh, GmshError> {
         let mut tokens = Tokens::new(text);
         let mut raw = RawMsh {
             num_lines: tokens.num_lines(),
@@ -234,8 +265,8 @@ impl RawMsh {
                     seen_elements = true;
                     tokens.section = "Elements";
                     match version {
-                        Version::V4 => raw.read_elements_v4(&mut tokens)?,
-                        Version::V2 => raw.read_elements_v2(&mut tokens)?,
+                        Version::V4 => raw.read_elements_v4(&mut tokens, space)?,
+                        Version::V2 => raw.read_elements_v2(&mut tokens, space)?,
                     }
                 }
                 _ if name.starts_with("End") => {
@@ -415,16 +446,25 @@ impl RawMsh {
         Ok(())
     }
 
-    /// Reads the node tags of one element of `len` nodes.
-    fn read_element_nodes(tokens: &mut Tokens<'_>, len: usize) -> Result<Few<u64>, GmshError> {
-        let mut nodes = Few::new();
+    /// Reads the `len` node tags of one element into `tags`, and returns where they start.
+    fn read_element_nodes(
+        &mut self,
+        tokens: &mut Tokens<'_>,
+        len: usize,
+    ) -> Result<usize, GmshError> {
+        let first = self.tags.len();
         for _ in 0..len {
-            nodes.push(tokens.parse("a node tag")?);
+            self.tags.push(tokens.parse("a node tag")?);
         }
-        Ok(nodes)
+        Ok(first)
     }
 
-    fn read_elements_v4(&mut self, tokens: &mut Tokens<'_>) -> Result<(), GmshError> {
+    /// The node tags of `element`.
+    pub(super) fn nodes(&self, element: &RawElement) -> &[u64] {
+        &self.tags[element.first_tag..element.first_tag + usize::from(element.num_nodes)]
+    }
+
+    fn read_elements_v4(&mut self, tokens: &mut Tokens<'_>, space: Space) -> Result<(), GmshError> {
         let num_blocks = tokens.usize("the number of element blocks")?;
         let (header, num_elements) = tokens.parse_at::<usize>("the number of elements")?;
         tokens.usize("the smallest element tag")?;
@@ -440,21 +480,25 @@ impl RawMsh {
             if count == 0 {
                 continue;
             }
-            let (kind, len) = element_kind(ty, line)?;
+            let (kind, len) = element_kind(ty, line, space)?;
             if kind_dim(kind) != dim {
                 return Err(tokens.error(
                     line,
                     format!("element type {ty} in a block of dimension {dim}"),
                 ));
             }
+            // A node tag takes at least 2 bytes.
+            (self.tags).reserve(tokens.room_for(count.saturating_mul(len), 2));
             for _ in 0..count {
                 let (line, tag) = tokens.parse_at::<u64>("an element tag")?;
-                let nodes = Self::read_element_nodes(tokens, len)?;
+                let first_tag = self.read_element_nodes(tokens, len)?;
                 self.elements.push(RawElement {
                     line,
                     tag,
                     kind,
-                    nodes,
+                    first_tag,
+                    // At most 10 (`element_kind`).
+                    num_nodes: len as u8,
                     entity: Some((dim, entity)),
                     physical: None,
                 });
@@ -470,13 +514,16 @@ impl RawMsh {
         Ok(())
     }
 
-    fn read_elements_v2(&mut self, tokens: &mut Tokens<'_>) -> Result<(), GmshError> {
+    fn read_elements_v2(&mut self, tokens: &mut Tokens<'_>, space: Space) -> Result<(), GmshError> {
         // An element takes a tag, a type, a tag count and a node: at least 8 bytes.
         let count = tokens.usize("the number of elements")?;
         self.elements.reserve(tokens.room_for(count, 8));
+        // Most elements of a file are triangles: three node tags each, or more.
+        (self.tags).reserve(tokens.room_for(count, 8).saturating_mul(3));
         for _ in 0..count {
             let (line, tag) = tokens.parse_at::<u64>("an element tag")?;
-            let (kind, len) = element_kind(tokens.usize("an element type")?, line)?;
+            let ty = tokens.usize("an element type")?;
+            let (kind, len) = element_kind(ty, line, space)?;
             let num_tags = tokens.usize("the number of element tags")?;
             let mut physical = None;
             for k in 0..num_tags {
@@ -485,12 +532,14 @@ impl RawMsh {
                     physical = Some(tag);
                 }
             }
-            let nodes = Self::read_element_nodes(tokens, len)?;
+            let first_tag = self.read_element_nodes(tokens, len)?;
             self.elements.push(RawElement {
                 line,
                 tag,
                 kind,
-                nodes,
+                first_tag,
+                // At most 10 (`element_kind`).
+                num_nodes: len as u8,
                 entity: None,
                 physical,
             });
