@@ -37,6 +37,7 @@ pub mod prepared;
 pub mod relaxation;
 pub mod settings;
 pub mod shared_rows;
+pub mod solid_balance;
 pub mod solid_dd;
 pub mod solid_monolithic;
 pub mod solution;

@@ -9,8 +9,8 @@
 //! (u_x, u_y, u_z), see [`dof`]. The weak form is `∫ ε(v) : C : ε(u) dV = ∫ f·v dV + ∫_Γ t·v dS`
 //! with prescribed components of `u` eliminated by the factorised operator.
 //!
-//! 3D bodies are not coupled by contact yet, and no problem file, CLI command or Python function
-//! reaches them: this module is the foundation the 3D contact layer builds on.
+//! The contact layer in space (`contactdd_ddm::contact3d`, `solid_dd`, `solid_monolithic`) and
+//! the problem files with `dimension = 3` build on this module (docs/three-d.md).
 
 pub mod assembly;
 pub mod body;

@@ -60,3 +60,30 @@ impl RigidModes {
         modes
     }
 }
+
+/// The rigid motions of `mesh` that the prescribed DOFs `prescribed` leave free: the number of
+/// independent combinations of the six modes that vanish on every prescribed DOF (0 for a held
+/// body). A mode counts as held when the prescribed DOFs see it at more than 1e-8 of its size
+/// (relative eigenvalue of the modes' Gram matrix on those DOFs).
+pub fn free_rigid_modes(mesh: &SolidMesh, prescribed: &[usize]) -> usize {
+    let modes = RigidModes::new(mesh);
+    let mut gram = nalgebra::Matrix6::<f64>::zeros();
+    for &d in prescribed {
+        let (v, c) = (d / 3, d % 3);
+        let Some(x) = mesh.nodes().get(v) else {
+            continue;
+        };
+        let row = modes.at(*x)[c];
+        for i in 0..NUM_MODES_3D {
+            for j in 0..NUM_MODES_3D {
+                gram[(i, j)] += row[i] * row[j];
+            }
+        }
+    }
+    // Against the Gram matrix of the modes over the whole body: every node's three DOFs.
+    let whole = mesh.num_nodes() as f64;
+    gram.symmetric_eigenvalues()
+        .iter()
+        .filter(|&&l| l <= 1e-8 * whole)
+        .count()
+}

@@ -1,0 +1,172 @@
+//! The independent check of a solution in space: every body's forces balance, and the pressures
+//! follow the contact law from the displacements.
+//!
+//! For body b with the displacement u_b, its stiffness K_b assembled afresh, its loads f_b and
+//! the contact forces c_b = −Σ_j w_j p_j a_j of the reported pressures, the residual
+//! r_b = K_b u_b − f_b − c_b is the support reaction on the prescribed DOFs and must vanish on the
+//! free ones. The net force and moment of r_b over the free DOFs (the moment over the body's size)
+//! is the body's imbalance: what its loads, contact forces and reactions leave unbalanced, the
+//! measure of the planar force balance (`docs/outputs.md`). It is reported relative to the
+//! largest force total of a body. The contact law is read back from the displacements: point j's
+//! approach s_j = a_j·u gives max(0, s_j − d_j)/θ, which the reported pressure must equal.
+
+use contactdd_core::solid::assembly::stiffness;
+use contactdd_core::solid::rigid::RigidModes;
+use contactdd_core::solid::DIM3;
+use rayon::prelude::*;
+
+use crate::solid_monolithic::{
+    contact_rows, offsets, SolidBodySpec, SolidContactError, SolidContactSolution, SolidPairSpec,
+};
+
+/// One body's balance.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SolidBodyBalance {
+    /// The largest net force or moment (over the body's size) of what the body's loads, contact
+    /// forces and reactions leave unbalanced, relative to the largest force total of a body.
+    pub imbalance: f64,
+    /// The rounding floor of the imbalance, on the same scale: γ Σ_i Σ_j |K_ij u_j|, γ the unit
+    /// roundoff times the mean number of terms of a row of K (the bound on the rounding of K u),
+    /// which a displacement with large cancelling terms (a stiff body moved rigidly) reaches.
+    pub floor: f64,
+    /// The sum of the magnitudes of the body's nodal loads, contact forces and reactions.
+    pub force_total: f64,
+    /// The resultant of the support reactions.
+    pub reaction: [f64; 3],
+    /// The resultant of the contact forces on the body.
+    pub contact: [f64; 3],
+}
+
+/// The check of a solution.
+#[derive(Clone, Debug, PartialEq)]
+pub struct SolidBalance {
+    /// Every body's balance.
+    pub bodies: Vec<SolidBodyBalance>,
+    /// The largest difference between a reported pressure and the contact law read from the
+    /// displacements, relative to the largest pressure (absolute when no point presses).
+    pub contact_law: f64,
+}
+
+impl SolidBalance {
+    /// The largest imbalance of a body.
+    pub fn worst(&self) -> f64 {
+        self.bodies.iter().map(|b| b.imbalance).fold(0.0, f64::max)
+    }
+
+    /// The body whose imbalance exceeds both `tol` and its rounding floor the most, if any.
+    pub fn unbalanced(&self, tol: f64) -> Option<usize> {
+        (self.bodies.iter().enumerate())
+            .filter(|(_, b)| b.imbalance.is_nan() || b.imbalance > tol.max(b.floor))
+            .max_by(|x, y| x.1.imbalance.total_cmp(&y.1.imbalance))
+            .map(|(b, _)| b)
+    }
+}
+
+/// Checks `sol` against `bodies` and `pairs`: the force balance of every body and the contact
+/// law of every point. Errors if the contact rows cannot be rebuilt or the solution does not
+/// match the problem (another number of bodies, DOFs or points).
+pub fn solid_balance(
+    bodies: &[SolidBodySpec<'_>],
+    pairs: &[SolidPairSpec],
+    sol: &SolidContactSolution,
+) -> Result<SolidBalance, SolidContactError> {
+    let (offsets, n) = offsets(bodies);
+    let rows = contact_rows(bodies, &offsets, pairs)?;
+    let mismatch = |what: &str| SolidContactError::Pair {
+        pair: 0,
+        message: format!("the solution does not match the problem: {what}"),
+    };
+    if rows.len() != sol.points.len() || sol.displacements.len() != bodies.len() {
+        return Err(mismatch("points or bodies"));
+    }
+    let mut u = Vec::with_capacity(n);
+    for (b, d) in bodies.iter().zip(&sol.displacements) {
+        if d.len() != DIM3 * b.mesh.num_nodes() || b.load.len() != d.len() {
+            return Err(mismatch("a body's DOFs"));
+        }
+        u.extend_from_slice(d);
+    }
+    let mut contact = vec![0.0; n];
+    let (mut worst_law, mut largest) = (0.0f64, 0.0f64);
+    for (r, point) in rows.iter().zip(&sol.points) {
+        let s: f64 = r.a.iter().map(|&(i, x)| x * u[i]).sum();
+        let law = (s - r.point.gap).max(0.0) / r.theta;
+        worst_law = worst_law.max((law - point.pressure).abs());
+        largest = largest.max(point.pressure.abs());
+        for &(i, x) in &r.a {
+            contact[i] -= point.weight * point.pressure * x;
+        }
+    }
+    let mut balances: Vec<SolidBodyBalance> = (bodies.par_iter().zip(&offsets))
+        .map(|(b, &at)| body_balance(b, &u[at..], &contact[at..]))
+        .collect();
+    let scale = balances
+        .iter()
+        .map(|b| b.force_total)
+        .fold(0.0, f64::max)
+        .max(f64::MIN_POSITIVE);
+    balances.iter_mut().for_each(|b| {
+        b.imbalance /= scale;
+        b.floor /= scale;
+    });
+    Ok(SolidBalance {
+        bodies: balances,
+        contact_law: if largest > 0.0 {
+            worst_law / largest
+        } else {
+            worst_law
+        },
+    })
+}
+
+/// One body's balance (its imbalance still absolute): `u` and `contact` start at its DOFs.
+fn body_balance(body: &SolidBodySpec<'_>, u: &[f64], contact: &[f64]) -> SolidBodyBalance {
+    let n = body.load.len();
+    let k = stiffness(body.mesh, &body.elasticity);
+    let (mut r, mut terms) = (vec![0.0; n], 0.0);
+    let (cp, ri, val) = (k.symbolic().col_ptr(), k.symbolic().row_idx(), k.val());
+    for c in 0..n {
+        for x in cp[c]..cp[c + 1] {
+            r[ri[x]] += val[x] * u[c];
+            terms += (val[x] * u[c]).abs();
+        }
+    }
+    let floor = f64::EPSILON / 2.0 * (val.len() as f64 / n.max(1) as f64) * terms;
+    let mut prescribed = vec![false; n];
+    body.prescribed
+        .iter()
+        .for_each(|&(d, _)| prescribed[d] = true);
+    let (mut reaction, mut resultant) = ([0.0; 3], [0.0; 3]);
+    let mut free = vec![0.0; n];
+    let mut force_total = 0.0;
+    for v in 0..n / DIM3 {
+        let mut node = [0.0; 3];
+        for c in 0..DIM3 {
+            let i = DIM3 * v + c;
+            let residual = r[i] - body.load[i] - contact[i];
+            resultant[c] += contact[i];
+            if prescribed[i] {
+                reaction[c] += residual;
+                node[c] = body.load[i] + contact[i] + residual;
+            } else {
+                free[i] = residual;
+                node[c] = body.load[i] + contact[i];
+            }
+        }
+        force_total += node.iter().map(|x| x * x).sum::<f64>().sqrt();
+    }
+    // The net force and moment (over the size) of the free residual: the rigid modes' work.
+    let modes = RigidModes::new(body.mesh);
+    let imbalance = modes
+        .vectors(body.mesh)
+        .iter()
+        .map(|z| z.iter().zip(&free).map(|(a, b)| a * b).sum::<f64>().abs())
+        .fold(0.0, f64::max);
+    SolidBodyBalance {
+        imbalance,
+        floor,
+        force_total,
+        reaction,
+        contact: resultant,
+    }
+}
