@@ -55,6 +55,7 @@ mod plot_sweep;
 mod rank_use;
 pub mod ranks;
 mod report;
+mod solid;
 mod solve;
 mod steps;
 mod sweep;
@@ -120,9 +121,19 @@ where
     // Only `solve` distributes: under `mpirun` rank 0 runs the other commands alone, and every
     // rank ends with its exit code.
     let exit = match cli.command {
+        // A problem in space runs on rank 0 alone (its decomposition has no MPI yet).
+        Command::Solve(a) if solid::is_solid_file(&a.file) => {
+            ranks::on_root(|| reported(solid::solve(a)))
+        }
         Command::Solve(a) => reported(solve::solve(a)),
         Command::Sweep(a) => ranks::on_root(|| reported(sweep::sweep(a))),
+        Command::Check(a) if solid::is_solid_file(&a.file) => {
+            ranks::on_root(|| reported(solid::check(a)))
+        }
         Command::Check(a) => ranks::on_root(|| reported(check::check(a))),
+        Command::Monolithic(a) if solid::is_solid_file(&a.file) => {
+            ranks::on_root(|| reported(solid::monolithic(a)))
+        }
         Command::Monolithic(a) => ranks::on_root(|| reported(solve::monolithic(a))),
         Command::Plot(a) => ranks::on_root(|| reported(plot::plot(a))),
     };

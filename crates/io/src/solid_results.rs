@@ -1,0 +1,177 @@
+//! The result folder of a solve in space: `summary.json`, `contact.csv` and one `.vtu` file of
+//! tetrahedra per body (`docs/three-d.md`, "Problem files and results").
+
+use std::fmt::Write as _;
+use std::path::{Path, PathBuf};
+
+use serde_json::{json, Value};
+
+use contactdd_core::solid::element::elasticity;
+use contactdd_core::solid::post::{nodal_stresses, von_mises};
+use contactdd_core::solid::TetOrder;
+
+use crate::atomic::write_atomic;
+use crate::body_vtus::safe_file_name;
+use crate::number::push_f64;
+use crate::solid_run::SolidOutcome;
+use crate::solid_setup::SolidModel;
+use crate::solid_vtu::{stress_tensors, write_solid_vtu, write_solid_vtu_pieces};
+use crate::vtu::{Field, VtuData, VtuLayout, COLLECTION_STEM};
+
+/// Writes the result files of `outcome` into `dir` (created if needed) and returns their paths.
+pub fn write_solid_results(
+    dir: &Path,
+    model: &SolidModel,
+    outcome: &SolidOutcome,
+) -> std::io::Result<Vec<PathBuf>> {
+    std::fs::create_dir_all(dir)?;
+    let mut written = write_bodies(dir, model, outcome)?;
+    let contact = dir.join("contact.csv");
+    write_atomic(&contact, solid_contact_csv(model, outcome).as_bytes())?;
+    written.push(contact);
+    let summary = dir.join("summary.json");
+    let mut value = solid_summary(model, outcome);
+    let names: Vec<String> = (written.iter().chain([&summary]))
+        .filter_map(|p| p.file_name())
+        .map(|n| n.to_string_lossy().into_owned())
+        .collect();
+    value["files"] = json!(names);
+    let text = serde_json::to_string_pretty(&value)?;
+    write_atomic(&summary, format!("{text}\n").as_bytes())?;
+    written.push(summary);
+    Ok(written)
+}
+
+/// Every body's displacement, nodal stress tensor and von Mises stress, one `.vtu` file per body
+/// or one collection, as `[output]` says.
+fn write_bodies(
+    dir: &Path,
+    model: &SolidModel,
+    outcome: &SolidOutcome,
+) -> std::io::Result<Vec<PathBuf>> {
+    let options = model.output.vtu_options();
+    let invalid = |e: contactdd_core::solid::SolidError| {
+        std::io::Error::new(std::io::ErrorKind::InvalidData, e.to_string())
+    };
+    let mut arrays = Vec::with_capacity(model.bodies.len());
+    for (b, body) in model.bodies.iter().enumerate() {
+        let u = &outcome.solution.displacements[b];
+        let stress = nodal_stresses(&body.mesh, &elasticity(&body.material), u).map_err(invalid)?;
+        let mises: Vec<f64> = stress.iter().map(|s| von_mises(*s)).collect();
+        arrays.push((stress_tensors(&stress), mises));
+    }
+    let fields: Vec<[Field<'_>; 2]> = (arrays.iter())
+        .map(|(tensor, mises)| {
+            [
+                Field {
+                    name: "stress",
+                    components: 9,
+                    values: tensor,
+                },
+                Field {
+                    name: "von_mises",
+                    components: 1,
+                    values: mises,
+                },
+            ]
+        })
+        .collect();
+    let pieces: Vec<_> = (model.bodies.iter().zip(&fields).enumerate())
+        .map(|(b, (body, f))| {
+            let data = VtuData {
+                displacement: Some(&outcome.solution.displacements[b]),
+                points: f,
+                cells: &[],
+            };
+            (&body.mesh, data)
+        })
+        .collect();
+    if options.layout == VtuLayout::Collection {
+        let path = dir.join(format!("{COLLECTION_STEM}.vtu"));
+        write_solid_vtu_pieces(&path, &pieces, options.format)?;
+        return Ok(vec![path]);
+    }
+    let mut written = Vec::with_capacity(pieces.len());
+    for ((mesh, data), body) in pieces.into_iter().zip(&model.bodies) {
+        let path = dir.join(format!("{}.vtu", safe_file_name(&body.name)));
+        write_solid_vtu(&path, mesh, data, options.format)?;
+        written.push(path);
+    }
+    Ok(written)
+}
+
+/// `contact.csv`: one row per contact point with a partner: the pair, the reference body, the
+/// node, its position, its quadrature weight (area), the initial gap and the pressure.
+pub fn solid_contact_csv(model: &SolidModel, outcome: &SolidOutcome) -> String {
+    let mut out = String::from("pair,body,node,x,y,z,weight,gap,pressure\n");
+    for p in &outcome.solution.points {
+        let pair = &model.pairs[p.pair];
+        let body = &model.bodies[pair.sides[0].0];
+        let _ = write!(out, "{},{},{}", pair.name, body.name, p.node);
+        for v in p.position.iter().chain([&p.weight, &p.gap, &p.pressure]) {
+            out.push(',');
+            push_f64(&mut out, *v);
+        }
+        out.push('\n');
+    }
+    out
+}
+
+/// `summary.json`: the verdict, the solver, the check, the bodies, the pairs and the phases.
+pub fn solid_summary(model: &SolidModel, outcome: &SolidOutcome) -> Value {
+    let sol = &outcome.solution;
+    let bodies: Vec<Value> = (model.bodies.iter().zip(&outcome.balance.bodies))
+        .map(|(b, bal)| {
+            let applied: [f64; 3] =
+                std::array::from_fn(|c| b.load.iter().skip(c).step_by(3).sum::<f64>());
+            json!({
+                "name": b.name,
+                "nodes": b.mesh.num_nodes(),
+                "tetrahedra": b.mesh.num_tets(),
+                "dofs": 3 * b.mesh.num_nodes(),
+                "order": if b.mesh.order() == TetOrder::P2 { "p2" } else { "p1" },
+                "applied_load": applied,
+                "contact_force": bal.contact,
+                "reaction": bal.reaction,
+                "imbalance": bal.imbalance,
+                "floor": bal.floor,
+            })
+        })
+        .collect();
+    let pairs: Vec<Value> = (model.pairs.iter().enumerate())
+        .map(|(k, p)| {
+            let points = sol.points.iter().filter(|q| q.pair == k);
+            let force: f64 = points.clone().map(|q| q.weight * q.pressure).sum();
+            let peak = points.clone().map(|q| q.pressure).fold(0.0, f64::max);
+            json!({
+                "name": p.name,
+                "bodies": [model.bodies[p.sides[0].0].name, model.bodies[p.sides[1].0].name],
+                "boundaries": [p.sides[0].1, p.sides[1].1],
+                "theta": p.theta,
+                "points": points.clone().count(),
+                "closed": points.filter(|q| q.pressure > 0.0).count(),
+                "normal_force": force,
+                "peak_pressure": peak,
+            })
+        })
+        .collect();
+    let timings: serde_json::Map<String, Value> = (sol.timings.iter())
+        .map(|(phase, s)| (phase.to_string(), json!(s)))
+        .collect();
+    json!({
+        "problem": model.name,
+        "dimension": 3,
+        "solver": outcome.solver.label(),
+        "converged": outcome.converged,
+        "reason": outcome.reason,
+        "newton_steps": sol.newton_steps,
+        "balance": {
+            "worst": outcome.balance.worst(),
+            "tol": model.balance_tol,
+            "contact_law": outcome.balance.contact_law,
+        },
+        "bodies": bodies,
+        "contact": pairs,
+        "timings": timings,
+    })
+}
