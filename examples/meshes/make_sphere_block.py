@@ -1,12 +1,15 @@
-"""Writes the meshes of examples/space/sphere_block.toml: a quarter of a ball of radius 1 resting
-on a quarter block, both refined around the contact point (the origin), as curved 10-node
-tetrahedra (Gmsh's SetOrder(2)).
+"""Writes the meshes of examples/space/sphere_block.toml and ball_between_plates.toml: a quarter
+of a ball of radius 1 resting on a quarter block, both refined around the contact point (the
+origin), and a whole quarter ball refined at both poles, as curved 10-node tetrahedra (Gmsh's
+SetOrder(2)).
 
     pip install gmsh
     python3 examples/meshes/make_sphere_block.py [h_contact]
 
-The ball is the part of the sphere of centre (0, 0, 1) with x ≥ 0, y ≥ 0, z ≤ 1; its faces are
-`x-` and `y-` (the symmetry planes), `top` (z = 1) and `surface` (the sphere). The block is
+The ball (quarter_ball.msh) is the part of the sphere of centre (0, 0, 1) with x ≥ 0, y ≥ 0,
+z ≤ 1; its faces are `x-` and `y-` (the symmetry planes), `top` (z = 1) and `surface` (the
+sphere). The whole quarter ball (quarter_ball_whole.msh) has x ≥ 0, y ≥ 0 and faces `x-`, `y-`
+and `surface`, with cells twice `h_contact` at both poles. The block is
 [0, 2] × [0, 2] × [−2, 0]; its faces are `x-`, `y-`, `bottom` (z = −2) and `top` (z = 0), the
 others unnamed. The cells are `h_contact` (default 0.02) within 0.12 of the origin and grow to
 0.4 at 1.5 from it.
@@ -20,13 +23,13 @@ import gmsh
 HERE = Path(__file__).resolve().parent
 
 
-def refine(h_contact):
-    """Cells of h_contact near the origin, growing away from it."""
+def refine(h_contact, poles=((0, 0, 0),)):
+    """Cells of h_contact near the poles, growing away from them."""
     f = gmsh.model.mesh.field
-    p = gmsh.model.occ.addPoint(0, 0, 0)
+    points = [gmsh.model.occ.addPoint(*x) for x in poles]
     gmsh.model.occ.synchronize()
     dist = f.add("Distance")
-    f.setNumbers(dist, "PointsList", [p])
+    f.setNumbers(dist, "PointsList", points)
     thr = f.add("Threshold")
     f.setNumber(thr, "InField", dist)
     f.setNumber(thr, "SizeMin", h_contact)
@@ -53,11 +56,11 @@ def name_faces(volume, rules):
     gmsh.model.addPhysicalGroup(3, [volume])
 
 
-def write(name, build, rules, h_contact):
+def write(name, build, rules, h_contact, poles=((0, 0, 0),)):
     gmsh.model.add(name)
     volume = build()
     gmsh.model.occ.synchronize()
-    refine(h_contact)
+    refine(h_contact, poles)
     name_faces(volume, rules)
     gmsh.model.mesh.generate(3)
     gmsh.model.mesh.setOrder(2)
@@ -72,6 +75,14 @@ def ball():
     occ = gmsh.model.occ
     s = occ.addSphere(0, 0, 1, 1)
     b = occ.addBox(0, 0, 0, 1, 1, 1)
+    out, _ = occ.intersect([(3, s)], [(3, b)])
+    return out[0][1]
+
+
+def whole_ball():
+    occ = gmsh.model.occ
+    s = occ.addSphere(0, 0, 1, 1)
+    b = occ.addBox(0, 0, 0, 1, 1, 2)
     out, _ = occ.intersect([(3, s)], [(3, b)])
     return out[0][1]
 
@@ -106,6 +117,17 @@ def main():
             ("top", lambda c: abs(c[2]) < eps),
         ],
         h_contact,
+    )
+    write(
+        "quarter_ball_whole",
+        whole_ball,
+        [
+            ("x-", lambda c: abs(c[0]) < eps),
+            ("y-", lambda c: abs(c[1]) < eps),
+            ("surface", lambda c: True),
+        ],
+        2 * h_contact,
+        poles=((0, 0, 0), (0, 0, 2)),
     )
     gmsh.finalize()
 

@@ -15,7 +15,7 @@ use contactdd_core::solid::rigid::RigidModes;
 use contactdd_core::solid::DIM3;
 use rayon::prelude::*;
 
-use crate::solid_monolithic::{
+use crate::solid_contact::{
     contact_rows, offsets, SolidBodySpec, SolidContactError, SolidContactSolution, SolidPairSpec,
 };
 

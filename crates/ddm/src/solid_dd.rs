@@ -13,22 +13,24 @@
 //! s⁰ those of the loads alone. A Newton step with the closed set χ solves
 //! (θ I + G)_χχ p_χ = (s⁰ − d)_χ on the contact points, and closes the points with s_j > d_j, as
 //! the monolithic reference does from the same start: the two take the same steps. Each body then
-//! recovers its field by one solve with its contact forces. Floating bodies (held by contact
-//! alone) are not handled yet: their stiffness is singular.
+//! recovers its field by one solve with its contact forces. A body its supports leave free to
+//! move rigidly is pinned where its free motions are best seen, and their amplitudes join the
+//! Newton system (`solid_newton`; docs/three-d.md, "Floating bodies").
 
 use contactdd_core::factor::FactoredBody;
 use contactdd_core::solid::assembly::stiffness;
+use contactdd_core::solid::rigid::pin_dofs;
 use contactdd_core::supports::Constraints;
 use faer::linalg::matmul::matmul;
 use faer::linalg::triangular_solve::solve_lower_triangular_in_place;
 use faer::{Accum, Mat, Par};
 use rayon::prelude::*;
 
-use crate::newton::linear::lu_solve_in_place;
-use crate::solid_monolithic::{
+use crate::solid_contact::{
     contact_rows, offsets, Row, SolidBodySpec, SolidContactError, SolidContactPoint,
-    SolidContactSolution, SolidPairSpec, MAX_STEPS,
+    SolidContactSolution, SolidPairSpec,
 };
+use crate::solid_newton::{newton, Motions};
 
 /// One body after its factorisation: the factor, its DOF range in the coupled numbering, and
 /// its part of G and of s⁰.
@@ -39,9 +41,11 @@ struct Condensed {
     s0: Vec<f64>,
     /// The seconds of the symbolic analysis and numeric factorisation.
     factorising: f64,
+    /// The rigid motions its supports leave free (DOF vectors; empty for a held body).
+    motions: Vec<Vec<f64>>,
 }
 
-/// Solves the contact of `bodies` (each held by its supports) through `pairs`: every body is
+/// Solves the contact of `bodies` (held by their supports or by the contact) through `pairs`: every body is
 /// factorised once and the Newton iteration runs on the contact points.
 pub fn solve_solid_dd(
     bodies: &[SolidBodySpec<'_>],
@@ -51,8 +55,9 @@ pub fn solve_solid_dd(
     let (offsets, _) = offsets(bodies);
     let rows = contact_rows(bodies, &offsets, pairs)?;
     clock.lap("contact geometry");
+    let motions = Motions::new(bodies, &offsets, &rows);
     let condensed: Vec<Condensed> = (bodies.par_iter().zip(&offsets).enumerate())
-        .map(|(b, (body, &at))| condense(b, body, at, &rows))
+        .map(|(b, (body, &at))| condense(b, (body, &motions.of_body[b]), at, &rows))
         .collect::<Result<_, _>>()?;
     let m = rows.len();
     let (mut g, mut s0) = (Mat::<f64>::zeros(m, m), vec![0.0; m]);
@@ -69,10 +74,13 @@ pub fn solve_solid_dd(
     clock
         .laps
         .push(("of which the slowest body's factorisation", slowest));
-    let (p, steps) = newton(&rows, &g, &s0)?;
+    let (p, alpha, steps) = newton(&rows, &g, &s0, &motions)?;
     clock.lap("iterate");
-    let displacements = (condensed.par_iter().zip(bodies))
-        .map(|(c, body)| recover(c, body, &rows, &p))
+    let displacements = (condensed.par_iter().zip(bodies).zip(&motions.first))
+        .map(|((c, body), &first)| {
+            let alpha = &alpha[first..first + c.motions.len()];
+            recover(c, body, &rows, &p, alpha)
+        })
         .collect::<Result<Vec<_>, _>>()?;
     clock.lap("recover");
     let points = (rows.into_iter().zip(&p))
@@ -116,7 +124,7 @@ impl Clock {
 /// read ordered last, and condenses it: its part of G and of s⁰.
 fn condense(
     b: usize,
-    body: &SolidBodySpec<'_>,
+    (body, motions): (&SolidBodySpec<'_>, &[Vec<f64>]),
     at: usize,
     rows: &[Row],
 ) -> Result<Condensed, SolidContactError> {
@@ -136,6 +144,12 @@ fn condense(
     body.prescribed
         .iter()
         .for_each(|&(d, v)| constraints.prescribe(d, v));
+    // A body its supports leave free: pinned where its free motions are best seen, which keeps
+    // the factor a generalised inverse for loads that do no work along them.
+    let prescribed: Vec<usize> = body.prescribed.iter().map(|&(d, _)| d).collect();
+    pin_dofs(motions, &prescribed)
+        .into_iter()
+        .for_each(|d| constraints.prescribe(d, 0.0));
     let k = stiffness(body.mesh, &body.elasticity);
     let started = std::time::Instant::now();
     let mut factor =
@@ -173,45 +187,8 @@ fn condense(
         g,
         s0,
         factorising,
+        motions: motions.to_vec(),
     })
-}
-
-/// The semismooth Newton iteration on the pressures from the points whose gap is closed: the
-/// pressures and the steps taken (the last one confirms the closed set).
-fn newton(rows: &[Row], g: &Mat<f64>, s0: &[f64]) -> Result<(Vec<f64>, usize), SolidContactError> {
-    let m = rows.len();
-    let mut closed: Vec<bool> = rows.iter().map(|r| r.point.gap <= 0.0).collect();
-    for step in 1..=MAX_STEPS {
-        let set: Vec<usize> = (0..m).filter(|&j| closed[j]).collect();
-        let mut p = vec![0.0; m];
-        if !set.is_empty() {
-            let mut a = Mat::<f64>::from_fn(set.len(), set.len(), |x, y| g[(set[x], set[y])]);
-            let mut rhs =
-                Mat::<f64>::from_fn(set.len(), 1, |x, _| s0[set[x]] - rows[set[x]].point.gap);
-            for (x, &j) in set.iter().enumerate() {
-                a[(x, x)] += rows[j].theta;
-            }
-            lu_solve_in_place(a, &mut rhs).ok_or(SolidContactError::Factor {
-                step,
-                message: "no memory for the Newton system".into(),
-            })?;
-            set.iter()
-                .enumerate()
-                .for_each(|(x, &j)| p[j] = rhs[(x, 0)]);
-        }
-        let s: Vec<f64> = (0..m)
-            .map(|j| s0[j] - (0..m).map(|l| g[(j, l)] * p[l]).sum::<f64>())
-            .collect();
-        let next: Vec<bool> = (0..m).map(|j| s[j] > rows[j].point.gap).collect();
-        if next == closed {
-            let p = (0..m)
-                .map(|j| ((s[j] - rows[j].point.gap) / rows[j].theta).max(0.0))
-                .collect();
-            return Ok((p, step));
-        }
-        closed = next;
-    }
-    Err(SolidContactError::NotSettled { steps: MAX_STEPS })
 }
 
 /// Body `c`'s displacement under its loads and the contact forces of the pressures `p`.
@@ -220,6 +197,7 @@ fn recover(
     body: &SolidBodySpec<'_>,
     rows: &[Row],
     p: &[f64],
+    alpha: &[f64],
 ) -> Result<Vec<f64>, SolidContactError> {
     let mut f = body.load.clone();
     for (r, &p) in rows.iter().zip(p) {
@@ -227,8 +205,12 @@ fn recover(
             f[i - c.range.start] -= r.point.weight * p * v;
         }
     }
-    c.factor.solve(&f).map_err(|e| SolidContactError::Factor {
+    let mut u = c.factor.solve(&f).map_err(|e| SolidContactError::Factor {
         step: 0,
         message: e.to_string(),
-    })
+    })?;
+    for (z, &a) in c.motions.iter().zip(alpha) {
+        u.iter_mut().zip(z).for_each(|(x, v)| *x += a * v);
+    }
+    Ok(u)
 }

@@ -48,17 +48,19 @@ pub struct SolidOutcome {
 /// Why a solve in space has no result.
 #[derive(Debug, thiserror::Error)]
 pub enum SolidRunError {
-    /// The decomposition needs every body held by its supports.
+    /// A body its supports leave free that the closed contact points do not hold.
     #[error(
-        "body '{body}' is not held by its supports ({free} of its 6 rigid motions are free): the \
-         decomposition in space factorises every body alone, so each needs supports that hold it; \
-         `contactdd monolithic` solves bodies that only closed contact holds"
+        "body '{body}' is not held: its supports leave {free} of its 6 rigid motions free, and at \
+         Newton step {step} no closed contact point resists one of them; check that its loads and \
+         supports press it against its partners"
     )]
     NotHeld {
         /// The body.
         body: String,
         /// The rigid motions its supports leave free.
         free: usize,
+        /// The Newton step.
+        step: usize,
     },
     /// The solver's error.
     #[error(transparent)]
@@ -69,24 +71,13 @@ pub enum SolidRunError {
 /// neither its supports nor closed points hold, a closed set that does not settle, a pair that
 /// cannot be built).
 pub fn run_solid(model: &SolidModel, solver: SolidSolver) -> Result<SolidOutcome, SolidRunError> {
-    if solver == SolidSolver::Decomposition {
-        for b in &model.bodies {
-            let dofs: Vec<usize> = b.prescribed.iter().map(|&(d, _)| d).collect();
-            let free = free_rigid_modes(&b.mesh, &dofs);
-            if free > 0 {
-                return Err(SolidRunError::NotHeld {
-                    body: b.name.clone(),
-                    free,
-                });
-            }
-        }
-    }
     let bodies = model.body_specs();
     let pairs = model.pair_specs();
     let solution = match solver {
         SolidSolver::Decomposition => solve_solid_dd(&bodies, &pairs),
         SolidSolver::Monolithic => solve_solid_monolithic(&bodies, &pairs),
-    }?;
+    }
+    .map_err(|e| named(model, e))?;
     let balance = solid_balance(&bodies, &pairs, &solution)?;
     // The contact law holds to rounding when the pressures come from the displacements; a
     // looser law means the reported pressures are not those of the field.
@@ -111,4 +102,20 @@ pub fn run_solid(model: &SolidModel, solver: SolidSolver) -> Result<SolidOutcome
         balance,
         reason,
     })
+}
+
+/// The solver's error with the body's name where it names one.
+fn named(model: &SolidModel, e: SolidContactError) -> SolidRunError {
+    match e {
+        SolidContactError::NotHeld { body, step } => {
+            let b = &model.bodies[body];
+            let dofs: Vec<usize> = b.prescribed.iter().map(|&(d, _)| d).collect();
+            SolidRunError::NotHeld {
+                body: b.name.clone(),
+                free: free_rigid_modes(&b.mesh, &dofs),
+                step,
+            }
+        }
+        e => SolidRunError::Contact(e),
+    }
 }

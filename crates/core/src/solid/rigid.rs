@@ -61,19 +61,18 @@ impl RigidModes {
     }
 }
 
-/// The rigid motions of `mesh` that the prescribed DOFs `prescribed` leave free: the number of
-/// independent combinations of the six modes that vanish on every prescribed DOF (0 for a held
-/// body). A mode counts as held when the prescribed DOFs see it at more than 1e-8 of its size
-/// (relative eigenvalue of the modes' Gram matrix on those DOFs).
-pub fn free_rigid_modes(mesh: &SolidMesh, prescribed: &[usize]) -> usize {
+/// The rigid motions of `mesh` that the prescribed DOFs `prescribed` leave free, as DOF vectors:
+/// a basis of the combinations of the six modes that vanish on every prescribed DOF (empty for a
+/// held body). A combination counts as held when the prescribed DOFs see it at more than 1e-8 of
+/// its size over the body (relative eigenvalue of the modes' Gram matrix on those DOFs).
+pub fn free_rigid_motions(mesh: &SolidMesh, prescribed: &[usize]) -> Vec<Vec<f64>> {
     let modes = RigidModes::new(mesh);
     let mut gram = nalgebra::Matrix6::<f64>::zeros();
     for &d in prescribed {
-        let (v, c) = (d / 3, d % 3);
-        let Some(x) = mesh.nodes().get(v) else {
+        let Some(x) = mesh.nodes().get(d / 3) else {
             continue;
         };
-        let row = modes.at(*x)[c];
+        let row = modes.at(*x)[d % 3];
         for i in 0..NUM_MODES_3D {
             for j in 0..NUM_MODES_3D {
                 gram[(i, j)] += row[i] * row[j];
@@ -82,8 +81,67 @@ pub fn free_rigid_modes(mesh: &SolidMesh, prescribed: &[usize]) -> usize {
     }
     // Against the Gram matrix of the modes over the whole body: every node's three DOFs.
     let whole = mesh.num_nodes() as f64;
-    gram.symmetric_eigenvalues()
+    let eigen = gram.symmetric_eigen();
+    let vectors = modes.vectors(mesh);
+    (0..NUM_MODES_3D)
+        .filter(|&k| eigen.eigenvalues[k] <= 1e-8 * whole)
+        .map(|k| {
+            let c = eigen.eigenvectors.column(k);
+            let mut motion = vec![0.0; num_dofs(mesh.num_nodes())];
+            for (m, mode) in vectors.iter().enumerate() {
+                motion
+                    .iter_mut()
+                    .zip(mode)
+                    .for_each(|(x, v)| *x += c[m] * v);
+            }
+            motion
+        })
+        .collect()
+}
+
+/// The number of rigid motions the prescribed DOFs leave free ([`free_rigid_motions`]).
+pub fn free_rigid_modes(mesh: &SolidMesh, prescribed: &[usize]) -> usize {
+    free_rigid_motions(mesh, prescribed).len()
+}
+
+/// One DOF per motion of `motions` (DOF vectors), outside `prescribed`, such that the motions'
+/// values there form a well-conditioned square matrix: greedy pivoting, each pick the DOF where
+/// what the earlier picks leave of the motions is largest. Prescribing zero there removes the
+/// motions from a stiffness matrix and keeps it a generalised inverse for loads that do no work
+/// along them (docs/three-d.md, "Floating bodies").
+pub fn pin_dofs(motions: &[Vec<f64>], prescribed: &[usize]) -> Vec<usize> {
+    let k = motions.len();
+    let n = motions.first().map_or(0, Vec::len);
+    let mut taken = vec![false; n];
+    prescribed
         .iter()
-        .filter(|&&l| l <= 1e-8 * whole)
-        .count()
+        .filter(|&&d| d < n)
+        .for_each(|&d| taken[d] = true);
+    // rows[i k..(i + 1) k] = the k values of the motions at DOF i, reduced by the picks so far.
+    let mut rows = vec![0.0; n * k];
+    for (q, m) in motions.iter().enumerate() {
+        m.iter().enumerate().for_each(|(i, v)| rows[i * k + q] = *v);
+    }
+    let norm = |r: &[f64]| r.iter().map(|x| x * x).sum::<f64>();
+    let mut pins = Vec::with_capacity(k);
+    for _ in 0..k {
+        let Some(best) = (0..n)
+            .filter(|&i| !taken[i])
+            .max_by(|&a, &b| norm(&rows[a * k..][..k]).total_cmp(&norm(&rows[b * k..][..k])))
+        else {
+            break;
+        };
+        let length = norm(&rows[best * k..][..k]).sqrt();
+        if length == 0.0 {
+            break;
+        }
+        let v: Vec<f64> = rows[best * k..][..k].iter().map(|x| x / length).collect();
+        for r in rows.chunks_mut(k) {
+            let d: f64 = r.iter().zip(&v).map(|(a, b)| a * b).sum();
+            r.iter_mut().zip(&v).for_each(|(a, b)| *a -= d * b);
+        }
+        taken[best] = true;
+        pins.push(best);
+    }
+    pins
 }

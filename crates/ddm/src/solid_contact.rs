@@ -1,0 +1,240 @@
+//! The contact problem in space, as the solvers take it: the bodies and pairs, the contact points'
+//! rows over the coupled DOFs (the dual mortar rows of [`crate::contact3d`] along each point's
+//! normal), the solution and the errors. [`crate::solid_monolithic`] and [`crate::solid_dd`]
+//! solve it.
+//!
+//! Point j of a pair (a node of its reference surface) reads the approach s_j = a_jᵀu, a_j its
+//! normal row over both bodies' DOFs ([`PointRows`]), and carries the pressure
+//! p_j = max(0, s_j − d_j)/θ, d_j its mortar gap. Its force w_j p_j acts along −a_j, so the two
+//! sides receive equal and opposite forces.
+
+use contactdd_core::solid::{dof, SolidMesh, TetOrder};
+
+use crate::contact3d::{dual_mortar, PointRows, Side, Surface, SurfaceError, TriangleIndex};
+
+/// One body: its mesh, its 6 × 6 elasticity matrix, its prescribed DOFs (own numbering) and its
+/// nodal loads.
+pub struct SolidBodySpec<'a> {
+    /// The tetrahedral mesh with named faces.
+    pub mesh: &'a SolidMesh,
+    /// The elasticity matrix (Voigt).
+    pub elasticity: [[f64; 6]; 6],
+    /// (DOF, value) of every prescribed DOF.
+    pub prescribed: Vec<(usize, f64)>,
+    /// The nodal loads (3 per node).
+    pub load: Vec<f64>,
+}
+
+/// A contact pair: a face of one body (the reference side, whose nodes are the contact points)
+/// against a face of another, with its penalty θ and the distance along the reference normals
+/// within which the partner is searched.
+pub struct SolidPairSpec {
+    /// (body, face) of the reference side.
+    pub reference: (usize, String),
+    /// (body, face) of the partner side.
+    pub partner: (usize, String),
+    /// The penalty: the overlap per unit pressure.
+    pub theta: f64,
+    /// How far along the normals a partner counts.
+    pub search: f64,
+}
+
+/// Why the reference cannot solve a problem.
+#[derive(Debug, thiserror::Error)]
+pub enum SolidContactError {
+    /// A pair names a body or face that does not exist, or a face is not a surface.
+    #[error("contact pair {pair}: {message}")]
+    Pair {
+        /// The pair.
+        pair: usize,
+        /// What is wrong.
+        message: String,
+    },
+    /// A face's triangles are not a contact surface.
+    #[error("contact pair {pair}: {source}")]
+    Surface {
+        /// The pair.
+        pair: usize,
+        /// The surface's error.
+        source: SurfaceError,
+    },
+    /// The coupled system is singular or cannot be factorised: a body that neither supports nor
+    /// closed contact points hold.
+    #[error("the coupled system cannot be factorised at Newton step {step}: {message} (a body that neither its supports nor closed contact points hold?)")]
+    Factor {
+        /// The Newton step.
+        step: usize,
+        /// The factorisation's message.
+        message: String,
+    },
+    /// A body that its supports leave free to move rigidly, and that the closed points do not
+    /// hold at a Newton step (nothing resists one of its free motions).
+    #[error("body {body}: at Newton step {step} the closed contact points do not hold it (its supports leave it free to move rigidly, and no closed point resists the motion)")]
+    NotHeld {
+        /// The body.
+        body: usize,
+        /// The Newton step.
+        step: usize,
+    },
+    /// The closed set did not settle.
+    #[error("the closed set did not settle in {steps} Newton steps")]
+    NotSettled {
+        /// The steps taken.
+        steps: usize,
+    },
+}
+
+/// A contact point of the solution.
+#[derive(Clone, Debug, PartialEq)]
+pub struct SolidContactPoint {
+    /// The pair.
+    pub pair: usize,
+    /// The node of the reference body.
+    pub node: usize,
+    /// Its position.
+    pub position: [f64; 3],
+    /// Its weight ∫ φ_j dA.
+    pub weight: f64,
+    /// Its initial gap along the normal.
+    pub gap: f64,
+    /// Its contact pressure (≥ 0).
+    pub pressure: f64,
+}
+
+/// The solution of the reference.
+#[derive(Clone, Debug)]
+pub struct SolidContactSolution {
+    /// Every body's displacement (3 per node).
+    pub displacements: Vec<Vec<f64>>,
+    /// The contact points of every pair that have a partner.
+    pub points: Vec<SolidContactPoint>,
+    /// The Newton steps taken (the last one confirms the closed set).
+    pub newton_steps: usize,
+    /// (phase, seconds) of the solve, in order.
+    pub timings: Vec<(&'static str, f64)>,
+}
+
+/// The most Newton steps before the closed set counts as not settling.
+pub const MAX_STEPS: usize = 60;
+
+/// A contact point's normal row over the coupled DOFs (the bodies' DOFs one after the other)
+/// and its data.
+pub(crate) struct Row {
+    pub(crate) point: SolidContactPoint,
+    pub(crate) a: Vec<(usize, f64)>,
+    /// The pair's penalty θ.
+    pub(crate) theta: f64,
+}
+
+/// Where every body's DOFs start in the coupled numbering, and their total.
+pub(crate) fn offsets(bodies: &[SolidBodySpec<'_>]) -> (Vec<usize>, usize) {
+    let mut at = 0;
+    let offsets = (bodies.iter())
+        .map(|b| {
+            let o = at;
+            at += 3 * b.mesh.num_nodes();
+            o
+        })
+        .collect();
+    (offsets, at)
+}
+
+/// The rows of the contact points of every pair.
+pub(crate) fn contact_rows(
+    bodies: &[SolidBodySpec<'_>],
+    offsets: &[usize],
+    pairs: &[SolidPairSpec],
+) -> Result<Vec<Row>, SolidContactError> {
+    let mut rows = Vec::new();
+    for (p, pair) in pairs.iter().enumerate() {
+        rows.extend(pair_rows(bodies, offsets, p, pair)?);
+    }
+    Ok(rows)
+}
+
+/// The rows of the contact points of pair `p`.
+fn pair_rows(
+    bodies: &[SolidBodySpec<'_>],
+    offsets: &[usize],
+    p: usize,
+    pair: &SolidPairSpec,
+) -> Result<Vec<Row>, SolidContactError> {
+    let side =
+        |(b, face): &(usize, String)| -> Result<(Surface, Vec<usize>, usize), SolidContactError> {
+            let body = bodies.get(*b).ok_or_else(|| SolidContactError::Pair {
+                pair: p,
+                message: format!("no body {b} (there are {})", bodies.len()),
+            })?;
+            let (surface, nodes) = face_surface(body.mesh, face).map_err(|e| match e {
+                FaceError::Name(message) => SolidContactError::Pair { pair: p, message },
+                FaceError::Surface(source) => SolidContactError::Surface { pair: p, source },
+            })?;
+            Ok((surface, nodes, offsets[*b]))
+        };
+    let (reference, ref_nodes, ref_at) = side(&pair.reference)?;
+    let (partner, par_nodes, par_at) = side(&pair.partner)?;
+    let index = TriangleIndex::new(&partner);
+    let mortar = dual_mortar(&reference, &partner, &index, pair.search);
+    let mut rows = Vec::new();
+    for (j, row) in mortar.iter().enumerate() {
+        let Some(row) = row else { continue };
+        let point = PointRows::new(j, reference.normals()[j], row);
+        let nu = point.frame[0];
+        let a = (point.terms.iter())
+            .flat_map(|&(side, k, c)| {
+                let at = match side {
+                    Side::Reference => ref_at + dof(ref_nodes[k], 0),
+                    Side::Partner => par_at + dof(par_nodes[k], 0),
+                };
+                (0..3).map(move |d| (at + d, c * nu[d]))
+            })
+            .filter(|e| e.1 != 0.0)
+            .collect();
+        let weight = reference.weights()[j];
+        rows.push(Row {
+            point: SolidContactPoint {
+                pair: p,
+                node: ref_nodes[j],
+                position: reference.points()[j],
+                weight,
+                gap: row.gap,
+                pressure: 0.0,
+            },
+            a,
+            theta: pair.theta,
+        });
+    }
+    Ok(rows)
+}
+
+/// Why a face is not a contact surface.
+enum FaceError {
+    Name(String),
+    Surface(SurfaceError),
+}
+
+/// The triangles of face `name` of `mesh` as a surface over its own nodes (6-node triangles split
+/// into four), and each surface node's mesh node.
+fn face_surface(mesh: &SolidMesh, name: &str) -> Result<(Surface, Vec<usize>), FaceError> {
+    let flat = mesh
+        .face(name)
+        .map_err(|e| FaceError::Name(e.to_string()))?;
+    let mut nodes: Vec<usize> = flat.to_vec();
+    nodes.sort_unstable();
+    nodes.dedup();
+    let local = |v: &usize| nodes.binary_search(v).unwrap_or(0);
+    let points = nodes.iter().map(|&v| mesh.nodes()[v]).collect();
+    let surface = match mesh.order() {
+        TetOrder::P1 => {
+            let triangles = flat.chunks(3).map(|t| [0, 1, 2].map(|i| local(&t[i])));
+            Surface::new(points, triangles.collect())
+        }
+        TetOrder::P2 => {
+            let triangles: Vec<[usize; 6]> = (flat.chunks(6))
+                .map(|t| [0, 1, 2, 3, 4, 5].map(|i| local(&t[i])))
+                .collect();
+            Surface::from_quadratic(points, &triangles)
+        }
+    };
+    Ok((surface.map_err(FaceError::Surface)?, nodes))
+}

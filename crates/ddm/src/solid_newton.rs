@@ -1,0 +1,200 @@
+//! The semismooth Newton iteration of the decomposition in space, on the contact points and the
+//! amplitudes of the rigid motions that supports leave free (docs/three-d.md, "Floating bodies").
+//!
+//! With s = s⁰ − G p + E α the approaches (E_jq: the approach of point j under free motion q) and
+//! the closed set χ, a step solves
+//!
+//!   (θ I + G)_χχ p_χ − E_χ α = (s⁰ − d)_χ,     E_χᵀ W_χ p_χ = e,
+//!
+//! the second block the balance of every free motion: the contact forces do the work e of the
+//! loads along it. It closes the points with s_j > d_j, as the monolithic reference does.
+
+use contactdd_core::solid::rigid::free_rigid_motions;
+use faer::Mat;
+use rayon::prelude::*;
+
+use crate::newton::linear::lu_solve_in_place;
+use crate::solid_contact::{Row, SolidBodySpec, SolidContactError, MAX_STEPS};
+
+/// The rigid motions that supports leave free, of all bodies: E = [E_b] (m × k, the approach of
+/// every point under each motion), the loads' work along each, and whose each is.
+pub(crate) struct Motions {
+    pub(crate) e: Mat<f64>,
+    pub(crate) work: Vec<f64>,
+    /// The body of every motion.
+    pub(crate) body: Vec<usize>,
+    /// Where each body's motions start among the k.
+    pub(crate) first: Vec<usize>,
+    /// Every body's motions as DOF vectors (empty for a held body).
+    pub(crate) of_body: Vec<Vec<Vec<f64>>>,
+}
+
+impl Motions {
+    /// The free motions of `bodies` (their DOFs from `offsets` in the coupled numbering) and
+    /// their approaches at the points of `rows`.
+    pub(crate) fn new(bodies: &[SolidBodySpec<'_>], offsets: &[usize], rows: &[Row]) -> Motions {
+        let of_body: Vec<Vec<Vec<f64>>> = (bodies.par_iter())
+            .map(|b| {
+                let prescribed: Vec<usize> = b.prescribed.iter().map(|&(d, _)| d).collect();
+                free_rigid_motions(b.mesh, &prescribed)
+            })
+            .collect();
+        let (mut first, mut work, mut body) = (Vec::new(), Vec::new(), Vec::new());
+        for (b, (spec, motions)) in bodies.iter().zip(&of_body).enumerate() {
+            first.push(work.len());
+            for z in motions {
+                work.push(z.iter().zip(&spec.load).map(|(a, f)| a * f).sum());
+                body.push(b);
+            }
+        }
+        let e = Mat::<f64>::from_fn(rows.len(), work.len(), |j, q| {
+            let (b, z) = (body[q], &of_body[body[q]][q - first[body[q]]]);
+            let range = offsets[b]..offsets[b] + z.len();
+            (rows[j].a.iter())
+                .filter(|(i, _)| range.contains(i))
+                .map(|&(i, v)| v * z[i - offsets[b]])
+                .sum()
+        });
+        Motions {
+            e,
+            work,
+            body,
+            first,
+            of_body,
+        }
+    }
+}
+
+/// The first closed set: the points whose gap is closed (d_j ≤ 0), and for every body whose free
+/// motions those leave unresisted, its points of smallest gap, one by one, until they resist
+/// every motion (a body that starts apart from its partners, or touches them at one point whose
+/// gap rounds above zero). Shared by the decomposition and the monolithic reference.
+pub(crate) fn start(rows: &[Row], motions: &Motions) -> Vec<bool> {
+    let mut closed: Vec<bool> = rows.iter().map(|r| r.point.gap <= 0.0).collect();
+    for b in 0..motions.first.len() {
+        let cols: Vec<usize> = (0..motions.body.len())
+            .filter(|&q| motions.body[q] == b)
+            .collect();
+        let mut candidates: Vec<usize> = (0..rows.len())
+            .filter(|&j| !closed[j] && cols.iter().any(|&q| motions.e[(j, q)] != 0.0))
+            .collect();
+        candidates.sort_by(|&x, &y| rows[x].point.gap.total_cmp(&rows[y].point.gap));
+        let mut next = candidates.into_iter();
+        while !cols.is_empty() && !holds(&closed, motions, &cols) {
+            let Some(j) = next.next() else { break };
+            closed[j] = true;
+        }
+    }
+    closed
+}
+
+/// The pressures, the motions' amplitudes and the steps taken (the last one confirms the closed
+/// set), from the points whose gap is closed.
+pub(crate) fn newton(
+    rows: &[Row],
+    g: &Mat<f64>,
+    s0: &[f64],
+    motions: &Motions,
+) -> Result<(Vec<f64>, Vec<f64>, usize), SolidContactError> {
+    let m = rows.len();
+    let k = motions.work.len();
+    let mut closed = start(rows, motions);
+    for step in 1..=MAX_STEPS {
+        let set: Vec<usize> = (0..m).filter(|&j| closed[j]).collect();
+        if let Some(body) = unheld(&set, motions) {
+            return Err(SolidContactError::NotHeld { body, step });
+        }
+        let (p, alpha) = step_solve(rows, g, s0, motions, &set, step)?;
+        let s: Vec<f64> = (0..m)
+            .map(|j| {
+                let contact: f64 = (0..m).map(|l| g[(j, l)] * p[l]).sum();
+                let rigid: f64 = (0..k).map(|q| motions.e[(j, q)] * alpha[q]).sum();
+                s0[j] - contact + rigid
+            })
+            .collect();
+        let next: Vec<bool> = (0..m).map(|j| s[j] > rows[j].point.gap).collect();
+        if next == closed {
+            let p = (0..m)
+                .map(|j| ((s[j] - rows[j].point.gap) / rows[j].theta).max(0.0))
+                .collect();
+            return Ok((p, alpha, step));
+        }
+        closed = next;
+    }
+    Err(SolidContactError::NotSettled { steps: MAX_STEPS })
+}
+
+/// The Newton system of the closed set `set`, solved: the pressures (zero off the set) and the
+/// motions' amplitudes.
+fn step_solve(
+    rows: &[Row],
+    g: &Mat<f64>,
+    s0: &[f64],
+    motions: &Motions,
+    set: &[usize],
+    step: usize,
+) -> Result<(Vec<f64>, Vec<f64>), SolidContactError> {
+    let (c, k) = (set.len(), motions.work.len());
+    let mut p = vec![0.0; rows.len()];
+    if c + k == 0 {
+        return Ok((p, Vec::new()));
+    }
+    let e = &motions.e;
+    let mut a = Mat::<f64>::from_fn(c + k, c + k, |x, y| match (x < c, y < c) {
+        (true, true) => g[(set[x], set[y])],
+        (true, false) => -e[(set[x], y - c)],
+        (false, true) => rows[set[y]].point.weight * e[(set[y], x - c)],
+        (false, false) => 0.0,
+    });
+    let mut rhs = Mat::<f64>::from_fn(c + k, 1, |x, _| {
+        if x < c {
+            s0[set[x]] - rows[set[x]].point.gap
+        } else {
+            motions.work[x - c]
+        }
+    });
+    for (x, &j) in set.iter().enumerate() {
+        a[(x, x)] += rows[j].theta;
+    }
+    lu_solve_in_place(a, &mut rhs).ok_or(SolidContactError::Factor {
+        step,
+        message: "no memory for the Newton system".into(),
+    })?;
+    if !(0..c + k).all(|x| rhs[(x, 0)].is_finite()) {
+        let body = motions.body.first().copied().unwrap_or(0);
+        return Err(SolidContactError::NotHeld { body, step });
+    }
+    set.iter()
+        .enumerate()
+        .for_each(|(x, &j)| p[j] = rhs[(x, 0)]);
+    Ok((p, (0..k).map(|q| rhs[(c + q, 0)]).collect()))
+}
+
+/// A body some of whose free motions no closed point of `set` resists.
+fn unheld(set: &[usize], motions: &Motions) -> Option<usize> {
+    let mut closed = vec![false; motions.e.nrows()];
+    set.iter().for_each(|&j| closed[j] = true);
+    (0..motions.first.len()).find(|&b| {
+        let cols: Vec<usize> = (0..motions.body.len())
+            .filter(|&q| motions.body[q] == b)
+            .collect();
+        !cols.is_empty() && !holds(&closed, motions, &cols)
+    })
+}
+
+/// Whether the closed points resist every combination of the motions `cols`: the Gram matrix of
+/// their approaches on the closed points, E_χ,bᵀ E_χ,b, has no eigenvalue at rounding level.
+fn holds(closed: &[bool], motions: &Motions, cols: &[usize]) -> bool {
+    let n = cols.len();
+    let set: Vec<usize> = (0..closed.len()).filter(|&j| closed[j]).collect();
+    let gram = nalgebra::DMatrix::<f64>::from_fn(n, n, |x, y| {
+        set.iter()
+            .map(|&j| motions.e[(j, cols[x])] * motions.e[(j, cols[y])])
+            .sum()
+    });
+    let eigen = gram.symmetric_eigenvalues();
+    let largest = eigen.iter().fold(0.0f64, |a, &l| a.max(l.abs()));
+    let smallest = eigen.iter().fold(f64::INFINITY, |a, &l| a.min(l));
+    // Rounding of a sum of squares: the unit roundoff times the terms.
+    smallest > f64::EPSILON * set.len().max(1) as f64 * largest
+}
