@@ -246,3 +246,9 @@ def test_bad_arguments(blocks):
     with pytest.raises(contactdd.ContactddError, match="problem: expected"):
         space.solve("examples/space/blocks.toml")
 
+
+def test_the_planar_reader_points_to_space(blocks_file):
+    with pytest.raises(contactdd.ContactddError, match="contactdd.space.Problem.from_toml"):
+        contactdd.Problem.from_toml(blocks_file)
+    with pytest.raises(contactdd.ContactddError, match="^<string>: a problem in space"):
+        contactdd.Problem.from_toml_str(blocks_file.read_text())
