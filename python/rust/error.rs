@@ -157,3 +157,24 @@ pub fn panic_error(payload: Box<dyn std::any::Any + Send>) -> PyErr {
         "internal error in contactdd (please report it): {what}"
     ))
 }
+
+/// The error of a planar load of the file `path`: for a problem in space, the message that says
+/// which reader takes it.
+pub fn planar_file(e: LoadError, path: &std::path::Path) -> PyErr {
+    match std::fs::read_to_string(path) {
+        Ok(text) => planar_text(e, &text, &path.display().to_string()),
+        Err(_) => setup_error(e),
+    }
+}
+
+/// The error of a planar load of `text` (named `source`): for a problem in space
+/// (`dimension = 3`), the message that says which reader takes it.
+pub fn planar_text(e: LoadError, text: &str, source: &str) -> PyErr {
+    if contactdd_io::solid_problem::is_solid_text(text) {
+        return input_error(format!(
+            "{source}: a problem in space (dimension = 3): read it with \
+             contactdd.space.Problem.from_toml or from_toml_str"
+        ));
+    }
+    setup_error(e)
+}

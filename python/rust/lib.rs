@@ -35,6 +35,8 @@ mod results;
 mod run;
 mod schema;
 mod solve;
+mod space;
+mod space_result;
 mod state;
 mod steps;
 
@@ -301,6 +303,11 @@ fn _contactdd(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(monolithic, m)?)?;
     m.add_function(wrap_pyfunction!(notch_benchmark, m)?)?;
     m.add_function(wrap_pyfunction!(files::_read_result_file, m)?)?;
+    m.add("SpaceProblem", py.get_type::<space::SpaceProblem>())?;
+    m.add("SpaceResult", py.get_type::<space_result::SpaceResult>())?;
+    m.add("SpaceBody", py.get_type::<space_result::SpaceBody>())?;
+    m.add_function(wrap_pyfunction!(space::space_solve, m)?)?;
+    m.add_function(wrap_pyfunction!(space::space_monolithic, m)?)?;
     m.add("ContactddError", py.get_type::<ContactddError>())?;
     m.add("ConvergenceError", convergence_error_type(py)?)?;
     m.add("ContactddIOError", io_error_type(py)?)?;

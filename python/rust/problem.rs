@@ -26,7 +26,7 @@ use contactdd_io::write_problem;
 use contactdd_io::{LoadError, Loaded};
 
 use crate::convert::{from_name, name_of};
-use crate::error::{input_error, setup_error};
+use crate::error::{input_error, planar_file, planar_text, setup_error};
 use crate::options::{gamma_to_py, GammaArg, SolverOptions};
 use crate::schema::{
     absolute_mesh_paths, body_error, boundary_edges, float_array, indices, inline_spec,
@@ -198,7 +198,7 @@ impl Problem {
     fn from_toml(py: Python<'_>, path: PathBuf) -> PyResult<Problem> {
         let loaded = py
             .detach(|| contactdd_io::load_file(&path))
-            .map_err(setup_error)?;
+            .map_err(|e| planar_file(e, &path))?;
         let base = path.parent().unwrap_or(Path::new(""));
         Problem::from_loaded(loaded, None, base)
     }
@@ -221,7 +221,7 @@ impl Problem {
         let base = base_dir.unwrap_or_else(|| PathBuf::from("."));
         let loaded = py
             .detach(|| contactdd_io::load_str(text, source, Path::new(&base)))
-            .map_err(setup_error)?;
+            .map_err(|e| planar_text(e, text, source))?;
         Problem::from_loaded(loaded, Some("problem"), &base)
     }
 

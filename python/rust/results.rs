@@ -206,7 +206,7 @@ fn bodies_list(
 }
 
 /// A JSON value as Python data (through Python's `json` module).
-fn json_to_py<'py>(py: Python<'py>, value: &serde_json::Value) -> PyResult<Bound<'py, PyAny>> {
+pub fn json_to_py<'py>(py: Python<'py>, value: &serde_json::Value) -> PyResult<Bound<'py, PyAny>> {
     let text = serde_json::to_string(value)
         .map_err(|e| input_error(format!("cannot serialize the summary: {e}")))?;
     py.import("json")?.call_method1("loads", (text,))

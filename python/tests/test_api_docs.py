@@ -31,8 +31,10 @@ def test_committed_page_is_up_to_date(rendered):
 def test_every_exported_name_is_documented(rendered):
     headings = [line for line in rendered.splitlines() if line.startswith(("#", "- `"))]
     for name in contactdd.__all__:
-        if name == "plot":
-            name = "contactdd.plot"
+        if name in ("plot", "space"):
+            name = f"contactdd.{name}"
         assert any(f"`{name}" in h for h in headings), name
     for name in contactdd.plot.__all__:
         assert any(f"`plot.{name}(" in h for h in headings), name
+    for name in contactdd.space.__all__:
+        assert any(f"`space.{name}" in h for h in headings), name

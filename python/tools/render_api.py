@@ -4,7 +4,8 @@
 Usage: python python/tools/render_api.py [OUTPUT]   (default: docs/python-api.md of the checkout)
 
 The page lists, in the order of ``contactdd.__all__``: the functions, the classes with their
-methods and attributes, the exceptions, the constants and the ``contactdd.plot`` functions, each
+methods and attributes, the exceptions, the constants, the ``contactdd.plot`` functions and the
+functions and classes of ``contactdd.space`` (problems in space), each
 with its signature (where Python can introspect it) and its docstring. Docstrings are Google style
 with reST markup; :func:`markdown` turns their sections into lists and their ``::`` blocks into
 code. python/tests/test_api_docs.py checks that the committed page is what this script renders.
@@ -125,9 +126,18 @@ def render() -> str:
     plot = ["# `contactdd.plot`", "", markdown(inspect.getdoc(contactdd.plot)), ""]
     for name in contactdd.plot.__all__:
         plot += routine(f"plot.{name}", getattr(contactdd.plot, name), "##")
+    space = ["# `contactdd.space`", "", markdown(inspect.getdoc(contactdd.space)), ""]
+    for name in contactdd.space.__all__:
+        obj = getattr(contactdd.space, name)
+        if inspect.isroutine(obj):
+            space += routine(f"space.{name}", obj, "##")
+    for name in contactdd.space.__all__:
+        obj = getattr(contactdd.space, name)
+        if isinstance(obj, type):
+            space += class_section(f"space.{name}", obj)
     parts = [HEADER, "# Functions", "", *groups["functions"], "# Classes", "",
              *groups["classes"], "# Exceptions", "", *groups["errors"], "# Constants", "",
-             *groups["data"], "", *plot]
+             *groups["data"], "", *plot, *space]
     return re.sub(r"\n{3,}", "\n\n", "\n".join(parts)).strip() + "\n"
 
 

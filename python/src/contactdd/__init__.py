@@ -18,6 +18,9 @@ Quick start::
 
 The numerics run in Rust (the ``contactdd._contactdd`` extension); this package is a thin layer
 that converts numpy arrays and runs the solves with the GIL released.
+
+Problems in space (tetrahedral bodies, problem files with ``dimension = 3``) are solved by
+:mod:`contactdd.space`; :func:`load_results` reads their result folders too.
 """
 
 from . import _arguments
@@ -40,7 +43,7 @@ from ._contactdd import (
 )
 from .meshes import add_gmsh_body, add_meshio_body
 from .results_folder import load_results
-from . import _pickle, plot  # noqa: F401  (_pickle: ContactddIOError's pickling)
+from . import _pickle, plot, space  # noqa: F401  (_pickle: ContactddIOError's pickling)
 
 # Arguments that do not convert raise ContactddError naming the argument (see _arguments).
 solve, solve_steps, sweep, monolithic, notch_benchmark = (
@@ -67,5 +70,6 @@ __all__ = [
     "plot",
     "solve",
     "solve_steps",
+    "space",
     "sweep",
 ]

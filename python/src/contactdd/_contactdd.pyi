@@ -18,6 +18,11 @@ __all__ = [
     "sweep",
     "monolithic",
     "notch_benchmark",
+    "SpaceProblem",
+    "SpaceResult",
+    "SpaceBody",
+    "space_solve",
+    "space_monolithic",
     "ContactddError",
     "ContactddIOError",
     "ConvergenceError",
@@ -46,9 +51,10 @@ class ContactddIOError(ContactddError, OSError):
     """A problem file or a mesh file it names cannot be read (``errno`` as the system gave it)."""
 
 class ConvergenceError(ContactddError, RuntimeError):
-    """The domain decomposition iteration did not converge; ``result`` holds the partial result."""
+    """The domain decomposition iteration did not converge; ``result`` holds the partial result
+    (a ``SpaceResult`` for a problem in space)."""
 
-    result: Result
+    result: Union[Result, SpaceResult]
 
 class _SupportDict(TypedDict, total=False):
     boundary: str
@@ -485,3 +491,90 @@ def monolithic(
 
 def notch_benchmark(nx: int = 32, ny: int = 16, order: Literal["p1", "p2"] = "p1") -> Problem:
     """The paper's two-body notch benchmark as a Problem (at most 4 000 000 cells per block)."""
+
+# Problems in space (dimension = 3); contactdd.space exports them as Problem, Result, Body,
+# solve and monolithic.
+
+@final
+class SpaceProblem:
+    """A contact problem in space (a problem file with dimension = 3), every body meshed."""
+
+    @staticmethod
+    def from_toml(path: _StrPath) -> SpaceProblem: ...
+    @staticmethod
+    def from_toml_str(text: str, base_dir: Optional[_StrPath] = None, source: str = "<string>") -> SpaceProblem: ...
+    @property
+    def name(self) -> str: ...
+    @property
+    def bodies(self) -> list[str]: ...
+    @property
+    def contacts(self) -> list[str]: ...
+    @property
+    def balance_tol(self) -> float: ...
+    @property
+    def threads(self) -> Optional[int]: ...
+
+@final
+class SpaceBody:
+    """The fields of one tetrahedral body."""
+
+    @property
+    def name(self) -> str: ...
+    @property
+    def order(self) -> Literal["p1", "p2"]: ...
+    @property
+    def nodes(self) -> npt.NDArray[np.float64]:
+        """(n, 3) node coordinates."""
+    @property
+    def tetrahedra(self) -> npt.NDArray[np.int64]:
+        """(m, 4) or (m, 10) node indices, in Gmsh's order."""
+    @property
+    def displacement(self) -> npt.NDArray[np.float64]:
+        """(n, 3) displacement."""
+    @property
+    def stress(self) -> npt.NDArray[np.float64]:
+        """(n, 6) nodal stress [xx, yy, zz, yz, xz, xy]."""
+    @property
+    def von_mises(self) -> npt.NDArray[np.float64]: ...
+    @property
+    def imbalance(self) -> float: ...
+
+@final
+class SpaceResult:
+    """The result of a solve in space."""
+
+    @property
+    def converged(self) -> bool: ...
+    @property
+    def reason(self) -> Optional[str]: ...
+    @property
+    def solver(self) -> str: ...
+    @property
+    def newton_steps(self) -> int: ...
+    @property
+    def bodies(self) -> list[SpaceBody]: ...
+    @property
+    def contact(self) -> dict[str, npt.NDArray[Any]]:
+        """pair, body, node, x, y, z, weight, gap, pressure: one entry per contact point."""
+    @property
+    def balance(self) -> dict[str, float]:
+        """worst, tol, contact_law."""
+    @property
+    def timing(self) -> dict[str, float]: ...
+    def summary(self) -> dict[str, Any]: ...
+    def write(self, directory: _StrPath) -> list[str]: ...
+
+def space_solve(
+    problem: SpaceProblem,
+    threads: Optional[int] = None,
+    balance_tol: Optional[float] = None,
+    out: Optional[_StrPath] = None,
+    check: bool = True,
+) -> SpaceResult: ...
+def space_monolithic(
+    problem: SpaceProblem,
+    threads: Optional[int] = None,
+    balance_tol: Optional[float] = None,
+    out: Optional[_StrPath] = None,
+    check: bool = True,
+) -> SpaceResult: ...

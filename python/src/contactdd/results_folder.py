@@ -36,13 +36,21 @@ from ._contactdd import (
     ContactddIOError,
     MonolithicResult,
     Result,
+    SpaceBody,
+    SpaceResult,
     _read_result_file,
 )
 
 __all__ = ["load_results"]
 
-#: VTK cell types of the meshes contactdd writes: nodes per cell.
-_CELL_NODES = {5: 3, 22: 6}
+#: VTK cell types of the meshes contactdd writes: nodes per cell (triangles 5 and 22 in the
+#: plane, tetrahedra 10 and 24 in space).
+_CELL_NODES = {5: 3, 22: 6, 10: 4, 24: 10}
+#: The nodes of VTK's quadratic tetrahedron (type 24) in Gmsh's order, which the bodies use: the
+#: mid-edge nodes of the edges 2-3 and 1-3 are swapped (crates/io/src/solid_vtu.rs).
+_VTK_TET10_TO_GMSH = [0, 1, 2, 3, 4, 5, 6, 7, 9, 8]
+#: The header of contact.csv of a result in space.
+_SPACE_CONTACT = ["pair", "body", "node", "x", "y", "z", "weight", "gap", "pressure"]
 _DTYPES = {"Float64": np.float64, "Float32": np.float32, "Int64": np.int64, "UInt8": np.uint8}
 #: The largest uncompressed size of a zlib block read, relative to its compressed size (deflate
 #: expands by at most 1032 times), and in bytes: the bounds of crates/io/src/vtu_read.rs.
@@ -50,20 +58,24 @@ _MAX_EXPANSION = 1040
 _MAX_BLOCK = 1 << 30
 
 
-def load_results(directory: Union[str, "os.PathLike[str]"]) -> Union[Result, MonolithicResult]:
+def load_results(
+    directory: Union[str, "os.PathLike[str]"],
+) -> Union[Result, MonolithicResult, SpaceResult]:
     """Reads a result folder back into the result object of the solve that wrote it.
 
     A folder of a domain decomposition solve gives a :class:`Result`, one of a monolithic solve a
     :class:`MonolithicResult`, with the attributes the solve's result had (for a folder of load
     steps: the last step, with its ``load_factor``), so plots and analysis work on saved runs.
     Its :meth:`~Result.summary` is the folder's ``summary.json`` without the manifest; it cannot
-    :meth:`~Result.write_vtu` again.
+    :meth:`~Result.write_vtu` again. A folder of a problem in space (``"dimension": 3`` in
+    ``summary.json``, by either solver) gives a :class:`contactdd.space.Result`, its bodies read
+    from the ``.vtu`` files of tetrahedra and its contact points from ``contact.csv``.
 
     Args:
         directory: the result folder.
 
     Returns:
-        A :class:`Result` or :class:`MonolithicResult`.
+        A :class:`Result`, :class:`MonolithicResult` or :class:`contactdd.space.Result`.
 
     Raises:
         ContactddIOError: the folder or one of its files cannot be read, or ``directory`` is a
@@ -92,7 +104,8 @@ def load_results(directory: Union[str, "os.PathLike[str]"]) -> Union[Result, Mon
                              f"({type(e).__name__}: {e})") from e
 
 
-def _load(folder: Path, summary: dict[str, Any]) -> Union[Result, MonolithicResult]:
+def _load(folder: Path,
+          summary: dict[str, Any]) -> Union[Result, MonolithicResult, SpaceResult]:
     files = summary.pop("files")
     for name in files:
         if not _plain(name):
@@ -118,6 +131,8 @@ def _load(folder: Path, summary: dict[str, Any]) -> Union[Result, MonolithicResu
         raise ContactddError(f"{folder}: summary.json lists VTU files of {len(pieces)} bodies "
                              f"for {len(infos)} bodies")
     last = pieces[len(pieces) - len(infos):]
+    if summary.get("dimension") == 3:
+        return _space(summary, files, last, infos, folder)
     bodies = [_body(piece, info) for piece, info in zip(last, infos)]
     names = [b["name"] for b in infos]
     contact = [_contact(p, folder) for p in _key(summary, "contact", folder)]
@@ -311,9 +326,12 @@ def _pieces(path: Path) -> list[tuple[Path, Union[bytes, None], ET.Element, bool
     return [(path, raw, piece, compressed) for piece in pieces]
 
 
-def _body(piece: tuple[Path, Union[bytes, None], ET.Element, bool], info: dict[str, Any]) -> Body:
+def _body(piece: tuple[Path, Union[bytes, None], ET.Element, bool],
+          info: dict[str, Any]) -> Union[Body, SpaceBody]:
     path, raw, element, compressed = piece
     try:
+        if "imbalance" in info and "tetrahedra" in info:
+            return _parse_space_body(element, raw, compressed, info)
         return _parse_body(element, raw, compressed, info)
     except (KeyError, ValueError, IndexError, TypeError) as e:
         raise ContactddError(f"{path}: not a VTU file of contactdd ({type(e).__name__}: {e})") from e
@@ -340,6 +358,81 @@ def _parse_body(piece: ET.Element, raw: Union[bytes, None], compressed: bool,
         "von_mises": arrays["von_mises"],
         # The body's σ_n ≤ 0 at its contact nodes; the file's contact_pressure is p ≥ 0.
         "contact_pressure": arrays["sigma_n"],
+    })
+
+
+def _parse_space_body(piece: ET.Element, raw: Union[bytes, None], compressed: bool,
+                      info: dict[str, Any]) -> SpaceBody:
+    """The tetrahedral body of the ``Piece`` element ``piece``, its P2 tetrahedra put back into
+    Gmsh's node order."""
+    arrays = {a.get("Name"): _data_array(a, raw, compressed) for a in piece.iter("DataArray")}
+    points = piece.find("./Points/DataArray")
+    if points is None:
+        raise ValueError("no Points")
+    types = arrays["types"]
+    if len(types) == 0 or np.any(types != types[0]) or int(types[0]) not in (10, 24):
+        raise ValueError("expected tetrahedra of one VTK type, 10 or 24")
+    tetrahedra = arrays["connectivity"].astype(np.int64).reshape(-1, _CELL_NODES[int(types[0])])
+    if int(types[0]) == 24:
+        tetrahedra = np.ascontiguousarray(tetrahedra[:, _VTK_TET10_TO_GMSH])
+    tensor = arrays["stress"].reshape(-1, 9)
+    return SpaceBody._from_state({
+        "name": info["name"],
+        "order": info["order"],
+        "nodes": np.ascontiguousarray(_data_array(points, raw, compressed).reshape(-1, 3)),
+        "tetrahedra": tetrahedra,
+        "displacement": np.ascontiguousarray(arrays["displacement"].reshape(-1, 3)),
+        # The 3 × 3 tensor (xx xy xz yx yy yz zx zy zz) as Voigt [xx, yy, zz, yz, xz, xy].
+        "stress": np.ascontiguousarray(tensor[:, [0, 4, 8, 5, 2, 1]]),
+        "von_mises": arrays["von_mises"],
+        "imbalance": _number(info["imbalance"]),
+    })
+
+
+def _space_contact(path: Path) -> dict[str, np.ndarray]:
+    """``contact.csv`` of a result in space: its columns as numpy arrays."""
+    try:
+        lines = list(csv.reader(_read_text(path).splitlines()))
+    except csv.Error as e:
+        raise ContactddError(f"{path}: not a CSV file of contactdd: {e}") from e
+    if not lines or lines[0] != _SPACE_CONTACT:
+        raise ContactddError(f"{path}: expected the header {','.join(_SPACE_CONTACT)}")
+    rows = lines[1:]
+    if any(len(r) != len(_SPACE_CONTACT) for r in rows):
+        raise ContactddError(f"{path}: expected {len(_SPACE_CONTACT)} columns")
+    columns = list(zip(*rows)) if rows else [()] * len(_SPACE_CONTACT)
+    table: dict[str, np.ndarray] = {
+        "pair": np.array(columns[0], dtype=str),
+        "body": np.array(columns[1], dtype=str),
+    }
+    try:
+        table["node"] = np.array([int(v) for v in columns[2]], dtype=np.int64)
+        for name, values in zip(_SPACE_CONTACT[3:], columns[3:]):
+            table[name] = np.array([float(v) for v in values], dtype=np.float64)
+    except (ValueError, OverflowError) as e:
+        raise ContactddError(f"{path}: not a CSV file of contactdd: {e}") from e
+    return table
+
+
+def _space(summary: dict[str, Any], files: list[str],
+           pieces: list[tuple[Path, Union[bytes, None], ET.Element, bool]],
+           infos: list[dict[str, Any]], folder: Path) -> SpaceResult:
+    """The result of a problem in space: bodies from the VTU pieces, contact points from
+    contact.csv, the rest from summary.json."""
+    if "contact.csv" not in files:
+        raise ContactddError(f"{folder}: summary.json lists no contact.csv")
+    bodies = [_body(piece, info) for piece, info in zip(pieces, infos)]
+    balance = _key(summary, "balance", folder)
+    return SpaceResult._from_state({
+        "converged": bool(_key(summary, "converged", folder)),
+        "reason": _key(summary, "reason", folder),
+        "solver": _key(summary, "solver", folder),
+        "newton_steps": _key(summary, "newton_steps", folder),
+        "bodies": bodies,
+        "contact": _space_contact(folder / "contact.csv"),
+        "balance": {k: _number(balance[k]) for k in ("worst", "tol", "contact_law")},
+        "timing": {k: _number(v) for k, v in _key(summary, "timings", folder).items()},
+        "summary": summary,
     })
 
 
