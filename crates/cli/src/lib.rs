@@ -50,6 +50,7 @@ mod plot_draw;
 mod plot_friction;
 mod plot_history;
 mod plot_mesh;
+mod plot_space;
 mod plot_steps;
 mod plot_sweep;
 mod rank_use;

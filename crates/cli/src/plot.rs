@@ -1,5 +1,6 @@
 //! `contactdd plot`: figures from a result folder (contact pressure, gap and status, friction,
-//! convergence history, load steps, the deformed bodies coloured by von Mises stress) or from the CSV of a
+//! convergence history, load steps, the deformed bodies coloured by von Mises stress; in space, the
+//! pressure map and radial profile of `plot_space`) or from the CSV of a
 //! sweep (iterations against γ), as SVG and PNG. Only the files that `summary.json` lists are
 //! read, each a plain name in the folder, a regular file itself (no link followed, no FIFO or
 //! device opened) and of bounded size ([`crate::plot_data::read_text`]); figures are written only
@@ -14,7 +15,8 @@ use crate::args::PlotArgs;
 use crate::plot_data::{monitor_name, Summary, Table, Units};
 use crate::plot_history::History;
 use crate::{
-    load, plot_contact, plot_friction, plot_history, plot_mesh, plot_steps, plot_sweep, Exit,
+    load, plot_contact, plot_friction, plot_history, plot_mesh, plot_space, plot_steps, plot_sweep,
+    Exit,
 };
 
 /// `contactdd plot`.
@@ -67,7 +69,10 @@ fn folder(args: &PlotArgs, dir: &Path) -> Result<(Vec<PathBuf>, PathBuf)> {
         dir
     };
     let mut summary = Summary::read(dir)?;
-    if let Some(file) = &args.problem {
+    let space = summary.dimension == 3;
+    if space {
+        plot_space::notes(args);
+    } else if let Some(file) = &args.problem {
         let loaded = load(file)?;
         // What the result records wins: a solve may have overridden the file's tol.
         summary.tol = summary.tol.or(Some(loaded.settings.tol));
@@ -79,7 +84,11 @@ fn folder(args: &PlotArgs, dir: &Path) -> Result<(Vec<PathBuf>, PathBuf)> {
     let units = Units::parse(args.units.as_deref().or(summary.units.as_deref()));
     let out = args.out.clone().unwrap_or_else(|| dir.join("plots"));
     let created = output_folder(&out)?;
-    let written = draw(args, dir, &summary, &units, &out);
+    let written = if space {
+        plot_space::figures(dir, &summary, &units, &out, &args.format)
+    } else {
+        draw(args, dir, &summary, &units, &out)
+    };
     if created && !written.as_ref().is_ok_and(|w| !w.is_empty()) {
         // Leave no empty folder behind (`remove_dir` removes only an empty one).
         let _ = std::fs::remove_dir(&out);

@@ -106,6 +106,20 @@ pub struct Summary {
     /// The friction law of each frictional pair: its name and its `contact[].friction` object
     /// as written (read by the friction figure, which checks it).
     pub friction: Vec<(String, Value)>,
+    /// The space dimension: 3 for a result in space (`"dimension": 3`), else 2.
+    pub dimension: u8,
+    /// Each pair's name with its `normal_force` and `peak_pressure`, when recorded.
+    pub totals: Vec<PairTotals>,
+}
+
+/// What `summary.json` records of a pair's pressure: its resultant and its peak.
+pub struct PairTotals {
+    /// The pair's name.
+    pub name: String,
+    /// The resultant normal force Σ w p.
+    pub normal_force: Option<f64>,
+    /// The largest contact pressure.
+    pub peak_pressure: Option<f64>,
 }
 
 impl Summary {
@@ -155,6 +169,25 @@ impl Summary {
             .into_iter()
             .filter_map(|(pair, law)| Some((pair, law?)))
             .collect();
+        let dimension = keys.dimension()?;
+        // Only a summary in space records the totals read for its figures.
+        let in_space = |k: &Keys, p: &Value| match dimension {
+            3 => Some(Some((name(k, p)?, p.as_object()?.clone()))),
+            _ => Some(None),
+        };
+        let totals = keys.items("contact", "a pair with a \"name\"", in_space)?;
+        let totals = totals
+            .into_iter()
+            .flatten()
+            .map(|(name, pair)| {
+                let k = keys.with(&pair);
+                Ok(PairTotals {
+                    name,
+                    normal_force: k.number("normal_force")?,
+                    peak_pressure: k.number("peak_pressure")?,
+                })
+            })
+            .collect::<Result<_>>()?;
         Ok(Summary {
             tol: keys.number("tol")?,
             stop_measure: keys.string("stop_measure")?,
@@ -164,6 +197,8 @@ impl Summary {
             steps: keys.items("steps", "a load step", |_, _| Some(()))?.len(),
             monitor: keys.monitor()?,
             friction,
+            dimension,
+            totals,
         })
     }
 
@@ -304,6 +339,18 @@ impl<'a> Keys<'a> {
             .enumerate()
             .map(|(i, v)| item(self, v).ok_or_else(|| at(i, v)))
             .collect()
+    }
+
+    /// The space dimension `dimension`: 2 when absent (a planar result), else 2 or 3.
+    fn dimension(&self) -> Result<u8> {
+        match self.number("dimension")? {
+            None => Ok(2),
+            Some(d) if d == 2.0 || d == 3.0 => Ok(d as u8),
+            Some(d) => bail!(
+                "'{}': \"dimension\" is {d}, expected 2 or 3",
+                self.path.display()
+            ),
+        }
     }
 
     /// The monitored boundary `monitor: {"body", "boundary"}`, if present.

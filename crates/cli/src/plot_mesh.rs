@@ -20,7 +20,7 @@ use crate::plot_data::{Units, VTU_LIMIT};
 use crate::plot_draw::{linear, ok, render, span, tick, Figure, Frame};
 
 /// Pixels right of the chart for the colour bar.
-const BAR_WIDTH: u32 = 140;
+pub const BAR_WIDTH: u32 = 140;
 
 /// One body: deformed corner coordinates of its triangles and their von Mises stress.
 struct Body {
@@ -256,7 +256,7 @@ impl Bodies<'_> {
 }
 
 /// Viridis at 0 ≤ t ≤ 1, from five stops.
-fn viridis(t: f64) -> RGBColor {
+pub fn viridis(t: f64) -> RGBColor {
     const STOPS: [(f64, f64, f64); 5] = [
         (68.0, 1.0, 84.0),
         (59.0, 82.0, 139.0),
@@ -325,7 +325,8 @@ impl Figure for Bodies<'_> {
             });
             ok(chart.draw_series(lines))?;
         }
-        colour_bar(&right, &stress, &data, self.units)
+        let label = Units::label("von Mises", self.units.stress.as_deref());
+        colour_bar(&right, &stress, &data, label)
     }
 }
 
@@ -396,7 +397,7 @@ fn unlink(next: &mut std::collections::HashMap<usize, Vec<usize>>, a: usize, b: 
 
 /// Widens `x` or `y` about its centre so that one unit is as long on both axes, for a plotting
 /// area `aspect` = width / height.
-fn equal_aspect(x: Range<f64>, y: Range<f64>, aspect: f64) -> (Range<f64>, Range<f64>) {
+pub fn equal_aspect(x: Range<f64>, y: Range<f64>, aspect: f64) -> (Range<f64>, Range<f64>) {
     let (dx, dy) = (x.end - x.start, y.end - y.start);
     let widen = |r: Range<f64>, to: f64| {
         let c = 0.5 * (r.start + r.end);
@@ -409,16 +410,15 @@ fn equal_aspect(x: Range<f64>, y: Range<f64>, aspect: f64) -> (Range<f64>, Range
     }
 }
 
-/// The colour bar of `range` with five labelled ticks, in `area`, and below it the range of
-/// the stresses drawn (`data`).
-fn colour_bar<DB: DrawingBackend>(
+/// The colour bar of `range` with five labelled ticks, in `area`, titled `label`, and below it
+/// the range of the values drawn (`data`).
+pub fn colour_bar<DB: DrawingBackend>(
     area: &DrawingArea<DB, Shift>,
     range: &Range<f64>,
     data: &Range<f64>,
-    units: &Units,
+    label: String,
 ) -> Result<()> {
     let (top, bottom, steps) = (60, 400, 85);
-    let label = Units::label("von Mises", units.stress.as_deref());
     ok(area.draw(&Text::new(label, (0, top - 30), ("sans-serif", 14))))?;
     let step = (bottom - top) / steps;
     for k in 0..steps {
@@ -449,7 +449,7 @@ fn colour_bar<DB: DrawingBackend>(
 }
 
 /// `v` to four significant digits, without trailing zeros (powers of ten beyond 1e5).
-fn significant(v: f64) -> String {
+pub fn significant(v: f64) -> String {
     if v == 0.0 || !v.is_finite() {
         return format!("{v}");
     }
