@@ -212,3 +212,52 @@ fn the_stack_carries_the_pressure_through_every_interface() {
         assert!((v - 100.0).abs() <= 1e-8 * 100.0, "{v}");
     }
 }
+
+/// cylinder_block.toml, a slice in plane strain, against examples/hertz.toml solved in the plane
+/// and against Hertz: the peak pressure within 1 % of both, the half-width of the pressures'
+/// second moment (∫x² p = a²/4 ∫p for Hertz's p) within 1 % of Hertz's a.
+#[test]
+fn the_slice_reproduces_the_planar_hertz_example() {
+    let root = Scratch::new("slice");
+    let examples = Path::new(env!("CARGO_MANIFEST_DIR")).join("examples");
+    solve(
+        &examples.join("space/cylinder_block.toml"),
+        "solve",
+        &root.path().join("space"),
+    );
+    let planar = root.path().join("plane");
+    solve(&examples.join("hertz.toml"), "solve", &planar);
+    let text = std::fs::read_to_string(root.path().join("space/contact.csv")).unwrap();
+    let (mut force, mut moment, mut peak) = (0.0, 0.0, 0.0f64);
+    for line in text.lines().skip(1) {
+        let v: Vec<f64> = line
+            .split(',')
+            .skip(3)
+            .map(|x| x.parse().unwrap())
+            .collect();
+        force += v[3] * v[5];
+        moment += v[3] * v[5] * v[0] * v[0];
+        peak = peak.max(v[5]);
+    }
+    let plane = std::fs::read_to_string(planar.join("contact.csv")).unwrap();
+    let mut lines = plane.lines();
+    let header: Vec<&str> = lines.next().unwrap().split(',').collect();
+    let col = header.iter().position(|h| *h == "pressure").unwrap();
+    let planar_peak = lines
+        .map(|l| l.split(',').nth(col).unwrap().parse::<f64>().unwrap())
+        .fold(0.0, f64::max);
+    let e_star = 2.1e5 / (2.0 * (1.0 - 0.09));
+    let a = (4.0 * 900.0 / (std::f64::consts::PI * e_star)).sqrt();
+    let p0 = 2.0 * 900.0 / (std::f64::consts::PI * a);
+    let a_pressures = (4.0 * moment / force).sqrt();
+    eprintln!("peak {peak} (plane {planar_peak}, Hertz {p0}), a {a_pressures} (Hertz {a})");
+    assert!(
+        (peak / planar_peak - 1.0).abs() < 0.01,
+        "{peak} against {planar_peak}"
+    );
+    assert!((peak / p0 - 1.0).abs() < 0.01, "{peak} against {p0}");
+    assert!(
+        (a_pressures / a - 1.0).abs() < 0.01,
+        "{a_pressures} against {a}"
+    );
+}

@@ -160,6 +160,7 @@ pub fn solid_summary(model: &SolidModel, outcome: &SolidOutcome) -> Value {
         .collect();
     json!({
         "problem": model.name,
+        "units": model.units,
         "dimension": 3,
         "solver": outcome.solver.label(),
         "converged": outcome.converged,

@@ -84,6 +84,8 @@ pub struct SolidPairModel {
 pub struct SolidModel {
     /// The problem's name.
     pub name: String,
+    /// The free-text note on the units, if the file gives one.
+    pub units: Option<String>,
     /// The bodies.
     pub bodies: Vec<SolidBodyModel>,
     /// The pairs.
@@ -184,6 +186,7 @@ pub fn resolve_solid(problem: SolidProblem, base: &Path, stem: &str) -> Result<S
     }
     Ok(SolidModel {
         name: problem.name.clone().unwrap_or_else(|| stem.to_string()),
+        units: problem.units.clone(),
         bodies,
         pairs,
         balance_tol,
