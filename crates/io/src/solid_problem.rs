@@ -126,6 +126,19 @@ pub enum SolidMeshSpec {
         #[serde(default, skip_serializing_if = "Option::is_none")]
         scale: Option<f64>,
     },
+    /// A mesh written out in the file itself (what Python writes for a body built from arrays).
+    #[serde(rename_all = "kebab-case")]
+    Inline {
+        /// Node coordinates `[x, y, z]`.
+        nodes: Vec<[f64; 3]>,
+        /// Node indices per tetrahedron: 4 (P1) or 10 (P2, Gmsh's order: vertices, then the
+        /// mid-edge nodes of edges 0-1, 1-2, 0-2, 0-3, 2-3, 1-3).
+        tetrahedra: Vec<Vec<usize>>,
+        /// Named faces: their triangles, 3 node indices each (6 for P2: vertices, then the
+        /// mid-edge nodes of edges 0-1, 1-2, 2-0).
+        #[serde(default)]
+        faces: BTreeMap<String, Vec<Vec<usize>>>,
+    },
 }
 
 fn p1() -> Order {

@@ -281,6 +281,11 @@ fn build_mesh(spec: &SolidMeshSpec, base: &Path) -> Result<SolidMesh, String> {
             };
             mesh.mesh().map_err(|e| format!("mesh: {e}"))
         }
+        SolidMeshSpec::Inline {
+            nodes,
+            tetrahedra,
+            faces,
+        } => inline_mesh(nodes, tetrahedra, faces),
         SolidMeshSpec::Gmsh {
             file,
             volume,
@@ -306,6 +311,39 @@ fn build_mesh(spec: &SolidMeshSpec, base: &Path) -> Result<SolidMesh, String> {
                 .map_err(|e| format!("mesh: {e}"))
         }
     }
+}
+
+/// A mesh given in the file: every tetrahedron of 4 or every one of 10 nodes, faces of 3 or 6.
+fn inline_mesh(
+    nodes: &[[f64; 3]],
+    tetrahedra: &[Vec<usize>],
+    faces: &std::collections::BTreeMap<String, Vec<Vec<usize>>>,
+) -> Result<SolidMesh, String> {
+    let order = match tetrahedra.first().map(Vec::len) {
+        Some(4) => TetOrder::P1,
+        Some(10) => TetOrder::P2,
+        Some(n) => return Err(format!("mesh: a tetrahedron has 4 or 10 nodes, not {n}")),
+        None => return Err("mesh: no tetrahedra".into()),
+    };
+    let (npt, npf) = (order.nodes_per_tet(), order.nodes_per_face());
+    if let Some(e) = tetrahedra.iter().position(|t| t.len() != npt) {
+        return Err(format!(
+            "mesh: tetrahedron {e} has {} nodes, the first has {npt}",
+            tetrahedra[e].len()
+        ));
+    }
+    let mut named = Vec::with_capacity(faces.len());
+    for (name, triangles) in faces {
+        if let Some(t) = triangles.iter().position(|t| t.len() != npf) {
+            return Err(format!(
+                "mesh: face '{}': triangle {t} has not {npf} nodes",
+                shown(name)
+            ));
+        }
+        named.push((name.clone(), triangles.concat()));
+    }
+    SolidMesh::new(nodes.to_vec(), order, tetrahedra.concat(), named)
+        .map_err(|e| format!("mesh: {e}"))
 }
 
 /// The pair `c` over the built `bodies`.
