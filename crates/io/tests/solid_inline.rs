@@ -68,5 +68,8 @@ fn a_tetrahedron_of_the_wrong_size_is_refused() {
     )
     .unwrap();
     let err = resolve_solid(problem, Path::new("."), "x").unwrap_err();
-    assert!(err.contains("body 'upper'") && err.contains("tetrahedron 1"), "{err}");
+    assert!(
+        err.contains("body 'upper'") && err.contains("tetrahedron 1"),
+        "{err}"
+    );
 }
