@@ -36,7 +36,9 @@ mod run;
 mod schema;
 mod solve;
 mod space;
+mod space_problem;
 mod space_result;
+mod space_schema;
 mod state;
 mod steps;
 
@@ -303,7 +305,7 @@ fn _contactdd(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(monolithic, m)?)?;
     m.add_function(wrap_pyfunction!(notch_benchmark, m)?)?;
     m.add_function(wrap_pyfunction!(files::_read_result_file, m)?)?;
-    m.add("SpaceProblem", py.get_type::<space::SpaceProblem>())?;
+    m.add("SpaceProblem", py.get_type::<space_problem::SpaceProblem>())?;
     m.add("SpaceResult", py.get_type::<space_result::SpaceResult>())?;
     m.add("SpaceBody", py.get_type::<space_result::SpaceBody>())?;
     m.add_function(wrap_pyfunction!(space::space_solve, m)?)?;

@@ -66,6 +66,16 @@ class _LoadDict(TypedDict, total=False):
     boundary: str
     value: Union[float, Sequence[float]]
 
+class _SpaceSupportDict(TypedDict, total=False):
+    boundary: str
+    component: Literal["x", "y", "z", "all"]
+    value: float
+
+class _SpaceLoadDict(TypedDict, total=False):
+    kind: Literal["pressure", "traction", "body-force"]
+    boundary: str
+    value: Union[float, Sequence[float]]
+
 class _GapDict(TypedDict, total=False):
     kind: Literal["notch", "uniform"]
     r0: float
@@ -497,14 +507,80 @@ def notch_benchmark(nx: int = 32, ny: int = 16, order: Literal["p1", "p2"] = "p1
 
 @final
 class SpaceProblem:
-    """A contact problem in space (a problem file with dimension = 3), every body meshed."""
+    """A contact problem in space (a problem file with dimension = 3, or built in code), every
+    body meshed."""
 
+    def __new__(cls, name: str = "problem", units: Optional[str] = None) -> SpaceProblem:
+        """An empty problem in space."""
     @staticmethod
     def from_toml(path: _StrPath) -> SpaceProblem: ...
     @staticmethod
     def from_toml_str(text: str, base_dir: Optional[_StrPath] = None, source: str = "<string>") -> SpaceProblem: ...
+    def to_toml(self) -> str:
+        """The problem as the text of a problem file in space, which from_toml_str reads back
+        to the same problem (Gmsh paths absolute, array and msh-text bodies inline)."""
+    def add_material(self, name: str, young: float, poisson: float) -> None:
+        """Defines a linear elastic isotropic material."""
+    def add_body(
+        self,
+        name: str,
+        nodes: _ArrayLikeFloat,
+        tetrahedra: _ArrayLikeInt,
+        faces: Mapping[str, _ArrayLikeInt],
+        material: str,
+        supports: Optional[Sequence[_SpaceSupportDict]] = None,
+        loads: Optional[Sequence[_SpaceLoadDict]] = None,
+    ) -> None:
+        """Adds a body on a tetrahedral mesh given as arrays ((n, 3) nodes, (m, 4|10)
+        tetrahedra, faces {name: (k, 3|6) triangles})."""
+    def add_box_body(
+        self,
+        name: str,
+        x: Tuple[float, float],
+        y: Tuple[float, float],
+        z: Tuple[float, float],
+        nx: int,
+        ny: int,
+        nz: int,
+        material: str,
+        order: Literal["p1", "p2"] = "p1",
+        supports: Optional[Sequence[_SpaceSupportDict]] = None,
+        loads: Optional[Sequence[_SpaceLoadDict]] = None,
+    ) -> None:
+        """Adds a body meshed as a structured box (faces x-, x+, y-, y+, z-, z+)."""
+    def add_msh_body(
+        self,
+        name: str,
+        text: str,
+        material: str,
+        volume: Optional[str] = None,
+        supports: Optional[Sequence[_SpaceSupportDict]] = None,
+        loads: Optional[Sequence[_SpaceLoadDict]] = None,
+        source: str = "<msh text>",
+    ) -> None:
+        """Adds a body on the tetrahedra of the text of a Gmsh .msh file (the rules of a
+        kind = "gmsh" mesh); the mesh is kept inline."""
+    def add_contact(
+        self,
+        bodies: Tuple[str, str],
+        boundaries: Tuple[str, str],
+        c: Optional[float] = None,
+        h: Optional[float] = None,
+        theta: Optional[float] = None,
+        search: Optional[float] = None,
+        name: Optional[str] = None,
+    ) -> None:
+        """Adds a contact pair; penalty by the rod model (c, h) or theta directly."""
+    def solver(self, balance_tol: Optional[float] = None, threads: Optional[int] = None) -> None:
+        """Sets the [solver] table (None keeps a value)."""
+    def boundaries(self, body: str) -> list[str]:
+        """The names of the faces of a body."""
     @property
     def name(self) -> str: ...
+    @property
+    def units(self) -> Optional[str]: ...
+    @property
+    def materials(self) -> dict[str, _MaterialDict]: ...
     @property
     def bodies(self) -> list[str]: ...
     @property
