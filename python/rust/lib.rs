@@ -39,6 +39,7 @@ mod space;
 mod space_problem;
 mod space_result;
 mod space_schema;
+mod space_system;
 mod state;
 mod steps;
 
@@ -310,6 +311,7 @@ fn _contactdd(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("SpaceBody", py.get_type::<space_result::SpaceBody>())?;
     m.add_function(wrap_pyfunction!(space::space_solve, m)?)?;
     m.add_function(wrap_pyfunction!(space::space_monolithic, m)?)?;
+    m.add_function(wrap_pyfunction!(space_system::space_system, m)?)?;
     m.add("ContactddError", py.get_type::<ContactddError>())?;
     m.add("ConvergenceError", convergence_error_type(py)?)?;
     m.add("ContactddIOError", io_error_type(py)?)?;

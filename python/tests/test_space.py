@@ -252,3 +252,32 @@ def test_the_planar_reader_points_to_space(blocks_file):
         contactdd.Problem.from_toml(blocks_file)
     with pytest.raises(contactdd.ContactddError, match="^<string>: a problem in space"):
         contactdd.Problem.from_toml_str(blocks_file.read_text())
+
+
+def test_the_system_reproduces_the_solution(blocks):
+    """space.system's matrices and rows, applied to the result's displacements: every pressure
+    is max(0, a·u − gap)/θ, and K u − f + the contact forces vanish off the prescribed DOFs."""
+
+    def csr_times(data, indices, indptr, x):
+        return np.array([data[s:e] @ x[indices[s:e]] for s, e in zip(indptr[:-1], indptr[1:])])
+
+    result = space.solve(blocks)
+    system = space.system(blocks)
+    u = np.concatenate([b.displacement.ravel() for b in result.bodies])
+    assert len(u) == system["dofs"]
+    rows = system["rows"]
+    a = (rows["data"], rows["indices"], rows["indptr"])
+    law = np.maximum(csr_times(*a, u) - rows["gap"], 0.0) / rows["theta"]
+    pressure = result.contact["pressure"]
+    np.testing.assert_allclose(law, pressure, rtol=0, atol=1e-9 * pressure.max())
+    contact = np.zeros(len(u))
+    forces = rows["weight"] * pressure
+    for j, (s, e) in enumerate(zip(rows["indptr"][:-1], rows["indptr"][1:])):
+        np.subtract.at(contact, rows["indices"][s:e], forces[j] * rows["data"][s:e])
+    for at, body in zip(system["offsets"], system["bodies"]):
+        data, indices, indptr = body["stiffness"]
+        n = len(indptr) - 1
+        # K is symmetric: its CSC arrays are the CSR arrays of the same matrix.
+        r = csr_times(data, indices, indptr, u[at:at + n]) - body["load"] - contact[at:at + n]
+        free = np.setdiff1d(np.arange(n), body["prescribed_dofs"])
+        assert np.abs(r[free]).max() < 1e-9 * np.abs(contact).max()

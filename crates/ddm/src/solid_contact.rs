@@ -238,3 +238,35 @@ fn face_surface(mesh: &SolidMesh, name: &str) -> Result<(Surface, Vec<usize>), F
     };
     Ok((surface.map_err(FaceError::Surface)?, nodes))
 }
+
+/// One contact point's row as a peer solver takes it: its approach a·u over the coupled DOFs,
+/// and its data (gap d, nodal weight w, penalty θ: pressure max(0, a·u − d)/θ, force w p along −a).
+#[derive(Clone, Debug, PartialEq)]
+pub struct SolidContactRow {
+    /// The point (pair, node, position, weight, gap; pressure 0).
+    pub point: SolidContactPoint,
+    /// (coupled DOF, coefficient) of its approach.
+    pub approach: Vec<(usize, f64)>,
+    /// The pair's penalty θ.
+    pub theta: f64,
+}
+
+/// The discrete contact problem for another solver (a peer's monolithic Newton method, a
+/// check): where every body's DOFs start in the coupled numbering (3 per node, the bodies one
+/// after the other), their total, and the contact points' rows, in the order of
+/// [`SolidContactSolution::points`].
+pub fn solid_contact_rows(
+    bodies: &[SolidBodySpec<'_>],
+    pairs: &[SolidPairSpec],
+) -> Result<(Vec<usize>, usize, Vec<SolidContactRow>), SolidContactError> {
+    let (offsets, n) = offsets(bodies);
+    let rows = contact_rows(bodies, &offsets, pairs)?
+        .into_iter()
+        .map(|r| SolidContactRow {
+            point: r.point,
+            approach: r.a,
+            theta: r.theta,
+        })
+        .collect();
+    Ok((offsets, n, rows))
+}

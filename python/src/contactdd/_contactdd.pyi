@@ -23,6 +23,7 @@ __all__ = [
     "SpaceBody",
     "space_solve",
     "space_monolithic",
+    "space_system",
     "ContactddError",
     "ContactddIOError",
     "ConvergenceError",
@@ -654,3 +655,4 @@ def space_monolithic(
     out: Optional[_StrPath] = None,
     check: bool = True,
 ) -> SpaceResult: ...
+def space_system(problem: SpaceProblem) -> dict[str, Any]: ...

@@ -51,15 +51,25 @@ from ._contactdd import ContactddError
 from ._contactdd import SpaceBody as Body
 from ._contactdd import SpaceProblem as Problem
 from ._contactdd import SpaceResult as Result
-from ._contactdd import space_monolithic, space_solve
+from ._contactdd import space_monolithic, space_solve, space_system
 from .meshes import _gmsh, _meshio
 
-__all__ = ["Body", "Problem", "Result", "add_gmsh_body", "add_meshio_body", "monolithic", "solve"]
+__all__ = [
+    "Body",
+    "Problem",
+    "Result",
+    "add_gmsh_body",
+    "add_meshio_body",
+    "monolithic",
+    "solve",
+    "system",
+]
 
 # Arguments that do not convert raise ContactddError naming the argument (see _arguments).
 solve = _arguments.checked(space_solve)
 monolithic = _arguments.checked(space_monolithic)
-for _function, _name in ((solve, "solve"), (monolithic, "monolithic")):
+system = _arguments.checked(space_system)
+for _function, _name in ((solve, "solve"), (monolithic, "monolithic"), (system, "system")):
     _function.__name__ = _function.__qualname__ = _name
     _function.__module__ = __name__
 del _function, _name
