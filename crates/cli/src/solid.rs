@@ -7,10 +7,11 @@ use std::time::Instant;
 
 use anyhow::{bail, Context, Result};
 
+use contactdd_ddm::solid_contact::SolidProgress;
 use contactdd_io::body_vtus::safe_file_name;
 use contactdd_io::solid_problem::is_solid_text;
 use contactdd_io::solid_results::write_solid_results;
-use contactdd_io::solid_run::{run_solid, SolidOutcome, SolidSolver};
+use contactdd_io::solid_run::{run_solid_reported, SolidOutcome, SolidSolver};
 use contactdd_io::solid_setup::{load_solid_file, SolidModel};
 use contactdd_io::vtu::VtuLayout;
 
@@ -129,8 +130,13 @@ fn run(
         say!("solving by the {} …", solver.label());
     }
     let started = Instant::now();
+    let report = |p: SolidProgress| {
+        if !quiet {
+            say!("  {}", progress(model, p));
+        }
+    };
     let outcome = with_threads(threads, || {
-        run_solid(model, solver).map_err(|e| anyhow::anyhow!("{e}"))
+        run_solid_reported(model, solver, &report).map_err(|e| anyhow::anyhow!("{e}"))
     })?;
     let solve_time = started.elapsed().as_secs_f64();
     let written = write_solid_results(out, model, &outcome)
@@ -161,6 +167,22 @@ fn run(
             out.display()
         );
         Ok(Exit::NotConverged)
+    }
+}
+
+/// One progress line of the decomposition.
+fn progress(model: &SolidModel, p: SolidProgress) -> String {
+    match p {
+        SolidProgress::Geometry { points } => {
+            format!("contact geometry: {}", count(points, "point", "points"))
+        }
+        SolidProgress::Condensed { body, seconds } => format!(
+            "body {}: factorised and condensed ({seconds:.2} s to factorise)",
+            model.bodies[body].name
+        ),
+        SolidProgress::NewtonStep { step, closed } => {
+            format!("Newton step {step}: {closed} closed")
+        }
     }
 }
 

@@ -133,3 +133,23 @@ fn check_describes_and_collection_writes_one_file() {
     assert_eq!(summary["converged"], true);
     assert_eq!(summary["dimension"], 3);
 }
+
+#[test]
+fn a_solve_reports_its_progress_unless_quiet() {
+    let dir = temp("progress");
+    let o = run(&dir, "blocks.toml", &blocks(), &["solve"]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let out = String::from_utf8_lossy(&o.stdout);
+    for line in [
+        "contact geometry: 121 points",
+        "body lower: factorised",
+        "body upper: factorised",
+        "Newton step 1: 121 closed",
+        "converged in 1 Newton step",
+    ] {
+        assert!(out.contains(line), "{line}: {out}");
+    }
+    let o = run(&dir, "blocks.toml", &blocks(), &["solve", "-q"]);
+    let out = String::from_utf8_lossy(&o.stdout);
+    assert_eq!(out.lines().count(), 1, "{out}");
+}

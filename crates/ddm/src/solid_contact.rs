@@ -239,6 +239,30 @@ fn face_surface(mesh: &SolidMesh, name: &str) -> Result<(Surface, Vec<usize>), F
     Ok((surface.map_err(FaceError::Surface)?, nodes))
 }
 
+/// What the decomposition in space reports while it runs, for a progress display.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum SolidProgress {
+    /// The contact geometry is built: the points with a partner.
+    Geometry {
+        /// Their number.
+        points: usize,
+    },
+    /// A body is factorised and condensed on the contact points.
+    Condensed {
+        /// The body.
+        body: usize,
+        /// The seconds it took.
+        seconds: f64,
+    },
+    /// A Newton step solved its closed set.
+    NewtonStep {
+        /// The step (from 1).
+        step: usize,
+        /// The points its set closes.
+        closed: usize,
+    },
+}
+
 /// One contact point's row as a peer solver takes it: its approach a·u over the coupled DOFs,
 /// and its data (gap d, nodal weight w, penalty θ: pressure max(0, a·u − d)/θ, force w p along −a).
 #[derive(Clone, Debug, PartialEq)]

@@ -28,7 +28,7 @@ use rayon::prelude::*;
 
 use crate::solid_contact::{
     contact_rows, offsets, Row, SolidBodySpec, SolidContactError, SolidContactPoint,
-    SolidContactSolution, SolidPairSpec,
+    SolidContactSolution, SolidPairSpec, SolidProgress,
 };
 use crate::solid_newton::{newton, Motions};
 
@@ -51,14 +51,31 @@ pub fn solve_solid_dd(
     bodies: &[SolidBodySpec<'_>],
     pairs: &[SolidPairSpec],
 ) -> Result<SolidContactSolution, SolidContactError> {
+    solve_solid_dd_reported(bodies, pairs, &|_| {})
+}
+
+/// [`solve_solid_dd`], telling `report` of each phase as it ends (the same result).
+pub fn solve_solid_dd_reported(
+    bodies: &[SolidBodySpec<'_>],
+    pairs: &[SolidPairSpec],
+    report: &(dyn Fn(SolidProgress) + Sync),
+) -> Result<SolidContactSolution, SolidContactError> {
     let mut clock = Clock::default();
     let (offsets, _) = offsets(bodies);
     let rows = contact_rows(bodies, &offsets, pairs)?;
     clock.lap("contact geometry");
+    report(SolidProgress::Geometry { points: rows.len() });
     let motions = Motions::new(bodies, &offsets, &rows);
     let condensed: Vec<Condensed> = (bodies.par_iter().zip(&offsets).enumerate())
-        .map(|(b, (body, &at))| condense(b, (body, &motions.of_body[b]), at, &rows))
-        .collect::<Result<_, _>>()?;
+        .map(|(b, (body, &at))| {
+            let c = condense(b, (body, &motions.of_body[b]), at, &rows)?;
+            report(SolidProgress::Condensed {
+                body: b,
+                seconds: c.factorising,
+            });
+            Ok(c)
+        })
+        .collect::<Result<_, SolidContactError>>()?;
     let m = rows.len();
     let (mut g, mut s0) = (Mat::<f64>::zeros(m, m), vec![0.0; m]);
     for c in &condensed {
@@ -74,7 +91,7 @@ pub fn solve_solid_dd(
     clock
         .laps
         .push(("of which the slowest body's factorisation", slowest));
-    let (p, alpha, steps) = newton(&rows, &g, &s0, &motions)?;
+    let (p, alpha, steps) = newton(&rows, &g, &s0, &motions, report)?;
     clock.lap("iterate");
     let displacements = (condensed.par_iter().zip(bodies).zip(&motions.first))
         .map(|((c, body), &first)| {

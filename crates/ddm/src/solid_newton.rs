@@ -14,7 +14,7 @@ use faer::Mat;
 use rayon::prelude::*;
 
 use crate::newton::linear::lu_solve_in_place;
-use crate::solid_contact::{Row, SolidBodySpec, SolidContactError, MAX_STEPS};
+use crate::solid_contact::{Row, SolidBodySpec, SolidContactError, SolidProgress, MAX_STEPS};
 
 /// The rigid motions that supports leave free, of all bodies: E = [E_b] (m × k, the approach of
 /// every point under each motion), the loads' work along each, and whose each is.
@@ -95,6 +95,7 @@ pub(crate) fn newton(
     g: &Mat<f64>,
     s0: &[f64],
     motions: &Motions,
+    report: &dyn Fn(SolidProgress),
 ) -> Result<(Vec<f64>, Vec<f64>, usize), SolidContactError> {
     let m = rows.len();
     let k = motions.work.len();
@@ -105,6 +106,10 @@ pub(crate) fn newton(
             return Err(SolidContactError::NotHeld { body, step });
         }
         let (p, alpha) = step_solve(rows, g, s0, motions, &set, step)?;
+        report(SolidProgress::NewtonStep {
+            step,
+            closed: set.len(),
+        });
         let s: Vec<f64> = (0..m)
             .map(|j| {
                 let contact: f64 = (0..m).map(|l| g[(j, l)] * p[l]).sum();

@@ -4,7 +4,8 @@
 
 use contactdd_core::solid::rigid::free_rigid_modes;
 use contactdd_ddm::solid_balance::{solid_balance, SolidBalance};
-use contactdd_ddm::solid_dd::solve_solid_dd;
+use contactdd_ddm::solid_contact::SolidProgress;
+use contactdd_ddm::solid_dd::solve_solid_dd_reported;
 use contactdd_ddm::solid_monolithic::{
     solve_solid_monolithic, SolidContactError, SolidContactSolution,
 };
@@ -71,10 +72,19 @@ pub enum SolidRunError {
 /// neither its supports nor closed points hold, a closed set that does not settle, a pair that
 /// cannot be built).
 pub fn run_solid(model: &SolidModel, solver: SolidSolver) -> Result<SolidOutcome, SolidRunError> {
+    run_solid_reported(model, solver, &|_| {})
+}
+
+/// [`run_solid`], the decomposition telling `report` of each phase as it ends.
+pub fn run_solid_reported(
+    model: &SolidModel,
+    solver: SolidSolver,
+    report: &(dyn Fn(SolidProgress) + Sync),
+) -> Result<SolidOutcome, SolidRunError> {
     let bodies = model.body_specs();
     let pairs = model.pair_specs();
     let solution = match solver {
-        SolidSolver::Decomposition => solve_solid_dd(&bodies, &pairs),
+        SolidSolver::Decomposition => solve_solid_dd_reported(&bodies, &pairs, report),
         SolidSolver::Monolithic => solve_solid_monolithic(&bodies, &pairs),
     }
     .map_err(|e| named(model, e))?;
