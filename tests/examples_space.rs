@@ -6,7 +6,8 @@
 //! - every pair touches, and the contact forces on all bodies sum to zero (≤ 1e-10 of the
 //!   largest: every pair is balanced);
 //! - every body's loads, contact forces and reactions balance (the summary's imbalance ≤ 1e-10);
-//! - the decomposition and the reference agree on every contact pressure to 1e-8 of the peak.
+//! - the decomposition and the reference take the same Newton steps and agree on every contact
+//!   pressure to 1e-8 of the peak.
 //!
 //! `blocks.toml` is also compared with its closed form: a uniform pressure through a non-matching
 //! interface.
@@ -117,7 +118,12 @@ fn check_example(file: &Path, out: &Path) -> Result<(), String> {
             "DD and reference differ by {worst:e} (peak {peak})"
         ));
     }
-    let _ = reference;
+    if reference["newton_steps"] != dd["newton_steps"] {
+        return Err(format!(
+            "Newton steps: {} against the reference's {}",
+            dd["newton_steps"], reference["newton_steps"]
+        ));
+    }
     Ok(())
 }
 

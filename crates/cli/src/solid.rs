@@ -90,6 +90,11 @@ pub fn check(args: CheckArgs) -> Result<Exit> {
     refuse(&[("--friction", args.friction.is_some())])?;
     let model = load(&args.file)?;
     say!("{}", describe(&model).trim_end());
+    say!(
+        "solver: {} (contactdd monolithic: the {})",
+        SolidSolver::Decomposition.label(),
+        SolidSolver::Monolithic.label()
+    );
     say!("ok: '{}' is a valid problem", args.file.display());
     Ok(Exit::Success)
 }

@@ -112,6 +112,11 @@ fn check_describes_and_collection_writes_one_file() {
     assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
     let out = String::from_utf8_lossy(&o.stdout);
     assert!(out.contains("body upper: 847 nodes"), "{out}");
+    // The same solver name as the solve's console line and summary.json.
+    assert!(
+        out.contains("solver: interface newton (decomposition in space)"),
+        "{out}"
+    );
     let o = run(
         &dir,
         "blocks.toml",

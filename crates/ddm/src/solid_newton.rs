@@ -165,9 +165,13 @@ fn step_solve(
         step,
         message: "no memory for the Newton system".into(),
     })?;
+    // `unheld` has cleared every body's motions, so a non-finite step is a singular system
+    // of another kind: say so rather than name a body that may not be the cause.
     if !(0..c + k).all(|x| rhs[(x, 0)].is_finite()) {
-        let body = motions.body.first().copied().unwrap_or(0);
-        return Err(SolidContactError::NotHeld { body, step });
+        return Err(SolidContactError::Factor {
+            step,
+            message: "the Newton system is singular".into(),
+        });
     }
     set.iter()
         .enumerate()
