@@ -2,6 +2,7 @@
 //! refinement, or dense LU for systems whose blocks fill most of the matrix.
 
 use faer::dyn_stack::{MemBuffer, MemStack};
+use faer::perm::PermRef;
 use faer::sparse::linalg::lu::{factorize_symbolic_lu, LuSymbolicParams, NumericLu, SymbolicLu};
 use faer::sparse::linalg::{LuError, SupernodalThreshold};
 use faer::sparse::FaerError;
@@ -148,48 +149,70 @@ fn widen(a: SparseColMat<u32, f64>) -> SparseColMat<usize, f64> {
     SparseColMat::new(symbolic, val)
 }
 
-/// Solves the Newton system (given by its triplets) in place by dense LU with partial pivoting,
-/// for a system whose blocks fill most of it. Sequential, like [`sparse_solve`].
-pub(super) fn dense_solve(
-    trip: &[Triplet<usize, usize, f64>],
-    n: usize,
-    rhs: &mut Mat<f64>,
-) -> Option<()> {
+/// The dense n × n matrix of the Newton system given by its triplets (duplicates summed), for a
+/// system whose blocks fill most of it.
+pub(super) fn dense_matrix(trip: &[Triplet<usize, usize, f64>], n: usize) -> Mat<f64> {
     let mut a = Mat::<f64>::zeros(n, n);
     for t in trip {
         a[(t.row, t.col)] += t.val;
     }
-    lu_solve_in_place(a, rhs)
+    a
 }
 
 /// Solves `a x = rhs` in place of `rhs` by LU with partial pivoting, sequentially (the same bits on
 /// any number of threads); `None` if the workspace cannot be allocated.
-pub(crate) fn lu_solve_in_place(mut a: Mat<f64>, rhs: &mut Mat<f64>) -> Option<()> {
-    use faer::linalg::lu::partial_pivoting::{factor, solve};
-    let n = a.nrows();
-    let (mut perm, mut perm_inv) = (vec![0usize; n], vec![0usize; n]);
-    let req = factor::lu_in_place_scratch::<usize, f64>(n, n, Par::Seq, Default::default()).or(
-        solve::solve_in_place_scratch::<usize, f64>(n, rhs.ncols(), Par::Seq),
-    );
-    let mut mem = MemBuffer::try_new(req).ok()?;
-    let (_, p) = factor::lu_in_place(
-        a.as_mut(),
-        &mut perm,
-        &mut perm_inv,
-        Par::Seq,
-        MemStack::new(&mut mem),
-        Default::default(),
-    );
-    solve::solve_in_place_with_conj(
-        a.as_ref(),
-        a.as_ref(),
-        p,
-        Conj::No,
-        rhs.as_mut(),
-        Par::Seq,
-        MemStack::new(&mut mem),
-    );
-    Some(())
+pub(crate) fn lu_solve_in_place(a: Mat<f64>, rhs: &mut Mat<f64>) -> Option<()> {
+    DenseLu::new(a)?.solve(rhs)
+}
+
+/// A dense LU factorisation with partial pivoting, computed and applied sequentially.
+pub(super) struct DenseLu {
+    lu: Mat<f64>,
+    perm: Vec<usize>,
+    perm_inv: Vec<usize>,
+}
+
+impl DenseLu {
+    /// Factorises `a` in place; `None` if the workspace cannot be allocated.
+    pub(super) fn new(mut a: Mat<f64>) -> Option<DenseLu> {
+        use faer::linalg::lu::partial_pivoting::factor;
+        let n = a.nrows();
+        let (mut perm, mut perm_inv) = (vec![0usize; n], vec![0usize; n]);
+        let req = factor::lu_in_place_scratch::<usize, f64>(n, n, Par::Seq, Default::default());
+        let mut mem = MemBuffer::try_new(req).ok()?;
+        factor::lu_in_place(
+            a.as_mut(),
+            &mut perm,
+            &mut perm_inv,
+            Par::Seq,
+            MemStack::new(&mut mem),
+            Default::default(),
+        );
+        Some(DenseLu {
+            lu: a,
+            perm,
+            perm_inv,
+        })
+    }
+
+    /// Solves in place of `rhs`; `None` if the workspace cannot be allocated.
+    pub(super) fn solve(&self, rhs: &mut Mat<f64>) -> Option<()> {
+        use faer::linalg::lu::partial_pivoting::solve;
+        let n = self.lu.nrows();
+        let req = solve::solve_in_place_scratch::<usize, f64>(n, rhs.ncols(), Par::Seq);
+        let mut mem = MemBuffer::try_new(req).ok()?;
+        let p = PermRef::new_checked(&self.perm, &self.perm_inv, n);
+        solve::solve_in_place_with_conj(
+            self.lu.as_ref(),
+            self.lu.as_ref(),
+            p,
+            Conj::No,
+            rhs.as_mut(),
+            Par::Seq,
+            MemStack::new(&mut mem),
+        );
+        Some(())
+    }
 }
 
 /// What the sparse LU of the last Newton step on the sparse path leaves for the next, per index

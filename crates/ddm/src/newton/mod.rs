@@ -38,6 +38,7 @@
 //! the same Newton system (`crate::exchange`).
 
 mod algebra;
+mod blocks;
 pub(crate) mod linear;
 mod null_space;
 mod primal;

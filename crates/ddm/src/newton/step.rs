@@ -7,7 +7,8 @@ use faer::Mat;
 use rayon::prelude::*;
 
 use super::algebra::{dot, norm, pin_points};
-use super::linear::{dense_solve, sparse_solve, LuCache};
+use super::blocks::block_solve;
+use super::linear::{dense_matrix, lu_solve_in_place, sparse_solve, LuCache};
 use super::primal::PrimalCache;
 use super::system::{Evaluation, System};
 use crate::contact::Status;
@@ -90,7 +91,17 @@ impl System<'_> {
         self.kernel_rows(&mut trip, z, pins.as_deref(), first_sparse);
         let mut rhs = Mat::<f64>::from_fn(n, 1, |i, _| if i < m { -r[i] } else { 0.0 });
         if trip.len() as f64 >= DENSE_FILL * (n as f64) * (n as f64) {
-            dense_solve(&trip, n, &mut rhs)?;
+            let a = dense_matrix(&trip, n);
+            drop(trip);
+            // Friction: by the bodies' blocks where few points couple them (`blocks`). The
+            // frictionless steps keep the whole LU, and with it their bits.
+            let groups: Vec<_> = (0..self.interface.body_range.len())
+                .map(|b| self.range(b))
+                .collect();
+            let by_blocks = self.friction && n == m;
+            if !(by_blocks && block_solve(&a, &groups, &mut rhs, eta).is_some()) {
+                lu_solve_in_place(a, &mut rhs)?;
+            }
         } else {
             let cache = pins.as_ref().map(|_| lu);
             // Refinement against the true J (B applied by the bodies' own solves): the coupled
