@@ -14,7 +14,9 @@ use pyo3::prelude::*;
 
 use contactdd_io::solid_run::{run_solid, SolidOutcome, SolidSolver};
 
-use crate::convert::shown;
+use contactdd_io::problem::EnforcementSpec;
+
+use crate::convert::{from_name, shown};
 use crate::error::{convergence_error, input_error};
 use crate::run::run_interruptible;
 use crate::space_problem::SpaceProblem;
@@ -24,6 +26,7 @@ use crate::space_result::{write_folder, SpaceResult};
 struct SpaceRun {
     threads: Option<usize>,
     balance_tol: Option<f64>,
+    enforcement: Option<String>,
     out: Option<PathBuf>,
     check: bool,
 }
@@ -38,6 +41,8 @@ struct SpaceRun {
 ///     threads: worker threads (default: the problem's ``[solver] threads``, else all cores).
 ///     balance_tol: the force balance's tolerance of a converged result (default: the
 ///         problem's ``[solver] balance-tol``, else 1e-6).
+///     enforcement: ``"penalty"`` or ``"augmented"`` for every contact pair (default: each
+///         pair's own), as ``contactdd solve --enforcement``.
 ///     out: a folder to write the result files into (``summary.json``, ``contact.csv``, one
 ///         ``.vtu`` file per body or ``bodies.vtu``), as ``contactdd solve --out`` does;
 ///         written also when the result does not converge.
@@ -54,18 +59,20 @@ struct SpaceRun {
 ///         set that does not settle, a singular system).
 ///     ConvergenceError: the result is not converged (``check=True``); ``.result`` holds it.
 #[pyfunction]
-#[pyo3(signature = (problem, threads = None, balance_tol = None, out = None, check = true))]
+#[pyo3(signature = (problem, threads = None, balance_tol = None, enforcement = None, out = None, check = true))]
 pub fn space_solve(
     py: Python<'_>,
     problem: &Bound<'_, SpaceProblem>,
     threads: Option<usize>,
     balance_tol: Option<f64>,
+    enforcement: Option<String>,
     out: Option<PathBuf>,
     check: bool,
 ) -> PyResult<Py<SpaceResult>> {
     let run = SpaceRun {
         threads,
         balance_tol,
+        enforcement,
         out,
         check,
     };
@@ -78,7 +85,8 @@ pub fn space_solve(
 /// :func:`solve`.
 ///
 /// Args:
-///     problem, threads, balance_tol, out, check: as for :func:`solve`.
+///     problem, threads, balance_tol, enforcement, out, check: as for :func:`solve`; the
+///         reference solves penalty pairs only, and raises on an augmented one.
 ///
 /// Returns:
 ///     A :class:`Result`.
@@ -87,18 +95,20 @@ pub fn space_solve(
 ///     ContactddError: a bad argument, or a solve without a result.
 ///     ConvergenceError: the result is not converged (``check=True``); ``.result`` holds it.
 #[pyfunction]
-#[pyo3(signature = (problem, threads = None, balance_tol = None, out = None, check = true))]
+#[pyo3(signature = (problem, threads = None, balance_tol = None, enforcement = None, out = None, check = true))]
 pub fn space_monolithic(
     py: Python<'_>,
     problem: &Bound<'_, SpaceProblem>,
     threads: Option<usize>,
     balance_tol: Option<f64>,
+    enforcement: Option<String>,
     out: Option<PathBuf>,
     check: bool,
 ) -> PyResult<Py<SpaceResult>> {
     let run = SpaceRun {
         threads,
         balance_tol,
+        enforcement,
         out,
         check,
     };
@@ -121,6 +131,12 @@ fn solve_with(
             )));
         }
         Arc::make_mut(&mut model).balance_tol = b;
+    }
+    if let Some(name) = &run.enforcement {
+        let e: EnforcementSpec =
+            from_name(name).map_err(|m| input_error(format!("enforcement: {m}")))?;
+        let pairs = &mut Arc::make_mut(&mut model).pairs;
+        pairs.iter_mut().for_each(|p| p.enforcement = e.into());
     }
     if run.threads == Some(0) {
         return Err(input_error("threads: must be at least 1, got 0"));

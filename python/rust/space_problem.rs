@@ -413,7 +413,9 @@ impl SpaceProblem {
     ///     search: how far along the reference normals a partner counts (default: a tenth of
     ///         the smaller body's bounding-box diameter).
     ///     name: pair name (default ``"<body0>-<body1>"``).
-    #[pyo3(signature = (bodies, boundaries, c = None, h = None, theta = None, search = None, name = None))]
+    ///     enforcement: ``"penalty"`` (default: the pressure max(0, s − d)/θ) or
+    ///         ``"augmented"`` (the exact Signorini conditions, whatever θ).
+    #[pyo3(signature = (bodies, boundaries, c = None, h = None, theta = None, search = None, name = None, enforcement = None))]
     #[allow(clippy::too_many_arguments)]
     fn add_contact(
         &mut self,
@@ -425,13 +427,18 @@ impl SpaceProblem {
         theta: Option<f64>,
         search: Option<f64>,
         name: Option<String>,
+        enforcement: Option<String>,
     ) -> PyResult<()> {
+        let enforcement = (enforcement.as_deref())
+            .map(|e| from_name(e).map_err(|m| input_error(format!("enforcement: {m}"))))
+            .transpose()?;
         let spec = SolidContactSpec {
             name,
             bodies: vec![bodies.0, bodies.1],
             boundaries: vec![boundaries.0, boundaries.1],
             penalty: PenaltySpec { c, h, theta },
             search,
+            enforcement,
         };
         let pair = spec.pair_name();
         if self.spec.contact.iter().any(|p| p.pair_name() == pair) {

@@ -20,9 +20,10 @@ use crate::space_problem::SpaceProblem;
 ///     ``(data, indices, indptr)`` of its unconstrained stiffness matrix, ``load``,
 ///     ``prescribed_dofs`` and ``prescribed_values`` in its own numbering) and ``rows`` (the
 ///     contact points' approaches a·u as CSR arrays ``data``, ``indices``, ``indptr`` over the
-///     coupled DOFs, with ``gap``, ``weight`` and ``theta``: a point carries the pressure
-///     max(0, a·u − gap)/theta and the force weight·pressure along −a), in the order of the
-///     result's contact points.
+///     coupled DOFs, with ``gap``, ``weight``, ``theta`` and ``exact``: a point carries the
+///     pressure max(0, a·u − gap)/theta, or where ``exact`` (an augmented pair) the pressure p
+///     of the Signorini conditions p = max(0, p + (a·u − gap)/theta), and the force
+///     weight·pressure along −a), in the order of the result's contact points.
 ///
 /// Raises:
 ///     ContactddError: a pair that cannot be built.
@@ -76,6 +77,8 @@ pub fn space_system<'py>(
         array1(py, rows.iter().map(|r| r.point.weight).collect()),
     )?;
     table.set_item("theta", array1(py, rows.iter().map(|r| r.theta).collect()))?;
+    let exact: Vec<bool> = rows.iter().map(|r| r.exact).collect();
+    table.set_item("exact", numpy::PyArray1::from_vec(py, exact))?;
     out.set_item("rows", table)?;
     Ok(out)
 }

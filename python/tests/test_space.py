@@ -266,6 +266,7 @@ def test_the_system_reproduces_the_solution(blocks):
     u = np.concatenate([b.displacement.ravel() for b in result.bodies])
     assert len(u) == system["dofs"]
     rows = system["rows"]
+    assert not rows["exact"].any()
     a = (rows["data"], rows["indices"], rows["indptr"])
     law = np.maximum(csr_times(*a, u) - rows["gap"], 0.0) / rows["theta"]
     pressure = result.contact["pressure"]
@@ -281,3 +282,17 @@ def test_the_system_reproduces_the_solution(blocks):
         r = csr_times(data, indices, indptr, u[at:at + n]) - body["load"] - contact[at:at + n]
         free = np.setdiff1d(np.arange(n), body["prescribed_dofs"])
         assert np.abs(r[free]).max() < 1e-9 * np.abs(contact).max()
+
+
+def test_exact_contact_carries_the_pressure_without_the_overlap(blocks):
+    """enforcement="augmented": the Signorini conditions exactly, p = δ / (h₁/E₁ + h₂/E₂)."""
+    exact = 0.001 / (0.5 / 2.1e5 + 0.5 / 7e4)
+    result = space.solve(blocks, enforcement="augmented")
+    p = result.contact["pressure"]
+    assert np.all(np.abs(p / exact - 1.0) < 1e-10)
+    assert result.summary()["balance"]["gap_violation"] < 1e-15
+    assert result.summary()["contact"][0]["enforcement"] == "augmented"
+    with pytest.raises(contactdd.ContactddError, match="penalty contact only"):
+        space.monolithic(blocks, enforcement="augmented")
+    with pytest.raises(contactdd.ContactddError, match="enforcement"):
+        space.solve(blocks, enforcement="exact")

@@ -277,6 +277,9 @@ def test_bad_entries_leave_the_problem_as_it_was(arrays):
          "contact 'again': penalty"),
         (lambda: p.add_contact(("upper", "lower"), ("z-", "z+"), theta=1e-7),
          "two contact pairs are called 'upper-lower'"),
+        (lambda: p.add_contact(("upper", "lower"), ("z-", "z+"), theta=1e-7, name="again",
+                               enforcement="exact"),
+         "enforcement: unknown variant"),
         (lambda: p.add_material("steel", 1.0, 0.3), "material 'steel': is already defined"),
         (lambda: p.add_material("glass", -1.0, 0.3), "material 'glass'"),
     ]
@@ -344,3 +347,17 @@ def test_a_gmsh_block_shortens_by_the_closed_form():
     top = np.isclose(body.nodes[:, 2], h, rtol=0, atol=1e-12)
     assert top.sum() > 4
     np.testing.assert_allclose(body.displacement[top, 2], -pressure * h / young, rtol=1e-9)
+
+
+def test_an_augmented_pair_in_the_file():
+    p = empty()
+    for body in (LOWER, UPPER):
+        p.add_box_body(**body, **BOXES[body["name"]])
+    p.add_contact(("upper", "lower"), ("z-", "z+"), theta=1e-7, enforcement="augmented")
+    assert 'enforcement = "augmented"' in p.to_toml()
+    again = space.Problem.from_toml_str(p.to_toml())
+    assert space.system(again)["rows"]["exact"].all()
+    result = space.solve(again)
+    assert result.summary()["contact"][0]["enforcement"] == "augmented"
+    exact = 0.001 / (0.5 / 2.1e5 + 0.5 / 7e4)
+    assert np.all(np.abs(result.contact["pressure"] / exact - 1.0) < 1e-10)

@@ -33,7 +33,8 @@ fn refuse(options: &[(&str, bool)]) -> Result<()> {
     }
     bail!(
         "{} not available for problems in space (dimension = 3): they run the interface Newton \
-         method of the decomposition with penalty, frictionless contact",
+         method of the decomposition on frictionless contact, whose augmented pairs meet the \
+         Signorini conditions exactly (no gap tolerance, no iteration tolerance)",
         given.join(", ")
     )
 }
@@ -45,7 +46,6 @@ pub fn solve(args: SolveArgs) -> Result<Exit> {
         ("--gamma", args.gamma.is_some()),
         ("--accelerator", args.accelerator.is_some()),
         ("--coarse", args.coarse.is_some()),
-        ("--enforcement", args.enforcement.is_some()),
         ("--friction", args.friction.is_some()),
         ("--gap-tol", args.gap_tol.is_some()),
         ("--tol", args.common.tol.is_some()),
@@ -58,6 +58,7 @@ pub fn solve(args: SolveArgs) -> Result<Exit> {
         args.vtu_format,
         args.vtu_layout,
     )?;
+    enforce(&mut model, args.enforcement);
     let threads = args.common.threads.map(|n| n as usize).or(model.threads);
     let out = (args.out.clone()).unwrap_or_else(|| default_dir(&model, "out"));
     run(
@@ -73,12 +74,12 @@ pub fn solve(args: SolveArgs) -> Result<Exit> {
 pub fn monolithic(args: MonolithicArgs) -> Result<Exit> {
     refuse(&[
         ("--max-steps", args.max_steps.is_some()),
-        ("--enforcement", args.enforcement.is_some()),
         ("--friction", args.friction.is_some()),
         ("--gap-tol", args.gap_tol.is_some()),
     ])?;
     let mut model = load(&args.file)?;
     overrides(&mut model, None, args.vtu_format, args.vtu_layout)?;
+    enforce(&mut model, args.enforcement);
     let threads = args.threads.map(|n| n as usize).or(model.threads);
     let out = (args.out.clone()).unwrap_or_else(|| default_dir(&model, "monolithic-out"));
     run(&model, SolidSolver::Monolithic, threads, &out, args.quiet)
@@ -97,6 +98,13 @@ pub fn check(args: CheckArgs) -> Result<Exit> {
     );
     say!("ok: '{}' is a valid problem", args.file.display());
     Ok(Exit::Success)
+}
+
+/// The command line's `--enforcement`, for every pair.
+fn enforce(model: &mut SolidModel, enforcement: Option<contactdd_ddm::Enforcement>) {
+    if let Some(e) = enforcement {
+        model.pairs.iter_mut().for_each(|p| p.enforcement = e);
+    }
 }
 
 fn load(path: &Path) -> Result<SolidModel> {
@@ -250,14 +258,15 @@ fn describe(model: &SolidModel) -> String {
     }
     for p in &model.pairs {
         out.push_str(&format!(
-            "  pair {}: {}:{} against {}:{}, theta {:.3e}, search {:.3e}\n",
+            "  pair {}: {}:{} against {}:{}, theta {:.3e}, search {:.3e}, {}\n",
             p.name,
             model.bodies[p.sides[0].0].name,
             p.sides[0].1,
             model.bodies[p.sides[1].0].name,
             p.sides[1].1,
             p.theta,
-            p.search
+            p.search,
+            p.enforcement
         ));
     }
     out

@@ -42,6 +42,7 @@ fn planar_options_are_refused_by_name() {
         ["--method", "robin"],
         ["--gamma", "0.5"],
         ["--friction", "coulomb:0.3"],
+        ["--gap-tol", "1e-9"],
     ] {
         let mut args = vec!["solve"];
         args.extend(option);
@@ -50,6 +51,37 @@ fn planar_options_are_refused_by_name() {
         assert!(stderr(&o).contains(option[0]), "{}", stderr(&o));
         assert!(stderr(&o).contains("dimension = 3"), "{}", stderr(&o));
     }
+}
+
+/// `--enforcement augmented` (or `enforcement = "augmented"` in the file): the decomposition
+/// meets the contact exactly, the summary says so; the monolithic reference refuses it by name.
+#[test]
+fn augmented_pairs_solve_exactly_and_the_reference_refuses_them() {
+    let dir = temp("augmented");
+    let o = run(
+        &dir,
+        "blocks.toml",
+        &blocks(),
+        &["solve", "-q", "--enforcement", "augmented"],
+    );
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let summary = std::fs::read_to_string(dir.join("out/summary.json")).expect("summary");
+    assert!(
+        summary.contains("\"enforcement\": \"augmented\""),
+        "{summary}"
+    );
+    assert!(summary.contains("\"gap_violation\""), "{summary}");
+    let text = blocks().replace(
+        "penalty = { theta = 1e-7 }",
+        "penalty = { theta = 1e-7 }\nenforcement = \"augmented\"",
+    );
+    let o = run(&dir, "exact.toml", &text, &["monolithic", "-q"]);
+    assert_eq!(o.status.code(), Some(1));
+    assert!(
+        stderr(&o).contains("penalty contact only"),
+        "{}",
+        stderr(&o)
+    );
 }
 
 #[test]

@@ -45,6 +45,9 @@ pub struct SolidBalance {
     /// The largest difference between a reported pressure and the contact law read from the
     /// displacements, relative to the largest pressure (absolute when no point presses).
     pub contact_law: f64,
+    /// The largest violation of the Signorini conditions at the points of augmented pairs, a
+    /// length: a penetration s − d > 0, or a gap |s − d| under pressure (0 without such points).
+    pub gap_violation: f64,
 }
 
 impl SolidBalance {
@@ -87,10 +90,23 @@ pub fn solid_balance(
         u.extend_from_slice(d);
     }
     let mut contact = vec![0.0; n];
-    let (mut worst_law, mut largest) = (0.0f64, 0.0f64);
+    let (mut worst_law, mut largest, mut gap_violation) = (0.0f64, 0.0f64, 0.0f64);
     for (r, point) in rows.iter().zip(&sol.points) {
         let s: f64 = r.a.iter().map(|&(i, x)| x * u[i]).sum();
-        let law = (s - r.point.gap).max(0.0) / r.theta;
+        // An exact point: the complementarity form of the Signorini conditions, in pressures.
+        let law = match r.exact {
+            false => (s - r.point.gap).max(0.0) / r.theta,
+            true => (point.pressure + (s - r.point.gap) / r.theta).max(0.0),
+        };
+        if r.exact {
+            let open = point.pressure <= 0.0;
+            let violation = if open {
+                s - r.point.gap
+            } else {
+                (s - r.point.gap).abs()
+            };
+            gap_violation = gap_violation.max(violation);
+        }
         worst_law = worst_law.max((law - point.pressure).abs());
         largest = largest.max(point.pressure.abs());
         for &(i, x) in &r.a {
@@ -116,6 +132,7 @@ pub fn solid_balance(
         } else {
             worst_law
         },
+        gap_violation,
     })
 }
 

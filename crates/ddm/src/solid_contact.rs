@@ -11,6 +11,7 @@
 use contactdd_core::solid::{dof, SolidMesh, TetOrder};
 
 use crate::contact3d::{dual_mortar, PointRows, Side, Surface, SurfaceError, TriangleIndex};
+use crate::Enforcement;
 
 /// One body: its mesh, its 6 × 6 elasticity matrix, its prescribed DOFs (own numbering) and its
 /// nodal loads.
@@ -37,6 +38,10 @@ pub struct SolidPairSpec {
     pub theta: f64,
     /// How far along the normals a partner counts.
     pub search: f64,
+    /// `Penalty`: p = max(0, s − d)/θ; `Augmented`: the exact Signorini conditions (no
+    /// penetration, no pressure across a gap), the fixed point of the augmented Lagrangian,
+    /// which the Newton method of [`crate::solid_dd`] solves directly.
+    pub enforcement: Enforcement,
 }
 
 /// Why the reference cannot solve a problem.
@@ -75,6 +80,14 @@ pub enum SolidContactError {
         body: usize,
         /// The Newton step.
         step: usize,
+    },
+    /// A pair whose enforcement the solver does not support.
+    #[error("contact pair {pair}: {message}")]
+    Enforcement {
+        /// The pair.
+        pair: usize,
+        /// What is not supported, and what to use instead.
+        message: String,
     },
     /// The closed set did not settle.
     #[error("the closed set did not settle in {steps} Newton steps")]
@@ -124,6 +137,8 @@ pub(crate) struct Row {
     pub(crate) a: Vec<(usize, f64)>,
     /// The pair's penalty θ.
     pub(crate) theta: f64,
+    /// Whether the point meets the Signorini conditions exactly (an augmented pair).
+    pub(crate) exact: bool,
 }
 
 /// Where every body's DOFs start in the coupled numbering, and their total.
@@ -202,6 +217,7 @@ fn pair_rows(
             },
             a,
             theta: pair.theta,
+            exact: pair.enforcement == Enforcement::Augmented,
         });
     }
     Ok(rows)
@@ -273,6 +289,9 @@ pub struct SolidContactRow {
     pub approach: Vec<(usize, f64)>,
     /// The pair's penalty θ.
     pub theta: f64,
+    /// Whether the point meets the Signorini conditions exactly (an augmented pair: pressure p
+    /// with p = max(0, p + (a·u − d)/θ)) rather than the penalty law.
+    pub exact: bool,
 }
 
 /// The discrete contact problem for another solver (a peer's monolithic Newton method, a
@@ -290,6 +309,7 @@ pub fn solid_contact_rows(
             point: r.point,
             approach: r.a,
             theta: r.theta,
+            exact: r.exact,
         })
         .collect();
     Ok((offsets, n, rows))

@@ -23,6 +23,7 @@ pub use crate::solid_contact::{
     MAX_STEPS,
 };
 use crate::solid_newton::{start, Motions};
+use crate::Enforcement;
 
 /// Solves the contact of `bodies` through `pairs` by the semismooth Newton method, starting
 /// from the first closed set of `solid_newton::start`.
@@ -31,6 +32,14 @@ pub fn solve_solid_monolithic(
     pairs: &[SolidPairSpec],
 ) -> Result<SolidContactSolution, SolidContactError> {
     let started = std::time::Instant::now();
+    if let Some(pair) = (pairs.iter()).position(|p| p.enforcement == Enforcement::Augmented) {
+        return Err(SolidContactError::Enforcement {
+            pair,
+            message: "the monolithic reference in space solves penalty contact only; the \
+                      decomposition (contactdd solve) meets `enforcement = \"augmented\"` exactly"
+                .into(),
+        });
+    }
     let (offsets, n) = offsets(bodies);
     let rows = contact_rows(bodies, &offsets, pairs)?;
     let mut trip = Vec::new();

@@ -8,6 +8,12 @@
 //!
 //! the second block the balance of every free motion: the contact forces do the work e of the
 //! loads along it. It closes the points with s_j > d_j, as the monolithic reference does.
+//!
+//! A point of an augmented pair meets the Signorini conditions exactly: the fixed point λ = p of
+//! the augmented Lagrangian p = max(0, λ + (s − d)/θ), which is the complementarity condition
+//! p = max(0, p + (s − d)/θ). Its Newton step (Alart and Curnier's, here a primal–dual active
+//! set step) drops θ from its row, so that s_j = d_j where it is closed, and it closes where
+//! θ p_j + s_j − d_j > 0. θ only scales pressures against gaps in that rule.
 
 use contactdd_core::solid::rigid::free_rigid_motions;
 use faer::Mat;
@@ -70,13 +76,18 @@ impl Motions {
 /// every motion (a body that starts apart from its partners, or touches them at one point whose
 /// gap rounds above zero). Shared by the decomposition and the monolithic reference.
 pub(crate) fn start(rows: &[Row], motions: &Motions) -> Vec<bool> {
-    let mut closed: Vec<bool> = rows.iter().map(|r| r.point.gap <= 0.0).collect();
+    // An exact point without weight has an empty row: it never closes.
+    let can_close = |r: &Row| !r.exact || r.point.weight > 0.0;
+    let mut closed: Vec<bool> = (rows.iter())
+        .map(|r| r.point.gap <= 0.0 && can_close(r))
+        .collect();
     for b in 0..motions.first.len() {
         let cols: Vec<usize> = (0..motions.body.len())
             .filter(|&q| motions.body[q] == b)
             .collect();
         let mut candidates: Vec<usize> = (0..rows.len())
-            .filter(|&j| !closed[j] && cols.iter().any(|&q| motions.e[(j, q)] != 0.0))
+            .filter(|&j| !closed[j] && can_close(&rows[j]))
+            .filter(|&j| cols.iter().any(|&q| motions.e[(j, q)] != 0.0))
             .collect();
         candidates.sort_by(|&x, &y| rows[x].point.gap.total_cmp(&rows[y].point.gap));
         let mut next = candidates.into_iter();
@@ -117,16 +128,33 @@ pub(crate) fn newton(
                 s0[j] - contact + rigid
             })
             .collect();
-        let next: Vec<bool> = (0..m).map(|j| s[j] > rows[j].point.gap).collect();
+        let next: Vec<bool> = (0..m).map(|j| closes(&rows[j], p[j], s[j])).collect();
         if next == closed {
-            let p = (0..m)
-                .map(|j| ((s[j] - rows[j].point.gap) / rows[j].theta).max(0.0))
-                .collect();
+            let p = (0..m).map(|j| pressure(&rows[j], p[j], s[j])).collect();
             return Ok((p, alpha, step));
         }
         closed = next;
     }
     Err(SolidContactError::NotSettled { steps: MAX_STEPS })
+}
+
+/// Whether point `row` closes at the pressure `p` of the step and the approach `s` it leads to:
+/// s > d for a penalty point; θ p + s − d > 0 for an exact one that carries a force (a point of
+/// zero weight would leave its exact row empty).
+fn closes(row: &Row, p: f64, s: f64) -> bool {
+    match row.exact {
+        false => s > row.point.gap,
+        true => row.point.weight > 0.0 && row.theta * p + s - row.point.gap > 0.0,
+    }
+}
+
+/// The pressure of point `row` at a settled set: the penalty law of the approach `s`, or the
+/// step's own `p` for an exact point (zero where it is open).
+fn pressure(row: &Row, p: f64, s: f64) -> f64 {
+    match row.exact {
+        false => ((s - row.point.gap) / row.theta).max(0.0),
+        true => p.max(0.0),
+    }
 }
 
 /// The Newton system of the closed set `set`, solved: the pressures (zero off the set) and the
@@ -158,7 +186,7 @@ fn step_solve(
             motions.work[x - c]
         }
     });
-    for (x, &j) in set.iter().enumerate() {
+    for (x, &j) in set.iter().enumerate().filter(|(_, &j)| !rows[j].exact) {
         a[(x, x)] += rows[j].theta;
     }
     lu_solve_in_place(a, &mut rhs).ok_or(SolidContactError::Factor {

@@ -49,6 +49,7 @@ fn specs(m: &[SolidMesh; 2]) -> (Vec<SolidBodySpec<'_>>, Vec<SolidPairSpec>) {
         partner: (1, "z-".into()),
         theta: 1e-6,
         search: 0.2,
+        enforcement: Default::default(),
     }];
     (bodies, pairs)
 }

@@ -76,6 +76,7 @@ fn problem(m: &[SolidMesh]) -> (Vec<SolidBodySpec<'_>>, Vec<SolidPairSpec>) {
             partner: (axis + 1, faces[axis][1].into()),
             theta: 1e-6,
             search: 0.2,
+            enforcement: Default::default(),
         })
         .collect();
     (bodies, pairs)

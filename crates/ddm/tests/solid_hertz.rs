@@ -85,6 +85,7 @@ fn hertz(
         partner: (1, "z-".into()),
         theta: 1e-9,
         search: 0.3,
+        enforcement: Default::default(),
     }];
     let sol = solve(&specs, &pairs).unwrap();
     (sol.points, sol.newton_steps, sol.timings)

@@ -76,6 +76,7 @@ fn pair(theta: f64) -> Vec<SolidPairSpec> {
         partner: (1, "z-".into()),
         theta,
         search: 0.5,
+        enforcement: Default::default(),
     }]
 }
 

@@ -39,7 +39,7 @@ use serde::{Deserialize, Serialize};
 
 use contactdd_core::Order;
 
-use crate::problem::{MaterialSpec, OutputSpec, PenaltySpec};
+use crate::problem::{EnforcementSpec, MaterialSpec, OutputSpec, PenaltySpec};
 
 /// A whole problem file in space.
 #[derive(Clone, Debug, PartialEq, Deserialize, Serialize)]
@@ -215,6 +215,10 @@ pub struct SolidContactSpec {
     /// body's bounding-box diameter).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub search: Option<f64>,
+    /// `"penalty"` (default): p = max(0, s − d)/θ; `"augmented"`: the exact Signorini conditions,
+    /// the augmented Lagrangian's fixed point, whatever θ.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub enforcement: Option<EnforcementSpec>,
 }
 
 impl SolidContactSpec {

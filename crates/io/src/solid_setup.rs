@@ -77,6 +77,8 @@ pub struct SolidPairModel {
     pub theta: f64,
     /// The search distance along the reference normals.
     pub search: f64,
+    /// How the pair enforces non-penetration.
+    pub enforcement: contactdd_ddm::Enforcement,
 }
 
 /// A resolved problem in space.
@@ -119,6 +121,7 @@ impl SolidModel {
                 partner: p.sides[1].clone(),
                 theta: p.theta,
                 search: p.search,
+                enforcement: p.enforcement,
             })
             .collect()
     }
@@ -381,6 +384,7 @@ fn resolve_pair(c: &SolidContactSpec, bodies: &[SolidBodyModel]) -> Result<Solid
         sides: [(a, c.boundaries[0].clone()), (b, c.boundaries[1].clone())],
         theta,
         search,
+        enforcement: c.enforcement.map(Into::into).unwrap_or_default(),
     })
 }
 

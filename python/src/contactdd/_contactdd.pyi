@@ -570,8 +570,10 @@ class SpaceProblem:
         theta: Optional[float] = None,
         search: Optional[float] = None,
         name: Optional[str] = None,
+        enforcement: Optional[str] = None,
     ) -> None:
-        """Adds a contact pair; penalty by the rod model (c, h) or theta directly."""
+        """Adds a contact pair; penalty by the rod model (c, h) or theta directly;
+        enforcement "penalty" (default) or "augmented" (exact contact)."""
     def solver(self, balance_tol: Optional[float] = None, threads: Optional[int] = None) -> None:
         """Sets the [solver] table (None keeps a value)."""
     def boundaries(self, body: str) -> list[str]:
@@ -645,6 +647,7 @@ def space_solve(
     problem: SpaceProblem,
     threads: Optional[int] = None,
     balance_tol: Optional[float] = None,
+    enforcement: Optional[str] = None,
     out: Optional[_StrPath] = None,
     check: bool = True,
 ) -> SpaceResult: ...
@@ -652,6 +655,7 @@ def space_monolithic(
     problem: SpaceProblem,
     threads: Optional[int] = None,
     balance_tol: Optional[float] = None,
+    enforcement: Optional[str] = None,
     out: Optional[_StrPath] = None,
     check: bool = True,
 ) -> SpaceResult: ...
