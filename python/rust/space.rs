@@ -85,8 +85,7 @@ pub fn space_solve(
 /// :func:`solve`.
 ///
 /// Args:
-///     problem, threads, balance_tol, enforcement, out, check: as for :func:`solve`; the
-///         reference solves penalty pairs only, and raises on an augmented one.
+///     problem, threads, balance_tol, enforcement, out, check: as for :func:`solve`.
 ///
 /// Returns:
 ///     A :class:`Result`.

@@ -81,13 +81,13 @@ pub enum SolidContactError {
         /// The Newton step.
         step: usize,
     },
-    /// A pair whose enforcement the solver does not support.
-    #[error("contact pair {pair}: {message}")]
-    Enforcement {
-        /// The pair.
-        pair: usize,
-        /// What is not supported, and what to use instead.
-        message: String,
+    /// The multiplier updates of the augmented pairs did not meet the Signorini conditions.
+    #[error("the augmented pairs still violate the contact conditions by {violation:.1e} after {updates} multiplier updates")]
+    NotEnforced {
+        /// The updates taken.
+        updates: usize,
+        /// The largest violation left, a length.
+        violation: f64,
     },
     /// The closed set did not settle.
     #[error("the closed set did not settle in {steps} Newton steps")]

@@ -11,6 +11,11 @@
 //! repeats. It starts from the set of `solid_newton`'s `start`, as the decomposition
 //! does. The symbolic analysis of the coupled matrix, with every point's springs in its
 //! pattern, is done once; each step refactorises the values.
+//!
+//! The points of augmented pairs meet the Signorini conditions by the method of multipliers
+//! around that Newton method: λ ← p after each penalty solve with the gaps d − θλ
+//! (docs/three-d.md, "Exact contact in space"), a different algorithm from the decomposition's,
+//! which makes it a check of it.
 
 use contactdd_core::factor::FactoredBody;
 use contactdd_core::solid::assembly::stiffness;
@@ -23,7 +28,13 @@ pub use crate::solid_contact::{
     MAX_STEPS,
 };
 use crate::solid_newton::{start, Motions};
-use crate::Enforcement;
+
+/// The Signorini conditions at the exact points hold when they are violated by at most this
+/// much of the largest approach.
+const EXACT_TOL: f64 = 1e-12;
+
+/// The most multiplier updates of the augmented pairs.
+const MAX_UPDATES: usize = 200;
 
 /// Solves the contact of `bodies` through `pairs` by the semismooth Newton method, starting
 /// from the first closed set of `solid_newton::start`.
@@ -32,14 +43,6 @@ pub fn solve_solid_monolithic(
     pairs: &[SolidPairSpec],
 ) -> Result<SolidContactSolution, SolidContactError> {
     let started = std::time::Instant::now();
-    if let Some(pair) = (pairs.iter()).position(|p| p.enforcement == Enforcement::Augmented) {
-        return Err(SolidContactError::Enforcement {
-            pair,
-            message: "the monolithic reference in space solves penalty contact only; the \
-                      decomposition (contactdd solve) meets `enforcement = \"augmented\"` exactly"
-                .into(),
-        });
-    }
     let (offsets, n) = offsets(bodies);
     let rows = contact_rows(bodies, &offsets, pairs)?;
     let mut trip = Vec::new();
@@ -76,23 +79,92 @@ pub fn solve_solid_monolithic(
     };
     let mut system =
         FactoredBody::new("the coupled bodies", k, &constraints, &[]).map_err(fail(0))?;
+    let mut newton = Newton {
+        system: &mut system,
+        rows: &rows,
+        f: &f,
+        factored: None,
+        steps: 0,
+    };
     let mut closed = start(&rows, &Motions::new(bodies, &offsets, &rows));
-    for step in 1..=MAX_STEPS {
-        let (additions, rhs) = closed_system(&rows, &closed, &f);
-        system.factorize(&additions).map_err(fail(step))?;
-        let u = system.solve(&rhs).map_err(fail(step))?;
-        let s: Vec<f64> = rows.iter().map(|r| dot(&r.a, &u)).collect();
-        let next: Vec<bool> = (rows.iter().zip(&s))
-            .map(|(r, &s)| s > r.point.gap)
-            .collect();
-        if next == closed {
-            let mut sol = solution(bodies, &offsets, rows, &s, u, step);
-            sol.timings = vec![("solve", started.elapsed().as_secs_f64())];
-            return Ok(sol);
+    let mut gaps: Vec<f64> = rows.iter().map(|r| r.point.gap).collect();
+    let (mut u, mut s) = newton.settle(&gaps, &mut closed)?;
+    // Augmented pairs: the method of multipliers, λ ← p, each update a penalty solve with the
+    // gaps d − θλ, until the Signorini conditions hold to rounding.
+    let scale = s.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+    let mut updates = 0;
+    while let Some(violation) = unmet(&rows, &gaps, &s, EXACT_TOL * scale) {
+        if updates == MAX_UPDATES {
+            return Err(SolidContactError::NotEnforced { updates, violation });
         }
-        closed = next;
+        // λ ← p = (s − (d − θλ))⁺/θ, so the next penalty gap is d − θp.
+        for (j, r) in rows.iter().enumerate().filter(|(_, r)| r.exact) {
+            gaps[j] = r.point.gap - (s[j] - gaps[j]).max(0.0);
+        }
+        (u, s) = newton.settle(&gaps, &mut closed)?;
+        updates += 1;
     }
-    Err(SolidContactError::NotSettled { steps: MAX_STEPS })
+    let steps = newton.steps;
+    let mut sol = solution(bodies, &offsets, rows, (&gaps, &s), u, steps);
+    sol.timings = vec![("solve", started.elapsed().as_secs_f64())];
+    Ok(sol)
+}
+
+/// The largest violation of the Signorini conditions at the exact points, if above `tol`: with
+/// the penalty gaps `gaps` = d − θλ, the pressure is p = (s − gaps)⁺/θ, and the conditions ask
+/// s ≤ d, and s = d where p > 0.
+fn unmet(rows: &[Row], gaps: &[f64], s: &[f64], tol: f64) -> Option<f64> {
+    let violation = (rows.iter().enumerate())
+        .filter(|(_, r)| r.exact)
+        .map(|(j, r)| match s[j] > gaps[j] {
+            true => (s[j] - r.point.gap).abs(),
+            false => s[j] - r.point.gap,
+        })
+        .fold(0.0f64, f64::max);
+    (violation > tol).then_some(violation)
+}
+
+/// The semismooth Newton method on the coupled system, for given penalty gaps.
+struct Newton<'a> {
+    system: &'a mut FactoredBody,
+    rows: &'a [Row],
+    f: &'a [f64],
+    /// The closed set of the current factorisation.
+    factored: Option<Vec<bool>>,
+    /// The Newton steps taken in all.
+    steps: usize,
+}
+
+impl Newton<'_> {
+    /// Newton steps from `closed` until the set repeats, with the gaps `gaps`: the displacements
+    /// and the approaches. A set already factorised is not factorised again.
+    fn settle(
+        &mut self,
+        gaps: &[f64],
+        closed: &mut Vec<bool>,
+    ) -> Result<(Vec<f64>, Vec<f64>), SolidContactError> {
+        for _ in 1..=MAX_STEPS {
+            self.steps += 1;
+            let step = self.steps;
+            let fail = |e: contactdd_core::BodyError| SolidContactError::Factor {
+                step,
+                message: e.to_string(),
+            };
+            let (additions, rhs) = closed_system(self.rows, closed, gaps, self.f);
+            if self.factored.as_ref() != Some(closed) {
+                self.system.factorize(&additions).map_err(fail)?;
+                self.factored = Some(closed.clone());
+            }
+            let u = self.system.solve(&rhs).map_err(fail)?;
+            let s: Vec<f64> = self.rows.iter().map(|r| dot(&r.a, &u)).collect();
+            let next: Vec<bool> = (0..s.len()).map(|j| s[j] > gaps[j]).collect();
+            if next == *closed {
+                return Ok((u, s));
+            }
+            *closed = next;
+        }
+        Err(SolidContactError::NotSettled { steps: MAX_STEPS })
+    }
 }
 
 /// Pushes the entries of `k` shifted by `at` on both axes.
@@ -111,16 +183,21 @@ fn push_matrix(
 
 /// The springs of the closed points (each unordered pair of DOFs once, as
 /// [`FactoredBody::factorize`] adds them symmetrically) and the load with their gap terms.
-fn closed_system(rows: &[Row], closed: &[bool], f: &[f64]) -> (Vec<(usize, usize, f64)>, Vec<f64>) {
+fn closed_system(
+    rows: &[Row],
+    closed: &[bool],
+    gaps: &[f64],
+    f: &[f64],
+) -> (Vec<(usize, usize, f64)>, Vec<f64>) {
     let mut additions = Vec::new();
     let mut rhs = f.to_vec();
-    for (r, _) in rows.iter().zip(closed).filter(|(_, &c)| c) {
+    for ((r, _), &gap) in rows.iter().zip(closed).zip(gaps).filter(|((_, &c), _)| c) {
         let spring = r.point.weight / r.theta;
         for (x, &(i, ai)) in r.a.iter().enumerate() {
             for &(k, ak) in &r.a[..=x] {
                 additions.push((i, k, spring * ai * ak));
             }
-            rhs[i] += spring * r.point.gap * ai;
+            rhs[i] += spring * gap * ai;
         }
     }
     (additions, rhs)
@@ -135,16 +212,16 @@ fn solution(
     bodies: &[SolidBodySpec<'_>],
     offsets: &[usize],
     rows: Vec<Row>,
-    s: &[f64],
+    (gaps, s): (&[f64], &[f64]),
     u: Vec<f64>,
     steps: usize,
 ) -> SolidContactSolution {
     let displacements = (bodies.iter().zip(offsets))
         .map(|(b, &at)| u[at..at + 3 * b.mesh.num_nodes()].to_vec())
         .collect();
-    let points = (rows.into_iter().zip(s))
-        .map(|(r, &s)| SolidContactPoint {
-            pressure: (s - r.point.gap).max(0.0) / r.theta,
+    let points = (rows.into_iter().zip(s).zip(gaps))
+        .map(|((r, &s), &gap)| SolidContactPoint {
+            pressure: (s - gap).max(0.0) / r.theta,
             ..r.point
         })
         .collect();
