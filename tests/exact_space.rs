@@ -125,3 +125,50 @@ fn a_floating_ball_meets_the_conditions_exactly() {
     };
     assert!(force(0) > 0.0 && force(1) > 0.0);
 }
+
+/// `blocks.toml` with the upper block moved down by `shift` and its top held at `push`
+/// (instead of moved 0.001): the blocks overlap where `shift` > 0 (an interference fit), or
+/// start `-shift` apart.
+fn shifted_blocks(shift: f64, push: f64) -> SolidModel {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/space/blocks.toml");
+    let text = std::fs::read_to_string(&path).unwrap();
+    let z = format!("z = [{}, {}]", 0.5 - shift, 1.0 - shift);
+    let text = text
+        .replace("z = [0.5, 1.0]", &z)
+        .replace("value = -0.001", &format!("value = {}", -push));
+    let file =
+        std::env::temp_dir().join(format!("exact-space-{}-{shift}.toml", std::process::id()));
+    std::fs::write(&file, text).unwrap();
+    let model = load_solid_file(&file).unwrap();
+    let _ = std::fs::remove_file(&file);
+    model
+}
+
+/// Hard cases of the kinds a press fit and a near-coincident mesh make: an interference of
+/// 1e-3 with nothing pushed carries the closed form's pressure shift/(h₁/E₁ + h₂/E₂) exactly;
+/// so does a push across a gap of 1e-10 (the pressure of the push less the gap), and a gap
+/// larger than the push leaves every point open at zero pressure. The reference agrees.
+#[test]
+fn interference_and_near_coincident_blocks_are_exact() {
+    let compliance = 0.5 / 2.1e5 + 0.5 / 7e4;
+    for (shift, push, expected) in [
+        (1e-3, 0.0, 1e-3 / compliance),
+        (-1e-10, 1e-3, (1e-3 - 1e-10) / compliance),
+        (-2e-3, 1e-3, 0.0),
+    ] {
+        let mut model = shifted_blocks(shift, push);
+        model.pairs[0].enforcement = Enforcement::Augmented;
+        for solver in [SolidSolver::Decomposition, SolidSolver::Monolithic] {
+            let outcome = run_solid(&model, solver).unwrap();
+            assert!(
+                outcome.converged,
+                "{shift} {solver:?}: {:?}",
+                outcome.reason
+            );
+            for p in pressures(&outcome) {
+                let error = (p - expected).abs();
+                assert!(error <= 1e-9 * expected.max(1.0), "{shift} {solver:?}: {p}");
+            }
+        }
+    }
+}
