@@ -193,6 +193,9 @@ fn progress(model: &SolidModel, p: SolidProgress) -> String {
             "body {}: factorised and condensed ({seconds:.2} s to factorise)",
             model.bodies[body].name
         ),
+        SolidProgress::LoadStep { step, of, factor } => {
+            format!("load step {step} of {of}: load factor {factor}")
+        }
         SolidProgress::NewtonStep { step, closed } => {
             format!("Newton step {step}: {closed} closed")
         }
@@ -267,6 +270,13 @@ fn describe(model: &SolidModel) -> String {
             p.theta,
             p.search,
             p.enforcement
+        ));
+    }
+    if model.load_factors.len() > 1 {
+        out.push_str(&format!(
+            "  load steps: {} (load factors {:?})\n",
+            model.load_factors.len(),
+            model.load_factors
         ));
     }
     out

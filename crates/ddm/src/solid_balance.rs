@@ -43,7 +43,8 @@ pub struct SolidBalance {
     /// Every body's balance.
     pub bodies: Vec<SolidBodyBalance>,
     /// The largest difference between a reported pressure and the contact law read from the
-    /// displacements, relative to the largest pressure (absolute when no point presses).
+    /// displacements, relative to the largest pressure or, where larger, the largest stress
+    /// E·|u|/size the displacements imply (absolute when both are zero).
     pub contact_law: f64,
     /// The largest violation of the Signorini conditions at the points of augmented pairs, a
     /// length: a penetration s − d > 0, or a gap |s − d| under pressure (0 without such points).
@@ -125,10 +126,20 @@ pub fn solid_balance(
         b.imbalance /= scale;
         b.floor /= scale;
     });
+    // Relative to the largest pressure, or to the stresses the displacements imply where that
+    // is larger: bodies that just touch carry pressures of rounding size, against which the
+    // law's own rounding is not small.
+    let stress = (bodies.iter().zip(&sol.displacements))
+        .map(|(b, u)| {
+            let largest = u.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+            b.elasticity[0][0] * largest / b.mesh.bounding_box_diameter()
+        })
+        .fold(0.0f64, f64::max);
+    let scale = largest.max(stress);
     Ok(SolidBalance {
         bodies: balances,
-        contact_law: if largest > 0.0 {
-            worst_law / largest
+        contact_law: if scale > 0.0 {
+            worst_law / scale
         } else {
             worst_law
         },

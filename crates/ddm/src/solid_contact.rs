@@ -270,6 +270,15 @@ pub enum SolidProgress {
         /// The seconds it took.
         seconds: f64,
     },
+    /// A load step begins (only where there are several).
+    LoadStep {
+        /// The step (from 1).
+        step: usize,
+        /// Their number.
+        of: usize,
+        /// Its load factor.
+        factor: f64,
+    },
     /// A Newton step solved its closed set.
     NewtonStep {
         /// The step (from 1).

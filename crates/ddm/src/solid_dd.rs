@@ -60,6 +60,22 @@ pub fn solve_solid_dd_reported(
     pairs: &[SolidPairSpec],
     report: &(dyn Fn(SolidProgress) + Sync),
 ) -> Result<SolidContactSolution, SolidContactError> {
+    let mut steps = solve_solid_dd_steps(bodies, pairs, &[1.0], report)?;
+    steps
+        .pop()
+        .ok_or(SolidContactError::NotSettled { steps: 0 })
+}
+
+/// The solutions at the load factors `factors`: every load and prescribed displacement times
+/// the factor, the gaps as they are. The bodies are factorised and condensed once; each factor
+/// costs a Newton iteration on the contact points and one solve per body. Each solution's
+/// timings are the phases' totals so far (the setup's included).
+pub fn solve_solid_dd_steps(
+    bodies: &[SolidBodySpec<'_>],
+    pairs: &[SolidPairSpec],
+    factors: &[f64],
+    report: &(dyn Fn(SolidProgress) + Sync),
+) -> Result<Vec<SolidContactSolution>, SolidContactError> {
     let mut clock = Clock::default();
     let (offsets, _) = offsets(bodies);
     let rows = contact_rows(bodies, &offsets, pairs)?;
@@ -76,9 +92,51 @@ pub fn solve_solid_dd_reported(
             Ok(c)
         })
         .collect::<Result<_, SolidContactError>>()?;
+    let (g, s0) = coupled(&condensed, &rows);
+    let slowest = condensed.iter().map(|c| c.factorising).fold(0.0, f64::max);
+    clock.lap("assemble, factorise and condense");
+    clock
+        .laps
+        .push(("of which the slowest body's factorisation", slowest));
+    let mut solutions = Vec::with_capacity(factors.len());
+    for (k, &factor) in factors.iter().enumerate() {
+        if factors.len() > 1 {
+            report(SolidProgress::LoadStep {
+                step: k + 1,
+                of: factors.len(),
+                factor,
+            });
+        }
+        let (p, alpha, steps) = newton(&rows, &g, (&s0, factor), &motions, report)?;
+        clock.lap("iterate");
+        let displacements = (condensed.par_iter().zip(bodies).zip(&motions.first))
+            .map(|((c, body), &first)| {
+                let alpha = &alpha[first..first + c.motions.len()];
+                recover(c, (body, factor), &rows, &p, alpha)
+            })
+            .collect::<Result<Vec<_>, _>>()?;
+        clock.lap("recover");
+        let points = (rows.iter().zip(&p))
+            .map(|(r, &p)| SolidContactPoint {
+                pressure: p,
+                ..r.point.clone()
+            })
+            .collect();
+        solutions.push(SolidContactSolution {
+            displacements,
+            points,
+            newton_steps: steps,
+            timings: clock.laps.clone(),
+        });
+    }
+    Ok(solutions)
+}
+
+/// G (m × m, its columns weighted) and s⁰ of all bodies.
+fn coupled(condensed: &[Condensed], rows: &[Row]) -> (Mat<f64>, Vec<f64>) {
     let m = rows.len();
     let (mut g, mut s0) = (Mat::<f64>::zeros(m, m), vec![0.0; m]);
-    for c in &condensed {
+    for c in condensed {
         g += &c.g;
         s0.iter_mut().zip(&c.s0).for_each(|(s, x)| *s += x);
     }
@@ -86,32 +144,7 @@ pub fn solve_solid_dd_reported(
         let w = r.point.weight;
         g.col_mut(l).iter_mut().for_each(|x| *x *= w);
     }
-    let slowest = condensed.iter().map(|c| c.factorising).fold(0.0, f64::max);
-    clock.lap("assemble, factorise and condense");
-    clock
-        .laps
-        .push(("of which the slowest body's factorisation", slowest));
-    let (p, alpha, steps) = newton(&rows, &g, &s0, &motions, report)?;
-    clock.lap("iterate");
-    let displacements = (condensed.par_iter().zip(bodies).zip(&motions.first))
-        .map(|((c, body), &first)| {
-            let alpha = &alpha[first..first + c.motions.len()];
-            recover(c, body, &rows, &p, alpha)
-        })
-        .collect::<Result<Vec<_>, _>>()?;
-    clock.lap("recover");
-    let points = (rows.into_iter().zip(&p))
-        .map(|(r, &p)| SolidContactPoint {
-            pressure: p,
-            ..r.point
-        })
-        .collect();
-    Ok(SolidContactSolution {
-        displacements,
-        points,
-        newton_steps: steps,
-        timings: clock.laps,
-    })
+    (g, s0)
 }
 
 /// The phases' wall times.
@@ -130,9 +163,14 @@ impl Default for Clock {
 }
 
 impl Clock {
+    /// Adds the time since the last lap to `phase` (summed over the load steps).
     fn lap(&mut self, phase: &'static str) {
         let now = std::time::Instant::now();
-        self.laps.push((phase, (now - self.last).as_secs_f64()));
+        let seconds = (now - self.last).as_secs_f64();
+        match self.laps.iter_mut().find(|(p, _)| *p == phase) {
+            Some(lap) => lap.1 += seconds,
+            None => self.laps.push((phase, seconds)),
+        }
         self.last = now;
     }
 }
@@ -208,24 +246,34 @@ fn condense(
     })
 }
 
-/// Body `c`'s displacement under its loads and the contact forces of the pressures `p`.
+/// Body `c`'s displacement under its loads and prescribed displacements times `factor` and the
+/// contact forces of the pressures `p`.
 fn recover(
     c: &Condensed,
-    body: &SolidBodySpec<'_>,
+    (body, factor): (&SolidBodySpec<'_>, f64),
     rows: &[Row],
     p: &[f64],
     alpha: &[f64],
 ) -> Result<Vec<f64>, SolidContactError> {
-    let mut f = body.load.clone();
+    let fail = |e: contactdd_core::BodyError| SolidContactError::Factor {
+        step: 0,
+        message: e.to_string(),
+    };
+    let mut f: Vec<f64> = body.load.iter().map(|v| factor * v).collect();
     for (r, &p) in rows.iter().zip(p) {
         for &(i, v) in r.a.iter().filter(|(i, _)| c.range.contains(i)) {
             f[i - c.range.start] -= r.point.weight * p * v;
         }
     }
-    let mut u = c.factor.solve(&f).map_err(|e| SolidContactError::Factor {
-        step: 0,
-        message: e.to_string(),
-    })?;
+    let mut u = c.factor.solve(&f).map_err(fail)?;
+    if factor != 1.0 {
+        // The solve imposes the prescribed values themselves; the field they cause alone
+        // scales the rest of the way.
+        let g = c.factor.solve(&vec![0.0; f.len()]).map_err(fail)?;
+        u.iter_mut()
+            .zip(&g)
+            .for_each(|(u, g)| *u += (factor - 1.0) * g);
+    }
     for (z, &a) in c.motions.iter().zip(alpha) {
         u.iter_mut().zip(z).for_each(|(x, v)| *x += a * v);
     }

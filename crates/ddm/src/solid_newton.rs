@@ -101,14 +101,17 @@ pub(crate) fn start(rows: &[Row], motions: &Motions) -> Vec<bool> {
 
 /// The pressures, the motions' amplitudes and the steps taken (the last one confirms the closed
 /// set), from the points whose gap is closed.
+/// `s0` and the loads' work along the free motions are those of the full loads, times `factor`.
 pub(crate) fn newton(
     rows: &[Row],
     g: &Mat<f64>,
-    s0: &[f64],
+    (s0, factor): (&[f64], f64),
     motions: &Motions,
     report: &dyn Fn(SolidProgress),
 ) -> Result<(Vec<f64>, Vec<f64>, usize), SolidContactError> {
     let m = rows.len();
+    let s0: Vec<f64> = s0.iter().map(|s| factor * s).collect();
+    let work: Vec<f64> = motions.work.iter().map(|w| factor * w).collect();
     let k = motions.work.len();
     let mut closed = start(rows, motions);
     for step in 1..=MAX_STEPS {
@@ -116,7 +119,7 @@ pub(crate) fn newton(
         if let Some(body) = unheld(&set, motions) {
             return Err(SolidContactError::NotHeld { body, step });
         }
-        let (p, alpha) = step_solve(rows, g, s0, motions, &set, step)?;
+        let (p, alpha) = step_solve(rows, g, (&s0, &work), motions, &set, step)?;
         report(SolidProgress::NewtonStep {
             step,
             closed: set.len(),
@@ -162,7 +165,7 @@ fn pressure(row: &Row, p: f64, s: f64) -> f64 {
 fn step_solve(
     rows: &[Row],
     g: &Mat<f64>,
-    s0: &[f64],
+    (s0, work): (&[f64], &[f64]),
     motions: &Motions,
     set: &[usize],
     step: usize,
@@ -183,7 +186,7 @@ fn step_solve(
         if x < c {
             s0[set[x]] - rows[set[x]].point.gap
         } else {
-            motions.work[x - c]
+            work[x - c]
         }
     });
     for (x, &j) in set.iter().enumerate().filter(|(_, &j)| !rows[j].exact) {

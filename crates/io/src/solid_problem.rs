@@ -39,7 +39,9 @@ use serde::{Deserialize, Serialize};
 
 use contactdd_core::Order;
 
-use crate::problem::{EnforcementSpec, MaterialSpec, OutputSpec, PenaltySpec};
+use crate::problem::{
+    EnforcementSpec, LoadStepsSpec, MaterialSpec, MonitorSpec, OutputSpec, PenaltySpec,
+};
 
 /// A whole problem file in space.
 #[derive(Clone, Debug, PartialEq, Deserialize, Serialize)]
@@ -239,6 +241,12 @@ pub struct SolidSolverSpec {
     /// Worker threads ≥ 1 (default: the machine's).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub threads: Option<usize>,
+    /// Solve at increasing loads: N equal steps, or the load factors (as in the plane).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub load_steps: Option<LoadStepsSpec>,
+    /// The face of a body whose mean displacement each load step reports.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub monitor: Option<MonitorSpec>,
 }
 
 /// Whether the TOML text is a problem in space: a top-level `dimension` key. Text that is not

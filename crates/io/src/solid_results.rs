@@ -29,6 +29,11 @@ pub fn write_solid_results(
     let contact = dir.join("contact.csv");
     write_atomic(&contact, solid_contact_csv(model, outcome).as_bytes())?;
     written.push(contact);
+    if outcome.steps.len() > 1 {
+        let steps = dir.join("steps.csv");
+        write_atomic(&steps, solid_steps_csv(model, outcome).as_bytes())?;
+        written.push(steps);
+    }
     let summary = dir.join("summary.json");
     let mut value = solid_summary(model, outcome);
     let names: Vec<String> = (written.iter().chain([&summary]))
@@ -40,6 +45,34 @@ pub fn write_solid_results(
     write_atomic(&summary, format!("{text}\n").as_bytes())?;
     written.push(summary);
     Ok(written)
+}
+
+/// `steps.csv`: one row per load step, with its factor, Newton steps, verdict, worst imbalance,
+/// every pair's normal force and the monitored face's mean displacement (empty without one).
+fn solid_steps_csv(model: &SolidModel, outcome: &SolidOutcome) -> String {
+    let mut out = String::from("step,factor,newton_steps,converged,imbalance");
+    for p in &model.pairs {
+        out.push_str(&format!(",force_{}", p.name));
+    }
+    out.push_str(",monitor_x,monitor_y,monitor_z\n");
+    for (k, s) in outcome.steps.iter().enumerate() {
+        out.push_str(&format!(
+            "{},{},{},{},{:e}",
+            k + 1,
+            s.factor,
+            s.newton_steps,
+            s.converged,
+            s.imbalance
+        ));
+        for f in &s.pair_forces {
+            out.push_str(&format!(",{f:e}"));
+        }
+        match s.monitor {
+            Some([x, y, z]) => out.push_str(&format!(",{x:e},{y:e},{z:e}\n")),
+            None => out.push_str(",,,\n"),
+        }
+    }
+    out
 }
 
 /// Every body's displacement, nodal stress tensor and von Mises stress, one `.vtu` file per body
@@ -175,6 +208,14 @@ pub fn solid_summary(model: &SolidModel, outcome: &SolidOutcome) -> Value {
         },
         "bodies": bodies,
         "contact": pairs,
+        "load_steps": outcome.steps.iter().map(|s| json!({
+            "factor": s.factor,
+            "newton_steps": s.newton_steps,
+            "converged": s.converged,
+            "imbalance": s.imbalance,
+            "normal_forces": s.pair_forces,
+            "monitor": s.monitor,
+        })).collect::<Vec<_>>(),
         "timings": timings,
     })
 }

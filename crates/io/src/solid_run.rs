@@ -5,9 +5,9 @@
 use contactdd_core::solid::rigid::free_rigid_modes;
 use contactdd_ddm::solid_balance::{solid_balance, SolidBalance};
 use contactdd_ddm::solid_contact::SolidProgress;
-use contactdd_ddm::solid_dd::solve_solid_dd_reported;
+use contactdd_ddm::solid_dd::solve_solid_dd_steps;
 use contactdd_ddm::solid_monolithic::{
-    solve_solid_monolithic, SolidContactError, SolidContactSolution,
+    solve_solid_monolithic, SolidBodySpec, SolidContactError, SolidContactSolution,
 };
 
 use crate::solid_setup::SolidModel;
@@ -36,14 +36,34 @@ impl SolidSolver {
 pub struct SolidOutcome {
     /// The solver that ran.
     pub solver: SolidSolver,
-    /// The solution.
+    /// The solution (of the last load step).
     pub solution: SolidContactSolution,
-    /// The independent check.
+    /// The independent check (of the last load step, or of the first that fails it).
     pub balance: SolidBalance,
-    /// Whether the result is a solution: the closed set settled and the check passed.
+    /// Whether the result is a solution: the closed set settled and the check passed, at every
+    /// load step.
     pub converged: bool,
     /// Why not, when it is not.
     pub reason: Option<String>,
+    /// Every load step, in order (one without `load-steps`).
+    pub steps: Vec<SolidStep>,
+}
+
+/// One load step of a solve.
+#[derive(Clone, Debug, PartialEq)]
+pub struct SolidStep {
+    /// The load factor.
+    pub factor: f64,
+    /// The Newton steps it took.
+    pub newton_steps: usize,
+    /// Its worst body imbalance.
+    pub imbalance: f64,
+    /// Whether it passed the independent check.
+    pub converged: bool,
+    /// Every pair's normal force Σ w p.
+    pub pair_forces: Vec<f64>,
+    /// The mean displacement of the monitored face, if any.
+    pub monitor: Option<[f64; 3]>,
 }
 
 /// Why a solve in space has no result.
@@ -81,18 +101,63 @@ pub fn run_solid_reported(
     solver: SolidSolver,
     report: &(dyn Fn(SolidProgress) + Sync),
 ) -> Result<SolidOutcome, SolidRunError> {
-    let bodies = model.body_specs();
     let pairs = model.pair_specs();
-    let solution = match solver {
-        SolidSolver::Decomposition => solve_solid_dd_reported(&bodies, &pairs, report),
-        SolidSolver::Monolithic => solve_solid_monolithic(&bodies, &pairs),
+    let factors = &model.load_factors;
+    let solutions = match solver {
+        SolidSolver::Decomposition => {
+            solve_solid_dd_steps(&model.body_specs(), &pairs, factors, report)
+        }
+        SolidSolver::Monolithic => (factors.iter())
+            .map(|&f| solve_solid_monolithic(&scaled(model, f), &pairs))
+            .collect(),
     }
     .map_err(|e| named(model, e))?;
-    let balance = solid_balance(&bodies, &pairs, &solution)?;
+    let mut steps = Vec::with_capacity(solutions.len());
+    let mut verdict: Option<(SolidBalance, Option<String>)> = None;
+    for (k, (solution, &factor)) in solutions.iter().zip(factors).enumerate() {
+        let balance = solid_balance(&scaled(model, factor), &pairs, solution)?;
+        let reason = reason(model, &balance).map(|r| match factors.len() {
+            1 => r,
+            _ => format!("load step {} (factor {factor}): {r}", k + 1),
+        });
+        steps.push(step_of(
+            model,
+            solution,
+            (factor, &balance, reason.is_none()),
+        ));
+        if !verdict.as_ref().is_some_and(|v| v.1.is_some()) {
+            verdict = Some((balance, reason));
+        }
+    }
+    let (Some(solution), Some((balance, reason))) = (solutions.into_iter().last(), verdict) else {
+        return Err(SolidContactError::NotSettled { steps: 0 }.into());
+    };
+    Ok(SolidOutcome {
+        solver,
+        converged: reason.is_none(),
+        solution,
+        balance,
+        reason,
+        steps,
+    })
+}
+
+/// The bodies as the solvers take them, every load and prescribed value times `factor`.
+fn scaled(model: &SolidModel, factor: f64) -> Vec<SolidBodySpec<'_>> {
+    let mut bodies = model.body_specs();
+    for b in &mut bodies {
+        b.load.iter_mut().for_each(|v| *v *= factor);
+        b.prescribed.iter_mut().for_each(|(_, v)| *v *= factor);
+    }
+    bodies
+}
+
+/// Why `balance` does not pass, if it does not.
+fn reason(model: &SolidModel, balance: &SolidBalance) -> Option<String> {
     // The contact law holds to rounding when the pressures come from the displacements; a
     // looser law means the reported pressures are not those of the field.
     let law_tol = 1e-6;
-    let reason = if let Some(b) = balance.unbalanced(model.balance_tol) {
+    if let Some(b) = balance.unbalanced(model.balance_tol) {
         Some(format!(
             "unbalanced: body '{}' leaves {:.1e} of the largest force total unbalanced (balance-tol {:.0e}, rounding floor {:.1e})",
             model.bodies[b].name, balance.bodies[b].imbalance, model.balance_tol, balance.bodies[b].floor
@@ -104,14 +169,37 @@ pub fn run_solid_reported(
         ))
     } else {
         None
-    };
-    Ok(SolidOutcome {
-        solver,
-        converged: reason.is_none(),
-        solution,
-        balance,
-        reason,
-    })
+    }
+}
+
+/// The record of one load step.
+fn step_of(
+    model: &SolidModel,
+    sol: &SolidContactSolution,
+    (factor, balance, converged): (f64, &SolidBalance, bool),
+) -> SolidStep {
+    let pair_forces = (0..model.pairs.len())
+        .map(|k| {
+            let points = sol.points.iter().filter(|q| q.pair == k);
+            points.map(|q| q.weight * q.pressure).sum()
+        })
+        .collect();
+    let monitor = model.monitor.as_ref().and_then(|(b, face)| {
+        let mut nodes = model.bodies[*b].mesh.face(face).ok()?.to_vec();
+        nodes.sort_unstable();
+        nodes.dedup();
+        let u = &sol.displacements[*b];
+        let mean = |c: usize| nodes.iter().map(|&v| u[3 * v + c]).sum::<f64>() / nodes.len() as f64;
+        Some([mean(0), mean(1), mean(2)])
+    });
+    SolidStep {
+        factor,
+        newton_steps: sol.newton_steps,
+        imbalance: balance.worst(),
+        converged,
+        pair_forces,
+        monitor,
+    }
 }
 
 /// The solver's error with the body's name where it names one.

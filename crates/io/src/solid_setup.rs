@@ -14,7 +14,8 @@ use contactdd_core::{Material, Order};
 use contactdd_ddm::solid_monolithic::{SolidBodySpec, SolidPairSpec};
 
 use crate::error::excerpt;
-use crate::problem::{OutputSpec, PenaltySpec};
+use crate::load_steps::load_steps;
+use crate::problem::{MonitorSpec, OutputSpec, PenaltySpec};
 use crate::solid_problem::{
     SolidBodyEntry, SolidComponent, SolidContactSpec, SolidLoadSpec, SolidMeshSpec, SolidProblem,
 };
@@ -96,6 +97,10 @@ pub struct SolidModel {
     pub balance_tol: f64,
     /// Worker threads (`None`: the machine's).
     pub threads: Option<usize>,
+    /// The load factors of the solves, in order (`[1.0]` without `load-steps`).
+    pub load_factors: Vec<f64>,
+    /// The (body, face) whose mean displacement each load step reports.
+    pub monitor: Option<(usize, String)>,
     /// The output settings.
     pub output: OutputSpec,
 }
@@ -187,6 +192,13 @@ pub fn resolve_solid(problem: SolidProblem, base: &Path, stem: &str) -> Result<S
     if problem.solver.threads == Some(0) {
         return Err("solver.threads = 0: must be at least 1".into());
     }
+    let load_factors = match &problem.solver.load_steps {
+        Some(spec) => load_steps(spec).map_err(|e| e.to_string())?,
+        None => vec![1.0],
+    };
+    let monitor = (problem.solver.monitor.as_ref())
+        .map(|m| solid_monitor(m, &bodies))
+        .transpose()?;
     Ok(SolidModel {
         name: problem.name.clone().unwrap_or_else(|| stem.to_string()),
         units: problem.units.clone(),
@@ -194,8 +206,22 @@ pub fn resolve_solid(problem: SolidProblem, base: &Path, stem: &str) -> Result<S
         pairs,
         balance_tol,
         threads: problem.solver.threads,
+        load_factors,
+        monitor,
         output: problem.output,
     })
+}
+
+/// The body and face of `monitor`, which must exist.
+fn solid_monitor(m: &MonitorSpec, bodies: &[SolidBodyModel]) -> Result<(usize, String), String> {
+    let body = (bodies.iter())
+        .position(|b| b.name == m.body)
+        .ok_or_else(|| format!("solver.monitor: no body named '{}'", shown(&m.body)))?;
+    bodies[body]
+        .mesh
+        .face(&m.boundary)
+        .map_err(|e| format!("solver.monitor: body '{}': {e}", shown(&m.body)))?;
+    Ok((body, m.boundary.clone()))
 }
 
 /// Meshes body `b` and assembles its supports and loads.
