@@ -377,6 +377,9 @@ pub struct Units {
     pub length: Option<String>,
     /// Stress unit (`N/cm^2`).
     pub stress: Option<String>,
+    /// Whether the results are in space, where a force is a stress times an area (not a
+    /// length).
+    pub space: bool,
 }
 
 impl Units {
@@ -389,6 +392,7 @@ impl Units {
             [l, s] if !l.is_empty() && !s.is_empty() => Units {
                 length: Some(l.to_string()),
                 stress: Some(s.to_string()),
+                space: false,
             },
             _ => Units::default(),
         }
@@ -402,9 +406,14 @@ impl Units {
     /// The unit of a force in 2D (per unit thickness): stress × length, simplified where the
     /// stress is a force per area of that length (`N/mm^2`·`mm` = `N/mm`) or a named unit
     /// (`MPa`·`mm` = `N/mm`, `Pa`·`m` = `N/m`), else written as the product `stress·length`.
+    ///
+    /// In space, stress × area ([`space_force_unit`]).
     pub fn force(&self) -> Option<String> {
         let (stress, length) = (self.stress.as_deref()?, self.length.as_deref()?);
-        Some(force_unit(stress, length))
+        match self.space {
+            true => Some(space_force_unit(stress, length)),
+            false => Some(force_unit(stress, length)),
+        }
     }
 }
 
@@ -420,6 +429,37 @@ const NAMED: [(&str, &str, &str); 9] = [
     ("psi", "in", "lbf/in"),
     ("ksi", "in", "kip/in"),
 ];
+
+/// The unit of a force in space: stress × length², simplified where the stress is a force per
+/// area of that length (`N/mm^2` with `mm`: `N`) or a named unit (`MPa` with `mm`: `N`, `Pa`
+/// with `m`: `N`), else written as the product `stress·length²`.
+pub fn space_force_unit(stress: &str, length: &str) -> String {
+    const NAMED: [(&str, &str, &str); 9] = [
+        ("Pa", "m", "N"),
+        ("kPa", "m", "kN"),
+        ("MPa", "m", "MN"),
+        ("GPa", "m", "GN"),
+        ("MPa", "mm", "N"),
+        ("GPa", "mm", "kN"),
+        ("kPa", "mm", "mN"),
+        ("psi", "in", "lbf"),
+        ("ksi", "in", "kip"),
+    ];
+    if let Some((_, _, force)) = NAMED.iter().find(|(s, l, _)| *s == stress && *l == length) {
+        return (*force).to_string();
+    }
+    if let Some((force, area)) = stress.rsplit_once('/') {
+        let area = area.trim();
+        let area = (area.strip_prefix('(').and_then(|a| a.strip_suffix(')'))).unwrap_or(area);
+        let squared = ["^2", "²", "2"]
+            .iter()
+            .any(|two| area.strip_suffix(two).map(str::trim) == Some(length));
+        if squared && !force.trim().is_empty() {
+            return force.trim().to_string();
+        }
+    }
+    format!("{stress}·{length}²")
+}
 
 /// The unit of stress × length (see [`Units::force`]).
 fn force_unit(stress: &str, length: &str) -> String {

@@ -19,10 +19,11 @@ use plotters::prelude::*;
 use contactdd_io::output::safe_file_name;
 
 use crate::args::{Format, PlotArgs};
-use crate::plot_data::{Summary, Table, Units};
+use crate::plot_data::{space_force_unit, Summary, Table, Units};
 use crate::plot_draw::{linear, ok, render, series, span, Figure, Frame, Line, Look, Marker};
 use crate::plot_draw::{tick, COLORS};
 use crate::plot_mesh::{colour_bar, equal_aspect, significant, viridis, BAR_WIDTH};
+use crate::plot_steps;
 
 /// A view looks along a coordinate axis when the normal is within 10° of it: cos 10°.
 const SNAP_COS: f64 = 0.984_807_753_012_208;
@@ -109,6 +110,16 @@ pub fn figures(
         };
         let stem = format!("pressure-profile-{name}");
         written.extend(render(&profile, out, &stem, formats)?);
+    }
+    // A load history: the load–displacement curve and the forces against the load factor.
+    let steps = dir.join("steps.csv");
+    if steps.is_file() {
+        let table = Table::read(&steps)?;
+        let units = Units {
+            space: true,
+            ..units.clone()
+        };
+        written.extend(plot_steps::figures(&table, &units, None, out, formats)?);
     }
     Ok(written)
 }
@@ -456,36 +467,10 @@ fn normalized(a: Vec3) -> Vec3 {
     }
 }
 
-/// The unit of a force in space: stress × length², simplified where the stress is a force per
-/// area of that length (`N/mm^2` with `mm`: `N`) or a named unit (`MPa` with `mm`: `N`, `Pa`
-/// with `m`: `N`), else written as the product `stress·length²`.
+/// The unit of a force in space ([`crate::plot_data::space_force_unit`]).
 fn force_unit(units: &Units) -> Option<String> {
-    const NAMED: [(&str, &str, &str); 9] = [
-        ("Pa", "m", "N"),
-        ("kPa", "m", "kN"),
-        ("MPa", "m", "MN"),
-        ("GPa", "m", "GN"),
-        ("MPa", "mm", "N"),
-        ("GPa", "mm", "kN"),
-        ("kPa", "mm", "mN"),
-        ("psi", "in", "lbf"),
-        ("ksi", "in", "kip"),
-    ];
     let (stress, length) = (units.stress.as_deref()?, units.length.as_deref()?);
-    if let Some((_, _, force)) = NAMED.iter().find(|(s, l, _)| *s == stress && *l == length) {
-        return Some((*force).to_string());
-    }
-    if let Some((force, area)) = stress.rsplit_once('/') {
-        let area = area.trim();
-        let area = (area.strip_prefix('(').and_then(|a| a.strip_suffix(')'))).unwrap_or(area);
-        let squared = ["^2", "²", "2"]
-            .iter()
-            .any(|two| area.strip_suffix(two).map(str::trim) == Some(length));
-        if squared && !force.trim().is_empty() {
-            return Some(force.trim().to_string());
-        }
-    }
-    Some(format!("{stress}·{length}²"))
+    Some(space_force_unit(stress, length))
 }
 
 /// `value` with its unit, if any.

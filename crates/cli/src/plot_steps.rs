@@ -72,29 +72,7 @@ fn read(table: &Table) -> Result<Steps> {
         .iter()
         .map(|r| r[converged_col] == "true")
         .collect();
-    let monitor = match (table.column("monitor_ux"), table.column("monitor_uy")) {
-        (Ok(_), Ok(_)) => {
-            let (ux, uy) = (table.numbers("monitor_ux")?, table.numbers("monitor_uy")?);
-            let reach = |u: &[f64]| {
-                u.iter()
-                    .filter(|v| v.is_finite())
-                    .fold(0.0, |m: f64, v| m.max(v.abs()))
-            };
-            let (name, u) = if reach(&ux) > reach(&uy) {
-                (["u_x", "−u_x"], ux)
-            } else {
-                (["u_y", "−u_y"], uy)
-            };
-            // A body pushed down (or left) plots as a positive displacement −u, as usual for a
-            // load–displacement curve.
-            if u.iter().filter(|v| v.is_finite()).sum::<f64>() < 0.0 {
-                Some((name[1], u.iter().map(|v| -v).collect()))
-            } else {
-                Some((name[0], u))
-            }
-        }
-        _ => None,
-    };
+    let monitor = monitored(table)?;
     let mut forces = Vec::new();
     for name in &table.header {
         if let Some(pair) = name.strip_suffix("_force_x") {
@@ -102,6 +80,10 @@ fn read(table: &Table) -> Result<Steps> {
             let fy = table.numbers(&format!("{pair}_force_y"))?;
             let norm = fx.iter().zip(&fy).map(|(x, y)| x.hypot(*y)).collect();
             forces.push((pair.to_string(), norm));
+        } else if let Some(pair) = name.strip_suffix("_normal_force") {
+            // In space: the pair's normal force Σ w p, a magnitude.
+            let f = table.numbers(name)?;
+            forces.push((pair.to_string(), f.iter().map(|v| v.abs()).collect()));
         }
     }
     let mut tangential = Vec::new();
@@ -117,6 +99,38 @@ fn read(table: &Table) -> Result<Steps> {
         forces,
         tangential,
     })
+}
+
+/// The monitored displacement component that moves most (of `monitor_ux`, `monitor_uy` and,
+/// in space, `monitor_uz`), with its name; a body pushed down (or left) plots as a positive
+/// displacement −u, as usual for a load–displacement curve.
+fn monitored(table: &Table) -> Result<Option<(&'static str, Vec<f64>)>> {
+    let reach = |u: &[f64]| {
+        u.iter()
+            .filter(|v| v.is_finite())
+            .fold(0.0, |m: f64, v| m.max(v.abs()))
+    };
+    let mut best: Option<([&'static str; 2], Vec<f64>)> = None;
+    for (column, names) in [
+        ("monitor_ux", ["u_x", "−u_x"]),
+        ("monitor_uy", ["u_y", "−u_y"]),
+        ("monitor_uz", ["u_z", "−u_z"]),
+    ] {
+        if table.column(column).is_err() {
+            continue;
+        }
+        let u = table.numbers(column)?;
+        if !best.as_ref().is_some_and(|(_, b)| reach(&u) <= reach(b)) {
+            best = Some((names, u));
+        }
+    }
+    Ok(best.map(|(name, u)| {
+        if u.iter().filter(|v| v.is_finite()).sum::<f64>() < 0.0 {
+            (name[1], u.iter().map(|v| -v).collect())
+        } else {
+            (name[0], u)
+        }
+    }))
 }
 
 /// Force against the monitored displacement, or against the load factor.

@@ -330,3 +330,30 @@ fn a_folder_in_space_without_contact_csv_is_a_clear_error() {
     assert!(err.contains("names no contact.csv"), "{err}");
     std::fs::remove_dir_all(&dir).ok();
 }
+
+/// A load history in space: the blocks pushed in four steps with their top face monitored; the
+/// load–displacement curve and the forces against the load factor exist, one marker per step
+/// and the unloaded state, with the force in MN (the file's units "m, MPa": MPa × m²) and the
+/// displacement in m.
+#[test]
+fn a_load_history_in_space_draws_its_curves() {
+    let dir = temp("steps");
+    let file = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/space/blocks.toml");
+    let text = read(&file)
+        + "\n[solver]\nload-steps = 4\nmonitor = { body = \"upper\", boundary = \"z+\" }\n";
+    let steps = dir.join("steps.toml");
+    std::fs::write(&steps, text).expect("write");
+    let out = dir.join("out");
+    succeeded(&contactdd(&["solve", path(&steps), "-o", path(&out), "-q"]));
+    assert_eq!(read(&out.join("steps.csv")).lines().count(), 5);
+    succeeded(&contactdd(&["plot", path(&out)]));
+    let curve = svg(&out.join("plots/load-displacement.svg"));
+    // The unloaded state, the four steps and the legend's marker.
+    assert_eq!(circles(&curve).len(), 6, "{curve}");
+    let labels = texts(&curve).join("|");
+    assert!(
+        labels.contains("|F| (MN)") && labels.contains("(m)"),
+        "{labels}"
+    );
+    assert!(out.join("plots/steps-force.png").is_file());
+}

@@ -48,13 +48,14 @@ pub fn write_solid_results(
 }
 
 /// `steps.csv`: one row per load step, with its factor, Newton steps, verdict, worst imbalance,
-/// every pair's normal force and the monitored face's mean displacement (empty without one).
+/// every pair's normal force Σ w p and the monitored face's mean displacement (empty without
+/// one).
 fn solid_steps_csv(model: &SolidModel, outcome: &SolidOutcome) -> String {
     let mut out = String::from("step,factor,newton_steps,converged,imbalance");
     for p in &model.pairs {
-        out.push_str(&format!(",force_{}", p.name));
+        out.push_str(&format!(",{}_normal_force", p.name));
     }
-    out.push_str(",monitor_x,monitor_y,monitor_z\n");
+    out.push_str(",monitor_ux,monitor_uy,monitor_uz\n");
     for (k, s) in outcome.steps.iter().enumerate() {
         out.push_str(&format!(
             "{},{},{},{},{:e}",
