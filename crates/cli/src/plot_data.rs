@@ -448,17 +448,10 @@ pub fn space_force_unit(stress: &str, length: &str) -> String {
     if let Some((_, _, force)) = NAMED.iter().find(|(s, l, _)| *s == stress && *l == length) {
         return (*force).to_string();
     }
-    if let Some((force, area)) = stress.rsplit_once('/') {
-        let area = area.trim();
-        let area = (area.strip_prefix('(').and_then(|a| a.strip_suffix(')'))).unwrap_or(area);
-        let squared = ["^2", "²", "2"]
-            .iter()
-            .any(|two| area.strip_suffix(two).map(str::trim) == Some(length));
-        if squared && !force.trim().is_empty() {
-            return force.trim().to_string();
-        }
+    match per_area(stress, length) {
+        Some(force) => force.to_string(),
+        None => format!("{stress}·{length}²"),
     }
-    format!("{stress}·{length}²")
 }
 
 /// The unit of stress × length (see [`Units::force`]).
@@ -466,21 +459,23 @@ fn force_unit(stress: &str, length: &str) -> String {
     if let Some((_, _, force)) = NAMED.iter().find(|(s, l, _)| *s == stress && *l == length) {
         return (*force).to_string();
     }
-    // "F/L^2" (or F/L², F/L2, F/(L^2)) times L is F/L.
-    if let Some((force, area)) = stress.rsplit_once('/') {
-        let area = area.trim();
-        let area = area
-            .strip_prefix('(')
-            .and_then(|a| a.strip_suffix(')'))
-            .unwrap_or(area);
-        let squared = ["^2", "²", "2"]
-            .iter()
-            .any(|two| area.strip_suffix(two).map(str::trim) == Some(length));
-        if squared && !force.trim().is_empty() {
-            return format!("{}/{length}", force.trim());
-        }
+    // "F/L^2" times L is F/L.
+    match per_area(stress, length) {
+        Some(force) => format!("{force}/{length}"),
+        None => format!("{stress}·{length}"),
     }
-    format!("{stress}·{length}")
+}
+
+/// F of a stress unit written "F/L^2" (or F/L², F/L2, F/(L^2)) with L the length unit.
+fn per_area<'a>(stress: &'a str, length: &str) -> Option<&'a str> {
+    let (force, area) = stress.rsplit_once('/')?;
+    let area = area.trim();
+    let area = (area.strip_prefix('(').and_then(|a| a.strip_suffix(')'))).unwrap_or(area);
+    let squared = ["^2", "²", "2"]
+        .iter()
+        .any(|two| area.strip_suffix(two).map(str::trim) == Some(length));
+    let force = force.trim();
+    (squared && !force.is_empty()).then_some(force)
 }
 
 #[cfg(test)]
