@@ -20,7 +20,7 @@ use pyo3::types::{PyDict, PyTuple, PyType};
 use contactdd_core::gmsh::parse_solid_msh;
 use contactdd_core::names::shown;
 use contactdd_core::Order;
-use contactdd_io::problem::{MaterialSpec, PenaltySpec};
+use contactdd_io::problem::{LoadStepsSpec, MaterialSpec, MonitorSpec, PenaltySpec};
 use contactdd_io::solid_problem::{
     is_solid_text, SolidBodyEntry, SolidContactSpec, SolidMeshSpec, SolidProblem,
 };
@@ -459,8 +459,19 @@ impl SpaceProblem {
     /// Args:
     ///     balance_tol: the force balance's tolerance of a converged result (default 1e-6).
     ///     threads: worker threads (default: all cores).
-    #[pyo3(signature = (balance_tol = None, threads = None))]
-    fn solver(&mut self, balance_tol: Option<f64>, threads: Option<usize>) -> PyResult<()> {
+    ///     load_steps: solve at increasing loads: a number of equal steps, or the list of load
+    ///         factors (``[solver] load-steps``); the result's ``summary()["load_steps"]`` holds
+    ///         every step.
+    ///     monitor: ``(body, face)`` whose mean displacement each load step reports.
+    #[pyo3(signature = (balance_tol = None, threads = None, load_steps = None, monitor = None))]
+    fn solver(
+        &mut self,
+        py: Python<'_>,
+        balance_tol: Option<f64>,
+        threads: Option<usize>,
+        load_steps: Option<&Bound<'_, PyAny>>,
+        monitor: Option<(String, String)>,
+    ) -> PyResult<()> {
         if let Some(b) = balance_tol.filter(|b| !(b.is_finite() && *b > 0.0)) {
             return Err(input_error(format!(
                 "solver.balance-tol = {b}: must be positive"
@@ -469,15 +480,16 @@ impl SpaceProblem {
         if threads == Some(0) {
             return Err(input_error("solver.threads = 0: must be at least 1"));
         }
-        let solver = &mut self.spec.solver;
+        let load_steps = load_steps.map(load_steps_arg).transpose()?;
+        let mut candidate = self.spec.clone();
+        let solver = &mut candidate.solver;
         solver.balance_tol = balance_tol.or(solver.balance_tol);
         solver.threads = threads.or(solver.threads);
-        if let Some(model) = self.model.as_mut() {
-            let m = Arc::make_mut(model);
-            m.balance_tol = balance_tol.unwrap_or(m.balance_tol);
-            m.threads = threads.or(m.threads);
+        solver.load_steps = load_steps.or(solver.load_steps.take());
+        if let Some((body, boundary)) = monitor {
+            solver.monitor = Some(MonitorSpec { body, boundary });
         }
-        Ok(())
+        self.commit(py, candidate)
     }
 
     /// The names of the faces of a body.
@@ -570,4 +582,16 @@ impl SpaceProblem {
     ) -> PyResult<SpaceProblem> {
         SpaceProblem::parse(py, text, "<pickle>", Path::new("."), "problem")
     }
+}
+
+/// The `load_steps=` keyword: a number of equal steps or a list of load factors.
+fn load_steps_arg(obj: &Bound<'_, PyAny>) -> PyResult<LoadStepsSpec> {
+    if let Ok(n) = obj.extract::<usize>() {
+        return Ok(LoadStepsSpec::Count(n));
+    }
+    obj.extract::<Vec<f64>>()
+        .map(LoadStepsSpec::Factors)
+        .map_err(|_| {
+            input_error("load_steps: expected a number of steps or a list of load factors")
+        })
 }

@@ -361,3 +361,21 @@ def test_an_augmented_pair_in_the_file():
     assert result.summary()["contact"][0]["enforcement"] == "augmented"
     exact = 0.001 / (0.5 / 2.1e5 + 0.5 / 7e4)
     assert np.all(np.abs(result.contact["pressure"] / exact - 1.0) < 1e-10)
+
+
+def test_load_steps_set_in_code():
+    """Problem.solver(load_steps=, monitor=) is the file's [solver] load-steps and monitor: the
+    blocks pushed in two steps carry half the pressure, then all of it (linear, touching)."""
+    p = boxes()
+    p.solver(load_steps=[0.5, 1.0], monitor=("upper", "z+"))
+    assert "load-steps = [0.5, 1.0]" in p.to_toml()
+    steps = space.solve(p).summary()["load_steps"]
+    assert [s["factor"] for s in steps] == [0.5, 1.0]
+    assert steps[0]["normal_forces"][0] == pytest.approx(0.5 * steps[1]["normal_forces"][0],
+                                                         rel=1e-12)
+    assert steps[1]["monitor"][2] == pytest.approx(-0.001, rel=1e-12)
+    for bad, message in [("two", "load_steps"), (0, "load-steps")]:
+        with pytest.raises(contactdd.ContactddError, match=message):
+            p.solver(load_steps=bad)
+    with pytest.raises(contactdd.ContactddError, match="monitor"):
+        p.solver(monitor=("nobody", "z+"))

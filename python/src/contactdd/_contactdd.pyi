@@ -574,7 +574,13 @@ class SpaceProblem:
     ) -> None:
         """Adds a contact pair; penalty by the rod model (c, h) or theta directly;
         enforcement "penalty" (default) or "augmented" (exact contact)."""
-    def solver(self, balance_tol: Optional[float] = None, threads: Optional[int] = None) -> None:
+    def solver(
+        self,
+        balance_tol: Optional[float] = None,
+        threads: Optional[int] = None,
+        load_steps: Optional[_LoadSteps] = None,
+        monitor: Optional[Tuple[str, str]] = None,
+    ) -> None:
         """Sets the [solver] table (None keeps a value)."""
     def boundaries(self, body: str) -> list[str]:
         """The names of the faces of a body."""
