@@ -7,11 +7,12 @@ use std::time::Instant;
 
 use anyhow::{bail, Context, Result};
 
+use contactdd_ddm::contact3d::DiscStatus;
 use contactdd_ddm::solid_contact::SolidProgress;
 use contactdd_io::body_vtus::safe_file_name;
 use contactdd_io::solid_problem::is_solid_text;
 use contactdd_io::solid_results::write_solid_results;
-use contactdd_io::solid_run::{run_solid_reported, SolidOutcome, SolidSolver};
+use contactdd_io::solid_run::{run_solid_reported, tangential_force, SolidOutcome, SolidSolver};
 use contactdd_io::solid_setup::{load_solid_file, SolidModel};
 use contactdd_io::vtu::VtuLayout;
 
@@ -33,8 +34,8 @@ fn refuse(options: &[(&str, bool)]) -> Result<()> {
     }
     bail!(
         "{} not available for problems in space (dimension = 3): they run the interface Newton \
-         method of the decomposition on frictionless contact, whose augmented pairs meet the \
-         Signorini conditions exactly (no gap tolerance, no iteration tolerance)",
+         method of the decomposition, whose augmented pairs meet the Signorini conditions \
+         exactly (no gap tolerance, no iteration tolerance)",
         given.join(", ")
     )
 }
@@ -46,7 +47,6 @@ pub fn solve(args: SolveArgs) -> Result<Exit> {
         ("--gamma", args.gamma.is_some()),
         ("--accelerator", args.accelerator.is_some()),
         ("--coarse", args.coarse.is_some()),
-        ("--friction", args.friction.is_some()),
         ("--gap-tol", args.gap_tol.is_some()),
         ("--tol", args.common.tol.is_some()),
         ("--max-iter", args.common.max_iter.is_some()),
@@ -58,7 +58,7 @@ pub fn solve(args: SolveArgs) -> Result<Exit> {
         args.vtu_format,
         args.vtu_layout,
     )?;
-    enforce(&mut model, args.enforcement);
+    enforce(&mut model, args.enforcement, args.friction);
     let threads = args.common.threads.map(|n| n as usize).or(model.threads);
     let out = (args.out.clone()).unwrap_or_else(|| default_dir(&model, "out"));
     run(
@@ -74,12 +74,11 @@ pub fn solve(args: SolveArgs) -> Result<Exit> {
 pub fn monolithic(args: MonolithicArgs) -> Result<Exit> {
     refuse(&[
         ("--max-steps", args.max_steps.is_some()),
-        ("--friction", args.friction.is_some()),
         ("--gap-tol", args.gap_tol.is_some()),
     ])?;
     let mut model = load(&args.file)?;
     overrides(&mut model, None, args.vtu_format, args.vtu_layout)?;
-    enforce(&mut model, args.enforcement);
+    enforce(&mut model, args.enforcement, args.friction);
     let threads = args.threads.map(|n| n as usize).or(model.threads);
     let out = (args.out.clone()).unwrap_or_else(|| default_dir(&model, "monolithic-out"));
     run(&model, SolidSolver::Monolithic, threads, &out, args.quiet)
@@ -88,8 +87,8 @@ pub fn monolithic(args: MonolithicArgs) -> Result<Exit> {
 /// `contactdd check` on a problem in space: the file loads, its bodies mesh and its pairs
 /// resolve.
 pub fn check(args: CheckArgs) -> Result<Exit> {
-    refuse(&[("--friction", args.friction.is_some())])?;
-    let model = load(&args.file)?;
+    let mut model = load(&args.file)?;
+    enforce(&mut model, None, args.friction);
     say!("{}", describe(&model).trim_end());
     say!(
         "solver: {} (contactdd monolithic: the {})",
@@ -100,10 +99,15 @@ pub fn check(args: CheckArgs) -> Result<Exit> {
     Ok(Exit::Success)
 }
 
-/// The command line's `--enforcement`, for every pair.
-fn enforce(model: &mut SolidModel, enforcement: Option<contactdd_ddm::Enforcement>) {
-    if let Some(e) = enforcement {
-        model.pairs.iter_mut().for_each(|p| p.enforcement = e);
+/// The command line's `--enforcement` and `--friction`, for every pair.
+fn enforce(
+    model: &mut SolidModel,
+    enforcement: Option<contactdd_ddm::Enforcement>,
+    friction: Option<contactdd_ddm::Friction>,
+) {
+    for p in &mut model.pairs {
+        p.enforcement = enforcement.unwrap_or(p.enforcement);
+        p.friction = friction.unwrap_or(p.friction);
     }
 }
 
@@ -232,11 +236,21 @@ fn pair_lines(model: &SolidModel, o: &SolidOutcome) -> Vec<String> {
             let closed = points.iter().filter(|q| q.pressure > 0.0).count();
             let force: f64 = points.iter().map(|q| q.weight * q.pressure).sum();
             let peak = points.iter().map(|q| q.pressure).fold(0.0, f64::max);
-            format!(
+            let mut line = format!(
                 "pair {}: {} with a partner, {closed} closed; normal force {force:.6e}, peak pressure {peak:.6e}",
                 p.name,
                 count(points.len(), "point", "points")
-            )
+            );
+            if p.friction.is_active() {
+                let slip = (points.iter())
+                    .filter(|q| q.friction.as_ref().is_some_and(|f| f.status == Some(DiscStatus::Slip)))
+                    .count();
+                let [x, y, z] = tangential_force(&o.solution, k);
+                line.push_str(&format!(
+                    "; {slip} of {closed} slip; tangential force ({x:.6e}, {y:.6e}, {z:.6e})"
+                ));
+            }
+            line
         })
         .collect()
 }
@@ -271,6 +285,9 @@ fn describe(model: &SolidModel) -> String {
             p.search,
             p.enforcement
         ));
+        if p.friction.is_active() {
+            out.insert_str(out.len() - 1, &format!(", friction: {}", p.friction));
+        }
     }
     if model.load_factors.len() > 1 {
         out.push_str(&format!(

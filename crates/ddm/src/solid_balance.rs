@@ -15,9 +15,12 @@ use contactdd_core::solid::rigid::RigidModes;
 use contactdd_core::solid::DIM3;
 use rayon::prelude::*;
 
+use crate::contact3d::disc::project;
 use crate::solid_contact::{
-    contact_rows, offsets, SolidBodySpec, SolidContactError, SolidContactSolution, SolidPairSpec,
+    contact_rows, offsets, Row, SolidBodySpec, SolidContactError, SolidContactSolution,
+    SolidFrictionPoint, SolidPairSpec,
 };
+use crate::Friction;
 
 /// One body's balance.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -49,6 +52,9 @@ pub struct SolidBalance {
     /// The largest violation of the Signorini conditions at the points of augmented pairs, a
     /// length: a penetration s − d > 0, or a gap |s − d| under pressure (0 without such points).
     pub gap_violation: f64,
+    /// The largest difference between a reported traction and the friction law read from the
+    /// displacements, on the scale of `contact_law` (0 without friction).
+    pub friction_law: f64,
 }
 
 impl SolidBalance {
@@ -92,23 +98,23 @@ pub fn solid_balance(
     }
     let mut contact = vec![0.0; n];
     let (mut worst_law, mut largest, mut gap_violation) = (0.0f64, 0.0f64, 0.0f64);
+    let mut worst_friction = 0.0f64;
     for (r, point) in rows.iter().zip(&sol.points) {
-        let s: f64 = r.a.iter().map(|&(i, x)| x * u[i]).sum();
-        // An exact point: the complementarity form of the Signorini conditions, in pressures.
-        let law = match r.exact {
-            false => (s - r.point.gap).max(0.0) / r.theta,
-            true => (point.pressure + (s - r.point.gap) / r.theta).max(0.0),
-        };
-        if r.exact {
-            let open = point.pressure <= 0.0;
-            let violation = if open {
-                s - r.point.gap
-            } else {
-                (s - r.point.gap).abs()
+        if r.friction.is_active() {
+            let Some(f) = &point.friction else {
+                return Err(mismatch("a frictional point without its traction"));
             };
-            gap_violation = gap_violation.max(violation);
+            worst_friction = worst_friction.max(friction_law(r, point.pressure, f, &u));
+            largest = largest.max(f.traction[0].hypot(f.traction[1]));
+            for (t, tau) in r.tangents.iter().zip(f.traction) {
+                t.iter()
+                    .for_each(|&(i, x)| contact[i] += point.weight * tau * x);
+            }
         }
-        worst_law = worst_law.max((law - point.pressure).abs());
+        let s: f64 = r.a.iter().map(|&(i, x)| x * u[i]).sum();
+        let (off, violation) = normal_law(r, point.pressure, s);
+        gap_violation = gap_violation.max(violation);
+        worst_law = worst_law.max(off);
         largest = largest.max(point.pressure.abs());
         for &(i, x) in &r.a {
             contact[i] -= point.weight * point.pressure * x;
@@ -136,15 +142,51 @@ pub fn solid_balance(
         })
         .fold(0.0f64, f64::max);
     let scale = largest.max(stress);
+    let relative = |x: f64| if scale > 0.0 { x / scale } else { x };
     Ok(SolidBalance {
         bodies: balances,
-        contact_law: if scale > 0.0 {
-            worst_law / scale
-        } else {
-            worst_law
-        },
+        contact_law: relative(worst_law),
         gap_violation,
+        friction_law: relative(worst_friction),
     })
+}
+
+/// How far the pressure `p` of point `r` is from its contact law at the approach `s`, and how
+/// far it violates the Signorini conditions (an exact point: a penetration s − d > 0, or a gap
+/// under pressure; 0 at a penalty point).
+fn normal_law(r: &Row, p: f64, s: f64) -> (f64, f64) {
+    let gap = r.point.gap;
+    // An exact point: the complementarity form of the Signorini conditions, in pressures.
+    let law = match r.exact {
+        false => (s - gap).max(0.0) / r.theta,
+        true => (p + (s - gap) / r.theta).max(0.0),
+    };
+    let violation = match (r.exact, p <= 0.0) {
+        (false, _) => 0.0,
+        (true, true) => s - gap,
+        (true, false) => (s - gap).abs(),
+    };
+    ((law - p).abs(), violation)
+}
+
+/// How far the traction `f` of frictional point `r` at pressure `p` is from the law's: the
+/// projection onto the disc (radius μp, or the Tresca bound where it is closed) of
+/// λ − (g − g₀)/θ, g read from `u`, λ the carried traction (the traction itself at an exact
+/// point) and g₀ the carried slip.
+fn friction_law(r: &Row, p: f64, f: &SolidFrictionPoint, u: &[f64]) -> f64 {
+    let g = r
+        .tangents
+        .clone()
+        .map(|t| t.iter().map(|&(i, x)| x * u[i]).sum::<f64>());
+    let lambda = if r.exact { f.traction } else { f.carried[0] };
+    let trial = [0, 1].map(|c| lambda[c] - (g[c] - f.carried[1][c]) / r.theta);
+    let bound = match r.friction {
+        Friction::Coulomb { mu } => mu * p,
+        Friction::Tresca { bound } if p > 0.0 || f.status.is_some() => bound,
+        _ => 0.0,
+    };
+    let (law, _) = project(trial, bound);
+    (law[0] - f.traction[0]).hypot(law[1] - f.traction[1])
 }
 
 /// One body's balance (its imbalance still absolute): `u` and `contact` start at its DOFs.

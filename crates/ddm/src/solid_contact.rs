@@ -10,8 +10,10 @@
 
 use contactdd_core::solid::{dof, SolidMesh, TetOrder};
 
-use crate::contact3d::{dual_mortar, PointRows, Side, Surface, SurfaceError, TriangleIndex};
-use crate::Enforcement;
+use crate::contact3d::{
+    dual_mortar, DiscStatus, PointRows, Side, Surface, SurfaceError, TriangleIndex,
+};
+use crate::{Enforcement, Friction};
 
 /// One body: its mesh, its 6 × 6 elasticity matrix, its prescribed DOFs (own numbering) and its
 /// nodal loads.
@@ -42,6 +44,9 @@ pub struct SolidPairSpec {
     /// penetration, no pressure across a gap), the fixed point of the augmented Lagrangian,
     /// which the Newton method of [`crate::solid_dd`] solves directly.
     pub enforcement: Enforcement,
+    /// The tangential law (docs/three-d.md, "Friction in space"): the traction is bounded by
+    /// the disc of radius μp (Coulomb) or the bound (Tresca); `Friction::None` is frictionless.
+    pub friction: Friction,
 }
 
 /// Why the reference cannot solve a problem.
@@ -89,6 +94,20 @@ pub enum SolidContactError {
         /// The largest violation left, a length.
         violation: f64,
     },
+    /// A floating body's loads do more work along one of its free rigid motions than friction
+    /// can oppose there: it slides, and no equilibrium exists.
+    #[error("body {body} slides: its loads do {work:.3e} of work along a free rigid motion, and friction opposes at most {resistance:.3e}")]
+    Slides {
+        /// The body.
+        body: usize,
+        /// The loads' work along the motion (per unit amplitude).
+        work: f64,
+        /// The most work friction does against it (Σ w_j b_j |Δg_j|).
+        resistance: f64,
+    },
+    /// The solver does not take the problem.
+    #[error("{0}")]
+    Unsupported(String),
     /// The closed set did not settle.
     #[error("the closed set did not settle in {steps} Newton steps")]
     NotSettled {
@@ -112,6 +131,43 @@ pub struct SolidContactPoint {
     pub gap: f64,
     /// Its contact pressure (≥ 0).
     pub pressure: f64,
+    /// Its tangential state, at a point of a frictional pair.
+    pub friction: Option<SolidFrictionPoint>,
+}
+
+/// The tangential state of a contact point of a frictional pair, in its frame (t₁, t₂).
+#[derive(Clone, Debug, PartialEq)]
+pub struct SolidFrictionPoint {
+    /// The unit tangents t₁, t₂ ((t₁, t₂, ν) right-handed, ν the outward normal of the
+    /// reference side).
+    pub tangents: [[f64; 3]; 2],
+    /// The tangential traction on the reference side, (t₁, t₂) components: |traction| ≤ b.
+    pub traction: [f64; 2],
+    /// The slip g: the tangential displacement of the reference side relative to its partner.
+    pub slip: [f64; 2],
+    /// The traction and the slip the increment started from (zero for a single solve; the last
+    /// step's for a load step).
+    pub carried: [[f64; 2]; 2],
+    /// Stick or slip; `None` where the point is open.
+    pub status: Option<DiscStatus>,
+}
+
+impl SolidFrictionPoint {
+    /// The traction on the reference side as a vector in space.
+    pub fn traction_vector(&self) -> [f64; 3] {
+        self.in_space(self.traction)
+    }
+
+    /// The slip as a vector in space.
+    pub fn slip_vector(&self) -> [f64; 3] {
+        self.in_space(self.slip)
+    }
+
+    /// The vector of (t₁, t₂) components `v`.
+    fn in_space(&self, v: [f64; 2]) -> [f64; 3] {
+        let [t1, t2] = self.tangents;
+        [0, 1, 2].map(|c| v[0] * t1[c] + v[1] * t2[c])
+    }
 }
 
 /// The solution of the reference.
@@ -139,6 +195,61 @@ pub(crate) struct Row {
     pub(crate) theta: f64,
     /// Whether the point meets the Signorini conditions exactly (an augmented pair).
     pub(crate) exact: bool,
+    /// The pair's tangential law (resolved: `None` for μ = 0 or a zero bound).
+    pub(crate) friction: Friction,
+    /// The two tangential rows of a frictional point (empty otherwise) and its tangents.
+    pub(crate) tangents: [Vec<(usize, f64)>; 2],
+    pub(crate) frame: [[f64; 3]; 2],
+}
+
+/// The rows that the solvers condense: every point's normal row first (line j is point j's),
+/// then the two tangential rows of each frictional point.
+pub(crate) struct Lines<'a> {
+    /// The rows.
+    pub(crate) rows: Vec<&'a [(usize, f64)]>,
+    /// The weight of each line's point.
+    pub(crate) weight: Vec<f64>,
+    /// The first of the two tangential lines of every point (`None` for a frictionless one).
+    pub(crate) tangent: Vec<Option<usize>>,
+}
+
+impl<'a> Lines<'a> {
+    /// The lines of `rows`.
+    pub(crate) fn new(rows: &'a [Row]) -> Lines<'a> {
+        let mut lines = Lines {
+            rows: rows.iter().map(|r| r.a.as_slice()).collect(),
+            weight: rows.iter().map(|r| r.point.weight).collect(),
+            tangent: Vec::with_capacity(rows.len()),
+        };
+        for r in rows {
+            if r.friction.is_active() {
+                lines.tangent.push(Some(lines.rows.len()));
+                for t in &r.tangents {
+                    lines.rows.push(t);
+                    lines.weight.push(r.point.weight);
+                }
+            } else {
+                lines.tangent.push(None);
+            }
+        }
+        lines
+    }
+
+    /// Whether any point is frictional.
+    pub(crate) fn frictional(&self) -> bool {
+        self.rows.len() > self.tangent.len()
+    }
+}
+
+/// The DOFs point `r` couples: its normal row's, and its tangential rows' where it has them.
+pub(crate) fn point_dofs(r: &Row) -> Vec<usize> {
+    let mut dofs: Vec<usize> = r.a.iter().map(|&(i, _)| i).collect();
+    if r.friction.is_active() {
+        dofs.extend(r.tangents.iter().flatten().map(|&(i, _)| i));
+        dofs.sort_unstable();
+        dofs.dedup();
+    }
+    dofs
 }
 
 /// Where every body's DOFs start in the coupled numbering, and their total.
@@ -194,17 +305,24 @@ fn pair_rows(
     for (j, row) in mortar.iter().enumerate() {
         let Some(row) = row else { continue };
         let point = PointRows::new(j, reference.normals()[j], row);
-        let nu = point.frame[0];
-        let a = (point.terms.iter())
-            .flat_map(|&(side, k, c)| {
-                let at = match side {
-                    Side::Reference => ref_at + dof(ref_nodes[k], 0),
-                    Side::Partner => par_at + dof(par_nodes[k], 0),
-                };
-                (0..3).map(move |d| (at + d, c * nu[d]))
-            })
-            .filter(|e| e.1 != 0.0)
-            .collect();
+        let along = |dir: [f64; 3]| -> Vec<(usize, f64)> {
+            (point.terms.iter())
+                .flat_map(|&(side, k, c)| {
+                    let at = match side {
+                        Side::Reference => ref_at + dof(ref_nodes[k], 0),
+                        Side::Partner => par_at + dof(par_nodes[k], 0),
+                    };
+                    (0..3).map(move |d| (at + d, c * dir[d]))
+                })
+                .filter(|e| e.1 != 0.0)
+                .collect()
+        };
+        let friction = pair.friction.resolved();
+        let tangents = match friction.is_active() {
+            true => [along(point.frame[1]), along(point.frame[2])],
+            false => [Vec::new(), Vec::new()],
+        };
+        let a = along(point.frame[0]);
         let weight = reference.weights()[j];
         rows.push(Row {
             point: SolidContactPoint {
@@ -214,10 +332,14 @@ fn pair_rows(
                 weight,
                 gap: row.gap,
                 pressure: 0.0,
+                friction: None,
             },
             a,
             theta: pair.theta,
             exact: pair.enforcement == Enforcement::Augmented,
+            friction,
+            tangents,
+            frame: [point.frame[1], point.frame[2]],
         });
     }
     Ok(rows)

@@ -27,9 +27,10 @@ use faer::{Accum, Mat, Par};
 use rayon::prelude::*;
 
 use crate::solid_contact::{
-    contact_rows, offsets, Row, SolidBodySpec, SolidContactError, SolidContactPoint,
-    SolidContactSolution, SolidPairSpec, SolidProgress,
+    contact_rows, offsets, Lines, Row, SolidBodySpec, SolidContactError, SolidContactPoint,
+    SolidContactSolution, SolidFrictionPoint, SolidPairSpec, SolidProgress,
 };
+use crate::solid_friction::{newton_friction, Frictional, Increment};
 use crate::solid_newton::{newton, Motions};
 
 /// One body after its factorisation: the factor, its DOF range in the coupled numbering, and
@@ -81,10 +82,11 @@ pub fn solve_solid_dd_steps(
     let rows = contact_rows(bodies, &offsets, pairs)?;
     clock.lap("contact geometry");
     report(SolidProgress::Geometry { points: rows.len() });
-    let motions = Motions::new(bodies, &offsets, &rows);
+    let lines = Lines::new(&rows);
+    let motions = Motions::new(bodies, &offsets, &lines.rows);
     let condensed: Vec<Condensed> = (bodies.par_iter().zip(&offsets).enumerate())
         .map(|(b, (body, &at))| {
-            let c = condense(b, (body, &motions.of_body[b]), at, &rows)?;
+            let c = condense(b, (body, &motions.of_body[b]), at, &lines.rows)?;
             report(SolidProgress::Condensed {
                 body: b,
                 seconds: c.factorising,
@@ -92,13 +94,15 @@ pub fn solve_solid_dd_steps(
             Ok(c)
         })
         .collect::<Result<_, SolidContactError>>()?;
-    let (g, s0) = coupled(&condensed, &rows);
+    let (g, s0) = coupled(&condensed, &lines.weight);
     let slowest = condensed.iter().map(|c| c.factorising).fold(0.0, f64::max);
     clock.lap("assemble, factorise and condense");
     clock
         .laps
         .push(("of which the slowest body's factorisation", slowest));
     let mut solutions = Vec::with_capacity(factors.len());
+    // Per point, the traction and slip each increment starts from: friction remembers the path.
+    let mut carried = vec![[[0.0; 2]; 2]; rows.len()];
     for (k, &factor) in factors.iter().enumerate() {
         if factors.len() > 1 {
             report(SolidProgress::LoadStep {
@@ -107,21 +111,36 @@ pub fn solve_solid_dd_steps(
                 factor,
             });
         }
-        let (p, alpha, steps) = newton(&rows, &g, (&s0, factor), &motions, report)?;
+        let f = match lines.frictional() {
+            false => frictionless(newton(&rows, &g, (&s0, factor), &motions, report)?),
+            true => newton_friction(
+                &Increment {
+                    rows: &rows,
+                    lines: &lines,
+                    g: &g,
+                    v0: s0.iter().map(|s| factor * s).collect(),
+                    work: motions.work.iter().map(|w| factor * w).collect(),
+                    motions: &motions,
+                    carried: &carried,
+                },
+                report,
+            )?,
+        };
         clock.lap("iterate");
         let displacements = (condensed.par_iter().zip(bodies).zip(&motions.first))
             .map(|((c, body), &first)| {
-                let alpha = &alpha[first..first + c.motions.len()];
-                recover(c, (body, factor), &rows, &p, alpha)
+                let alpha = &f.alpha[first..first + c.motions.len()];
+                recover(c, (body, factor), &rows, (&f.p, &f.tau), alpha)
             })
             .collect::<Result<Vec<_>, _>>()?;
         clock.lap("recover");
-        let points = (rows.iter().zip(&p))
-            .map(|(r, &p)| SolidContactPoint {
-                pressure: p,
-                ..r.point.clone()
-            })
+        let points = (0..rows.len())
+            .map(|j| point(&rows[j], &f, j, carried[j]))
             .collect();
+        for (j, c) in carried.iter_mut().enumerate() {
+            *c = [f.tau[j], f.slip[j]];
+        }
+        let steps = f.steps;
         solutions.push(SolidContactSolution {
             displacements,
             points,
@@ -132,16 +151,44 @@ pub fn solve_solid_dd_steps(
     Ok(solutions)
 }
 
-/// G (m × m, its columns weighted) and s⁰ of all bodies.
-fn coupled(condensed: &[Condensed], rows: &[Row]) -> (Mat<f64>, Vec<f64>) {
-    let m = rows.len();
+/// The frictionless iteration's result in the form of the frictional one.
+fn frictionless((p, alpha, steps): (Vec<f64>, Vec<f64>, usize)) -> Frictional {
+    let m = p.len();
+    Frictional {
+        p,
+        tau: vec![[0.0; 2]; m],
+        slip: vec![[0.0; 2]; m],
+        status: vec![None; m],
+        alpha,
+        steps,
+    }
+}
+
+/// Point j of the solution `f`, which started from the traction and slip `carried`.
+fn point(row: &Row, f: &Frictional, j: usize, carried: [[f64; 2]; 2]) -> SolidContactPoint {
+    let friction = row.friction.is_active().then(|| SolidFrictionPoint {
+        tangents: row.frame,
+        traction: f.tau[j],
+        slip: f.slip[j],
+        carried,
+        status: f.status[j],
+    });
+    SolidContactPoint {
+        pressure: f.p[j],
+        friction,
+        ..row.point.clone()
+    }
+}
+
+/// G (over the lines, its columns weighted by `weight`) and s⁰ of all bodies.
+fn coupled(condensed: &[Condensed], weight: &[f64]) -> (Mat<f64>, Vec<f64>) {
+    let m = weight.len();
     let (mut g, mut s0) = (Mat::<f64>::zeros(m, m), vec![0.0; m]);
     for c in condensed {
         g += &c.g;
         s0.iter_mut().zip(&c.s0).for_each(|(s, x)| *s += x);
     }
-    for (l, r) in rows.iter().enumerate() {
-        let w = r.point.weight;
+    for (l, &w) in weight.iter().enumerate() {
         g.col_mut(l).iter_mut().for_each(|x| *x *= w);
     }
     (g, s0)
@@ -175,17 +222,17 @@ impl Clock {
     }
 }
 
-/// Factorises body `b` (its DOFs from `at` in the coupled numbering) with the DOFs the rows
+/// Factorises body `b` (its DOFs from `at` in the coupled numbering) with the DOFs the lines
 /// read ordered last, and condenses it: its part of G and of s⁰.
 fn condense(
     b: usize,
     (body, motions): (&SolidBodySpec<'_>, &[Vec<f64>]),
     at: usize,
-    rows: &[Row],
+    rows: &[&[(usize, f64)]],
 ) -> Result<Condensed, SolidContactError> {
     let range = at..at + 3 * body.mesh.num_nodes();
     let mut interface: Vec<usize> = (rows.iter())
-        .flat_map(|r| r.a.iter().map(|&(i, _)| i))
+        .flat_map(|r| r.iter().map(|&(i, _)| i))
         .filter(|i| range.contains(i))
         .map(|i| i - at)
         .collect();
@@ -217,7 +264,7 @@ fn condense(
     let mut x = Mat::<f64>::zeros(l.nrows(), rows.len());
     let mut s0 = vec![0.0; rows.len()];
     for (j, r) in rows.iter().enumerate() {
-        for &(i, v) in r.a.iter().filter(|(i, _)| range.contains(i)) {
+        for &(i, v) in r.iter().filter(|(i, _)| range.contains(i)) {
             s0[j] += v * u0[i - at];
             let pos = interface.binary_search(&(i - at)).ok();
             if let Some((k, c)) = pos.and_then(|q| index[q]) {
@@ -247,12 +294,12 @@ fn condense(
 }
 
 /// Body `c`'s displacement under its loads and prescribed displacements times `factor` and the
-/// contact forces of the pressures `p`.
+/// contact forces of the pressures `p` and tractions `tau`.
 fn recover(
     c: &Condensed,
     (body, factor): (&SolidBodySpec<'_>, f64),
     rows: &[Row],
-    p: &[f64],
+    (p, tau): (&[f64], &[[f64; 2]]),
     alpha: &[f64],
 ) -> Result<Vec<f64>, SolidContactError> {
     let fail = |e: contactdd_core::BodyError| SolidContactError::Factor {
@@ -263,6 +310,13 @@ fn recover(
     for (r, &p) in rows.iter().zip(p) {
         for &(i, v) in r.a.iter().filter(|(i, _)| c.range.contains(i)) {
             f[i - c.range.start] -= r.point.weight * p * v;
+        }
+    }
+    for (r, tau) in rows.iter().zip(tau).filter(|(r, _)| r.friction.is_active()) {
+        for (t, &tc) in r.tangents.iter().zip(tau) {
+            for &(i, v) in t.iter().filter(|(i, _)| c.range.contains(i)) {
+                f[i - c.range.start] += r.point.weight * tc * v;
+            }
         }
     }
     let mut u = c.factor.solve(&f).map_err(fail)?;

@@ -22,11 +22,12 @@ use contactdd_core::solid::assembly::stiffness;
 use contactdd_core::supports::Constraints;
 use faer::sparse::{SparseColMat, Triplet};
 
-use crate::solid_contact::{contact_rows, offsets, Row};
+use crate::solid_contact::{contact_rows, offsets, point_dofs, Lines, Row};
 pub use crate::solid_contact::{
     SolidBodySpec, SolidContactError, SolidContactPoint, SolidContactSolution, SolidPairSpec,
     MAX_STEPS,
 };
+use crate::solid_monolithic_friction::frictional;
 use crate::solid_newton::{start, Motions};
 
 /// The Signorini conditions at the exact points hold when they are violated by at most this
@@ -42,43 +43,37 @@ pub fn solve_solid_monolithic(
     bodies: &[SolidBodySpec<'_>],
     pairs: &[SolidPairSpec],
 ) -> Result<SolidContactSolution, SolidContactError> {
+    solve_solid_monolithic_from(bodies, pairs, None)
+}
+
+/// [`solve_solid_monolithic`] for an increment that starts where the solution `last` (of the
+/// same pairs at the last load step) ended: its frictional points carry their tractions and
+/// slips (docs/three-d.md, "Friction in space"). Without `last` the increment starts from rest.
+pub fn solve_solid_monolithic_from(
+    bodies: &[SolidBodySpec<'_>],
+    pairs: &[SolidPairSpec],
+    last: Option<&SolidContactSolution>,
+) -> Result<SolidContactSolution, SolidContactError> {
     let started = std::time::Instant::now();
     let (offsets, n) = offsets(bodies);
     let rows = contact_rows(bodies, &offsets, pairs)?;
-    let mut trip = Vec::new();
-    for (b, at) in bodies.iter().zip(&offsets) {
-        push_matrix(&stiffness(b.mesh, &b.elasticity), *at, &mut trip);
+    let (mut system, f) = coupled_system(bodies, (&offsets, n), &rows)?;
+    let lines = Lines::new(&rows);
+    let mut closed = start(
+        &rows,
+        &lines.tangent,
+        &Motions::new(bodies, &offsets, &lines.rows),
+    );
+    if lines.frictional() {
+        let carried = carried(&rows, last)?;
+        let (u, points, newton_steps) = frictional(&mut system, (&rows, &carried), &f, closed)?;
+        return Ok(SolidContactSolution {
+            displacements: split(bodies, &offsets, &u),
+            points,
+            newton_steps,
+            timings: vec![("solve", started.elapsed().as_secs_f64())],
+        });
     }
-    // Every point's springs in the pattern (as zeros), so that one analysis serves every step.
-    for r in &rows {
-        for &(i, _) in &r.a {
-            for &(k, _) in &r.a {
-                trip.push(Triplet::new(i, k, 0.0));
-            }
-        }
-    }
-    let k = SparseColMat::<usize, f64>::try_new_from_triplets(n, n, &trip).map_err(|e| {
-        SolidContactError::Factor {
-            step: 0,
-            message: format!("{e:?}"),
-        }
-    })?;
-    let mut constraints = Constraints::for_dofs(n);
-    let mut f = vec![0.0; n];
-    for (b, at) in bodies.iter().zip(&offsets) {
-        b.prescribed
-            .iter()
-            .for_each(|&(d, v)| constraints.prescribe(at + d, v));
-        f[*at..*at + b.load.len()].copy_from_slice(&b.load);
-    }
-    let fail = |step: usize| {
-        move |e: contactdd_core::BodyError| SolidContactError::Factor {
-            step,
-            message: e.to_string(),
-        }
-    };
-    let mut system =
-        FactoredBody::new("the coupled bodies", k, &constraints, &[]).map_err(fail(0))?;
     let mut newton = Newton {
         system: &mut system,
         rows: &rows,
@@ -86,7 +81,6 @@ pub fn solve_solid_monolithic(
         factored: None,
         steps: 0,
     };
-    let mut closed = start(&rows, &Motions::new(bodies, &offsets, &rows));
     let mut gaps: Vec<f64> = rows.iter().map(|r| r.point.gap).collect();
     let (mut u, mut s) = newton.settle(&gaps, &mut closed)?;
     // Augmented pairs: the method of multipliers, λ ← p, each update a penalty solve with the
@@ -108,6 +102,71 @@ pub fn solve_solid_monolithic(
     let mut sol = solution(bodies, &offsets, rows, (&gaps, &s), u, steps);
     sol.timings = vec![("solve", started.elapsed().as_secs_f64())];
     Ok(sol)
+}
+
+/// The coupled stiffness of all bodies, factorised symbolically with every point's springs in
+/// its pattern (as zeros, so that one analysis serves every step), and the coupled loads.
+fn coupled_system(
+    bodies: &[SolidBodySpec<'_>],
+    (offsets, n): (&[usize], usize),
+    rows: &[Row],
+) -> Result<(FactoredBody, Vec<f64>), SolidContactError> {
+    let mut trip = Vec::new();
+    for (b, at) in bodies.iter().zip(offsets) {
+        push_matrix(&stiffness(b.mesh, &b.elasticity), *at, &mut trip);
+    }
+    for r in rows {
+        let dofs = point_dofs(r);
+        for &i in &dofs {
+            for &k in &dofs {
+                trip.push(Triplet::new(i, k, 0.0));
+            }
+        }
+    }
+    let fail = |message: String| SolidContactError::Factor { step: 0, message };
+    let k = SparseColMat::<usize, f64>::try_new_from_triplets(n, n, &trip)
+        .map_err(|e| fail(format!("{e:?}")))?;
+    let mut constraints = Constraints::for_dofs(n);
+    let mut f = vec![0.0; n];
+    for (b, at) in bodies.iter().zip(offsets) {
+        b.prescribed
+            .iter()
+            .for_each(|&(d, v)| constraints.prescribe(at + d, v));
+        f[*at..*at + b.load.len()].copy_from_slice(&b.load);
+    }
+    let system = FactoredBody::new("the coupled bodies", k, &constraints, &[])
+        .map_err(|e| fail(e.to_string()))?;
+    Ok((system, f))
+}
+
+/// Every body's part of the coupled vector `u`.
+fn split(bodies: &[SolidBodySpec<'_>], offsets: &[usize], u: &[f64]) -> Vec<Vec<f64>> {
+    (bodies.iter().zip(offsets))
+        .map(|(b, &at)| u[at..at + 3 * b.mesh.num_nodes()].to_vec())
+        .collect()
+}
+
+/// Per point, the traction and slip the increment starts from: those `last` ended with.
+fn carried(
+    rows: &[Row],
+    last: Option<&SolidContactSolution>,
+) -> Result<Vec<[[f64; 2]; 2]>, SolidContactError> {
+    let Some(last) = last else {
+        return Ok(vec![[[0.0; 2]; 2]; rows.len()]);
+    };
+    if last.points.len() != rows.len() {
+        return Err(SolidContactError::Pair {
+            pair: 0,
+            message: "the last step's solution has other contact points".into(),
+        });
+    }
+    Ok((last.points.iter())
+        .map(|q| {
+            q.friction
+                .as_ref()
+                .map_or([[0.0; 2]; 2], |f| [f.traction, f.slip])
+        })
+        .collect())
 }
 
 /// The largest violation of the Signorini conditions at the exact points, if above `tol`: with
@@ -216,9 +275,7 @@ fn solution(
     u: Vec<f64>,
     steps: usize,
 ) -> SolidContactSolution {
-    let displacements = (bodies.iter().zip(offsets))
-        .map(|(b, &at)| u[at..at + 3 * b.mesh.num_nodes()].to_vec())
-        .collect();
+    let displacements = split(bodies, offsets, &u);
     let points = (rows.into_iter().zip(s).zip(gaps))
         .map(|((r, &s), &gap)| SolidContactPoint {
             pressure: (s - gap).max(0.0) / r.theta,

@@ -37,8 +37,12 @@ pub(crate) struct Motions {
 
 impl Motions {
     /// The free motions of `bodies` (their DOFs from `offsets` in the coupled numbering) and
-    /// their approaches at the points of `rows`.
-    pub(crate) fn new(bodies: &[SolidBodySpec<'_>], offsets: &[usize], rows: &[Row]) -> Motions {
+    /// what the `lines` (the points' normal rows, then their tangential ones) read of them.
+    pub(crate) fn new(
+        bodies: &[SolidBodySpec<'_>],
+        offsets: &[usize],
+        lines: &[&[(usize, f64)]],
+    ) -> Motions {
         let of_body: Vec<Vec<Vec<f64>>> = (bodies.par_iter())
             .map(|b| {
                 let prescribed: Vec<usize> = b.prescribed.iter().map(|&(d, _)| d).collect();
@@ -53,10 +57,10 @@ impl Motions {
                 body.push(b);
             }
         }
-        let e = Mat::<f64>::from_fn(rows.len(), work.len(), |j, q| {
+        let e = Mat::<f64>::from_fn(lines.len(), work.len(), |j, q| {
             let (b, z) = (body[q], &of_body[body[q]][q - first[body[q]]]);
             let range = offsets[b]..offsets[b] + z.len();
-            (rows[j].a.iter())
+            (lines[j].iter())
                 .filter(|(i, _)| range.contains(i))
                 .map(|&(i, v)| v * z[i - offsets[b]])
                 .sum()
@@ -74,8 +78,10 @@ impl Motions {
 /// The first closed set: the points whose gap is closed (d_j ≤ 0), and for every body whose free
 /// motions those leave unresisted, its points of smallest gap, one by one, until they resist
 /// every motion (a body that starts apart from its partners, or touches them at one point whose
-/// gap rounds above zero). Shared by the decomposition and the monolithic reference.
-pub(crate) fn start(rows: &[Row], motions: &Motions) -> Vec<bool> {
+/// gap rounds above zero). A closed frictional point sticks at first, so its tangential lines
+/// (`tangent`, see [`crate::solid_contact::Lines`]) resist motions too. Shared by the
+/// decomposition and the monolithic reference.
+pub(crate) fn start(rows: &[Row], tangent: &[Option<usize>], motions: &Motions) -> Vec<bool> {
     // An exact point without weight has an empty row: it never closes.
     let can_close = |r: &Row| !r.exact || r.point.weight > 0.0;
     let mut closed: Vec<bool> = (rows.iter())
@@ -91,7 +97,7 @@ pub(crate) fn start(rows: &[Row], motions: &Motions) -> Vec<bool> {
             .collect();
         candidates.sort_by(|&x, &y| rows[x].point.gap.total_cmp(&rows[y].point.gap));
         let mut next = candidates.into_iter();
-        while !cols.is_empty() && !holds(&closed, motions, &cols) {
+        while !cols.is_empty() && !holds(&held_lines(&closed, tangent, None), motions, &cols) {
             let Some(j) = next.next() else { break };
             closed[j] = true;
         }
@@ -113,7 +119,7 @@ pub(crate) fn newton(
     let s0: Vec<f64> = s0.iter().map(|s| factor * s).collect();
     let work: Vec<f64> = motions.work.iter().map(|w| factor * w).collect();
     let k = motions.work.len();
-    let mut closed = start(rows, motions);
+    let mut closed = start(rows, &vec![None; rows.len()], motions);
     for step in 1..=MAX_STEPS {
         let set: Vec<usize> = (0..m).filter(|&j| closed[j]).collect();
         if let Some(body) = unheld(&set, motions) {
@@ -144,7 +150,7 @@ pub(crate) fn newton(
 /// Whether point `row` closes at the pressure `p` of the step and the approach `s` it leads to:
 /// s > d for a penalty point; θ p + s − d > 0 for an exact one that carries a force (a point of
 /// zero weight would leave its exact row empty).
-fn closes(row: &Row, p: f64, s: f64) -> bool {
+pub(crate) fn closes(row: &Row, p: f64, s: f64) -> bool {
     match row.exact {
         false => s > row.point.gap,
         true => row.point.weight > 0.0 && row.theta * p + s - row.point.gap > 0.0,
@@ -153,7 +159,7 @@ fn closes(row: &Row, p: f64, s: f64) -> bool {
 
 /// The pressure of point `row` at a settled set: the penalty law of the approach `s`, or the
 /// step's own `p` for an exact point (zero where it is open).
-fn pressure(row: &Row, p: f64, s: f64) -> f64 {
+pub(crate) fn pressure(row: &Row, p: f64, s: f64) -> f64 {
     match row.exact {
         false => ((s - row.point.gap) / row.theta).max(0.0),
         true => p.max(0.0),
@@ -210,31 +216,60 @@ fn step_solve(
     Ok((p, (0..k).map(|q| rhs[(c + q, 0)]).collect()))
 }
 
+/// The lines that resist motions: the normal lines of the `closed` points, and the tangential
+/// lines of those of them that stick (`sticks`, or every frictional one without it).
+pub(crate) fn held_lines(
+    closed: &[bool],
+    tangent: &[Option<usize>],
+    sticks: Option<&[bool]>,
+) -> Vec<bool> {
+    let lines = tangent.iter().flatten().map(|&t| t + 2).max();
+    let mut held = closed.to_vec();
+    held.resize(lines.unwrap_or(closed.len()).max(closed.len()), false);
+    for (j, t) in tangent.iter().enumerate() {
+        if let (Some(t), true) = (t, closed[j] && sticks.map_or(true, |s| s[j])) {
+            held[*t] = true;
+            held[t + 1] = true;
+        }
+    }
+    held
+}
+
 /// A body some of whose free motions no closed point of `set` resists.
 fn unheld(set: &[usize], motions: &Motions) -> Option<usize> {
     let mut closed = vec![false; motions.e.nrows()];
     set.iter().for_each(|&j| closed[j] = true);
+    unheld_lines(&closed, motions)
+}
+
+/// A body some of whose free motions no line of `closed` (over the lines) resists.
+pub(crate) fn unheld_lines(closed: &[bool], motions: &Motions) -> Option<usize> {
     (0..motions.first.len()).find(|&b| {
         let cols: Vec<usize> = (0..motions.body.len())
             .filter(|&q| motions.body[q] == b)
             .collect();
-        !cols.is_empty() && !holds(&closed, motions, &cols)
+        !cols.is_empty() && !holds(closed, motions, &cols)
     })
 }
 
 /// Whether the closed points resist every combination of the motions `cols`: the Gram matrix of
 /// their approaches on the closed points, E_χ,bᵀ E_χ,b, has no eigenvalue at rounding level.
 fn holds(closed: &[bool], motions: &Motions, cols: &[usize]) -> bool {
-    let n = cols.len();
-    let set: Vec<usize> = (0..closed.len()).filter(|&j| closed[j]).collect();
-    let gram = nalgebra::DMatrix::<f64>::from_fn(n, n, |x, y| {
-        set.iter()
-            .map(|&j| motions.e[(j, cols[x])] * motions.e[(j, cols[y])])
-            .sum()
-    });
+    let readings: Vec<Vec<f64>> = (0..closed.len())
+        .filter(|&j| closed[j])
+        .map(|j| cols.iter().map(|&q| motions.e[(j, q)]).collect())
+        .collect();
+    full_rank(&readings, cols.len())
+}
+
+/// Whether the `readings` (each what one line reads of n motions) resist every combination of
+/// the motions: their Gram matrix has no eigenvalue at rounding level.
+pub(crate) fn full_rank(readings: &[Vec<f64>], n: usize) -> bool {
+    let gram =
+        nalgebra::DMatrix::<f64>::from_fn(n, n, |x, y| readings.iter().map(|r| r[x] * r[y]).sum());
     let eigen = gram.symmetric_eigenvalues();
     let largest = eigen.iter().fold(0.0f64, |a, &l| a.max(l.abs()));
     let smallest = eigen.iter().fold(f64::INFINITY, |a, &l| a.min(l));
     // Rounding of a sum of squares: the unit roundoff times the terms.
-    smallest > f64::EPSILON * set.len().max(1) as f64 * largest
+    smallest > f64::EPSILON * readings.len().max(1) as f64 * largest
 }

@@ -50,6 +50,7 @@ fn specs(m: &[SolidMesh; 2]) -> (Vec<SolidBodySpec<'_>>, Vec<SolidPairSpec>) {
         theta: 1e-6,
         search: 0.2,
         enforcement: Default::default(),
+        friction: Default::default(),
     }];
     (bodies, pairs)
 }

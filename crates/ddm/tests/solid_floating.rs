@@ -77,6 +77,7 @@ fn problem(m: &[SolidMesh]) -> (Vec<SolidBodySpec<'_>>, Vec<SolidPairSpec>) {
             theta: 1e-6,
             search: 0.2,
             enforcement: Default::default(),
+            friction: Default::default(),
         })
         .collect();
     (bodies, pairs)

@@ -86,6 +86,7 @@ fn hertz(
         theta: 1e-9,
         search: 0.3,
         enforcement: Default::default(),
+        friction: Default::default(),
     }];
     let sol = solve(&specs, &pairs).unwrap();
     (sol.points, sol.newton_steps, sol.timings)

@@ -77,6 +77,7 @@ fn pair(theta: f64) -> Vec<SolidPairSpec> {
         theta,
         search: 0.5,
         enforcement: Default::default(),
+        friction: Default::default(),
     }]
 }
 

@@ -40,7 +40,8 @@ use serde::{Deserialize, Serialize};
 use contactdd_core::Order;
 
 use crate::problem::{
-    EnforcementSpec, LoadStepsSpec, MaterialSpec, MonitorSpec, OutputSpec, PenaltySpec,
+    EnforcementSpec, FrictionSpec, LoadStepsSpec, MaterialSpec, MonitorSpec, OutputSpec,
+    PenaltySpec,
 };
 
 /// A whole problem file in space.
@@ -221,6 +222,10 @@ pub struct SolidContactSpec {
     /// the augmented Lagrangian's fixed point, whatever θ.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub enforcement: Option<EnforcementSpec>,
+    /// The tangential law: `{ law = "coulomb", mu }`, `{ law = "tresca", bound }` or
+    /// `{ law = "none" }` (default: frictionless).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub friction: Option<FrictionSpec>,
 }
 
 impl SolidContactSpec {

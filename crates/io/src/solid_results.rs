@@ -9,11 +9,14 @@ use serde_json::{json, Value};
 use contactdd_core::solid::element::elasticity;
 use contactdd_core::solid::post::{nodal_stresses, von_mises};
 use contactdd_core::solid::TetOrder;
+use contactdd_ddm::contact3d::DiscStatus;
+use contactdd_ddm::solid_contact::SolidFrictionPoint;
 
 use crate::atomic::write_atomic;
 use crate::body_vtus::safe_file_name;
 use crate::number::push_f64;
-use crate::solid_run::SolidOutcome;
+use crate::problem::FrictionSpec;
+use crate::solid_run::{tangential_force, SolidOutcome};
 use crate::solid_setup::SolidModel;
 use crate::solid_vtu::{stress_tensors, write_solid_vtu, write_solid_vtu_pieces};
 use crate::vtu::{Field, VtuData, VtuLayout, COLLECTION_STEM};
@@ -55,6 +58,15 @@ fn solid_steps_csv(model: &SolidModel, outcome: &SolidOutcome) -> String {
     for p in &model.pairs {
         out.push_str(&format!(",{}_normal_force", p.name));
     }
+    let frictional: Vec<usize> = (0..model.pairs.len())
+        .filter(|&k| model.pairs[k].friction.is_active())
+        .collect();
+    for &k in &frictional {
+        let name = &model.pairs[k].name;
+        out.push_str(&format!(
+            ",{name}_tangential_x,{name}_tangential_y,{name}_tangential_z"
+        ));
+    }
     out.push_str(",monitor_ux,monitor_uy,monitor_uz\n");
     for (k, s) in outcome.steps.iter().enumerate() {
         out.push_str(&format!(
@@ -67,6 +79,10 @@ fn solid_steps_csv(model: &SolidModel, outcome: &SolidOutcome) -> String {
         ));
         for f in &s.pair_forces {
             out.push_str(&format!(",{f:e}"));
+        }
+        for &k in &frictional {
+            let [x, y, z] = s.tangential_forces[k];
+            out.push_str(&format!(",{x:e},{y:e},{z:e}"));
         }
         match s.monitor {
             Some([x, y, z]) => out.push_str(&format!(",{x:e},{y:e},{z:e}\n")),
@@ -135,9 +151,16 @@ fn write_bodies(
 }
 
 /// `contact.csv`: one row per contact point with a partner: the pair, the reference body, the
-/// node, its position, its quadrature weight (area), the initial gap and the pressure.
+/// node, its position, its quadrature weight (area), the initial gap and the pressure; with a
+/// frictional pair also the tangential traction on the reference side and the slip as vectors,
+/// and the status (`stick`, `slip`, `open`; empty at a frictionless pair's points).
 pub fn solid_contact_csv(model: &SolidModel, outcome: &SolidOutcome) -> String {
-    let mut out = String::from("pair,body,node,x,y,z,weight,gap,pressure\n");
+    let friction = model.pairs.iter().any(|p| p.friction.is_active());
+    let mut out = String::from("pair,body,node,x,y,z,weight,gap,pressure");
+    if friction {
+        out.push_str(",traction_x,traction_y,traction_z,slip_x,slip_y,slip_z,status");
+    }
+    out.push('\n');
     for p in &outcome.solution.points {
         let pair = &model.pairs[p.pair];
         let body = &model.bodies[pair.sides[0].0];
@@ -146,9 +169,48 @@ pub fn solid_contact_csv(model: &SolidModel, outcome: &SolidOutcome) -> String {
             out.push(',');
             push_f64(&mut out, *v);
         }
+        if friction {
+            push_friction(&mut out, p.friction.as_ref());
+        }
         out.push('\n');
     }
     out
+}
+
+/// The friction columns of a point of `contact.csv`.
+fn push_friction(out: &mut String, f: Option<&SolidFrictionPoint>) {
+    let Some(f) = f else {
+        out.push_str(",,,,,,,");
+        return;
+    };
+    for v in f.traction_vector().iter().chain(&f.slip_vector()) {
+        out.push(',');
+        push_f64(out, *v);
+    }
+    out.push_str(match f.status {
+        Some(DiscStatus::Stick) => ",stick",
+        Some(DiscStatus::Slip) => ",slip",
+        None => ",open",
+    });
+}
+
+/// The friction entries of pair `k` of the summary (nothing for a frictionless pair): its law,
+/// its tangential force on the reference side and its sticking and slipping points.
+fn pair_friction(model: &SolidModel, outcome: &SolidOutcome, k: usize, entry: &mut Value) {
+    let law = model.pairs[k].friction;
+    if !law.is_active() {
+        return;
+    }
+    let points = outcome.solution.points.iter().filter(|q| q.pair == k);
+    let count = |s: DiscStatus| {
+        (points.clone())
+            .filter(|q| q.friction.as_ref().is_some_and(|f| f.status == Some(s)))
+            .count()
+    };
+    entry["friction"] = json!(FrictionSpec::from(law));
+    entry["tangential_force"] = json!(tangential_force(&outcome.solution, k));
+    entry["stick"] = json!(count(DiscStatus::Stick));
+    entry["slip"] = json!(count(DiscStatus::Slip));
 }
 
 /// `summary.json`: the verdict, the solver, the check, the bodies, the pairs and the phases.
@@ -173,11 +235,11 @@ pub fn solid_summary(model: &SolidModel, outcome: &SolidOutcome) -> Value {
         })
         .collect();
     let pairs: Vec<Value> = (model.pairs.iter().enumerate())
-        .map(|(k, p)| {
+        .map(|(k, p)| -> Value {
             let points = sol.points.iter().filter(|q| q.pair == k);
             let force: f64 = points.clone().map(|q| q.weight * q.pressure).sum();
             let peak = points.clone().map(|q| q.pressure).fold(0.0, f64::max);
-            json!({
+            let mut entry = json!({
                 "name": p.name,
                 "bodies": [model.bodies[p.sides[0].0].name, model.bodies[p.sides[1].0].name],
                 "boundaries": [p.sides[0].1, p.sides[1].1],
@@ -187,13 +249,15 @@ pub fn solid_summary(model: &SolidModel, outcome: &SolidOutcome) -> Value {
                 "closed": points.filter(|q| q.pressure > 0.0).count(),
                 "normal_force": force,
                 "peak_pressure": peak,
-            })
+            });
+            pair_friction(model, outcome, k, &mut entry);
+            entry
         })
         .collect();
     let timings: serde_json::Map<String, Value> = (sol.timings.iter())
         .map(|(phase, s)| (phase.to_string(), json!(s)))
         .collect();
-    json!({
+    let mut summary = json!({
         "problem": model.name,
         "units": model.units,
         "dimension": 3,
@@ -218,5 +282,9 @@ pub fn solid_summary(model: &SolidModel, outcome: &SolidOutcome) -> Value {
             "monitor": s.monitor,
         })).collect::<Vec<_>>(),
         "timings": timings,
-    })
+    });
+    if model.pairs.iter().any(|p| p.friction.is_active()) {
+        summary["balance"]["friction_law"] = json!(outcome.balance.friction_law);
+    }
+    summary
 }

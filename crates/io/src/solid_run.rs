@@ -7,7 +7,8 @@ use contactdd_ddm::solid_balance::{solid_balance, SolidBalance};
 use contactdd_ddm::solid_contact::SolidProgress;
 use contactdd_ddm::solid_dd::solve_solid_dd_steps;
 use contactdd_ddm::solid_monolithic::{
-    solve_solid_monolithic, SolidBodySpec, SolidContactError, SolidContactSolution,
+    solve_solid_monolithic_from, SolidBodySpec, SolidContactError, SolidContactSolution,
+    SolidPairSpec,
 };
 
 use crate::solid_setup::SolidModel;
@@ -62,6 +63,8 @@ pub struct SolidStep {
     pub converged: bool,
     /// Every pair's normal force Σ w p.
     pub pair_forces: Vec<f64>,
+    /// Every pair's tangential force Σ w τ on its reference side (zero without friction).
+    pub tangential_forces: Vec<[f64; 3]>,
     /// The mean displacement of the monitored face, if any.
     pub monitor: Option<[f64; 3]>,
 }
@@ -82,6 +85,20 @@ pub enum SolidRunError {
         free: usize,
         /// The Newton step.
         step: usize,
+    },
+    /// A floating body that friction cannot hold.
+    #[error(
+        "body '{body}' slides: its loads do {work:.3e} of work along a free rigid motion that \
+         friction opposes by at most {resistance:.3e}, so no equilibrium exists; support it, \
+         raise the friction or lower its tangential loads"
+    )]
+    Slides {
+        /// The body.
+        body: String,
+        /// The loads' work along the motion.
+        work: f64,
+        /// The most friction opposes.
+        resistance: f64,
     },
     /// The solver's error.
     #[error(transparent)]
@@ -107,9 +124,7 @@ pub fn run_solid_reported(
         SolidSolver::Decomposition => {
             solve_solid_dd_steps(&model.body_specs(), &pairs, factors, report)
         }
-        SolidSolver::Monolithic => (factors.iter())
-            .map(|&f| solve_solid_monolithic(&scaled(model, f), &pairs))
-            .collect(),
+        SolidSolver::Monolithic => monolithic_steps(model, &pairs),
     }
     .map_err(|e| named(model, e))?;
     let mut steps = Vec::with_capacity(solutions.len());
@@ -142,6 +157,20 @@ pub fn run_solid_reported(
     })
 }
 
+/// The monolithic reference at every load factor, each increment starting where the last ended
+/// (which matters only to friction).
+fn monolithic_steps(
+    model: &SolidModel,
+    pairs: &[SolidPairSpec],
+) -> Result<Vec<SolidContactSolution>, SolidContactError> {
+    let mut solutions: Vec<SolidContactSolution> = Vec::new();
+    for &f in &model.load_factors {
+        let next = solve_solid_monolithic_from(&scaled(model, f), pairs, solutions.last())?;
+        solutions.push(next);
+    }
+    Ok(solutions)
+}
+
 /// The bodies as the solvers take them, every load and prescribed value times `factor`.
 fn scaled(model: &SolidModel, factor: f64) -> Vec<SolidBodySpec<'_>> {
     let mut bodies = model.body_specs();
@@ -167,6 +196,11 @@ fn reason(model: &SolidModel, balance: &SolidBalance) -> Option<String> {
             "the pressures differ from the contact law of the displacements by {:.1e} of the largest",
             balance.contact_law
         ))
+    } else if balance.friction_law.is_nan() || balance.friction_law > law_tol {
+        Some(format!(
+            "the tractions differ from the friction law of the displacements by {:.1e} of the largest pressure",
+            balance.friction_law
+        ))
     } else {
         None
     }
@@ -184,6 +218,9 @@ fn step_of(
             points.map(|q| q.weight * q.pressure).sum()
         })
         .collect();
+    let tangential_forces = (0..model.pairs.len())
+        .map(|k| tangential_force(sol, k))
+        .collect();
     let monitor = model.monitor.as_ref().and_then(|(b, face)| {
         let mut nodes = model.bodies[*b].mesh.face(face).ok()?.to_vec();
         nodes.sort_unstable();
@@ -198,8 +235,21 @@ fn step_of(
         imbalance: balance.worst(),
         converged,
         pair_forces,
+        tangential_forces,
         monitor,
     }
+}
+
+/// The resultant Σ w τ of pair `pair`'s tangential tractions on its reference side.
+pub fn tangential_force(sol: &SolidContactSolution, pair: usize) -> [f64; 3] {
+    let mut r = [0.0; 3];
+    for q in sol.points.iter().filter(|q| q.pair == pair) {
+        if let Some(f) = &q.friction {
+            let t = f.traction_vector();
+            (0..3).for_each(|c| r[c] += q.weight * t[c]);
+        }
+    }
+    r
 }
 
 /// The solver's error with the body's name where it names one.
@@ -214,6 +264,15 @@ fn named(model: &SolidModel, e: SolidContactError) -> SolidRunError {
                 step,
             }
         }
+        SolidContactError::Slides {
+            body,
+            work,
+            resistance,
+        } => SolidRunError::Slides {
+            body: model.bodies[body].name.clone(),
+            work,
+            resistance,
+        },
         e => SolidRunError::Contact(e),
     }
 }

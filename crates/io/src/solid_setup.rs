@@ -15,6 +15,7 @@ use contactdd_ddm::solid_monolithic::{SolidBodySpec, SolidPairSpec};
 
 use crate::error::excerpt;
 use crate::load_steps::load_steps;
+use crate::pairs::friction_law;
 use crate::problem::{MonitorSpec, OutputSpec, PenaltySpec};
 use crate::solid_problem::{
     SolidBodyEntry, SolidComponent, SolidContactSpec, SolidLoadSpec, SolidMeshSpec, SolidProblem,
@@ -80,6 +81,8 @@ pub struct SolidPairModel {
     pub search: f64,
     /// How the pair enforces non-penetration.
     pub enforcement: contactdd_ddm::Enforcement,
+    /// The pair's tangential law.
+    pub friction: contactdd_ddm::Friction,
 }
 
 /// A resolved problem in space.
@@ -127,6 +130,7 @@ impl SolidModel {
                 theta: p.theta,
                 search: p.search,
                 enforcement: p.enforcement,
+                friction: p.friction,
             })
             .collect()
     }
@@ -411,6 +415,10 @@ fn resolve_pair(c: &SolidContactSpec, bodies: &[SolidBodyModel]) -> Result<Solid
         theta,
         search,
         enforcement: c.enforcement.map(Into::into).unwrap_or_default(),
+        friction: match &c.friction {
+            Some(spec) => friction_law(spec).map_err(|(key, m)| format!("{key}: {m}"))?,
+            None => contactdd_ddm::Friction::None,
+        },
     })
 }
 
