@@ -16,8 +16,11 @@ use contactdd_io::solid_run::{run_solid, SolidOutcome, SolidSolver};
 
 use contactdd_io::problem::EnforcementSpec;
 
+use contactdd_ddm::Friction;
+
 use crate::convert::{from_name, shown};
 use crate::error::{convergence_error, input_error};
+use crate::options::friction_arg;
 use crate::run::run_interruptible;
 use crate::space_problem::SpaceProblem;
 use crate::space_result::{write_folder, SpaceResult};
@@ -27,6 +30,7 @@ struct SpaceRun {
     threads: Option<usize>,
     balance_tol: Option<f64>,
     enforcement: Option<String>,
+    friction: Option<Friction>,
     out: Option<PathBuf>,
     check: bool,
 }
@@ -43,6 +47,9 @@ struct SpaceRun {
 ///         problem's ``[solver] balance-tol``, else 1e-6).
 ///     enforcement: ``"penalty"`` or ``"augmented"`` for every contact pair (default: each
 ///         pair's own), as ``contactdd solve --enforcement``.
+///     friction: the friction of every pair (default: each pair's own): ``"coulomb:0.3"``,
+///         ``"tresca:5"``, ``"none"`` or a dict as in :meth:`Problem.add_contact`, as
+///         ``contactdd solve --friction``.
 ///     out: a folder to write the result files into (``summary.json``, ``contact.csv``, one
 ///         ``.vtu`` file per body or ``bodies.vtu``), as ``contactdd solve --out`` does;
 ///         written also when the result does not converge.
@@ -59,13 +66,15 @@ struct SpaceRun {
 ///         set that does not settle, a singular system).
 ///     ConvergenceError: the result is not converged (``check=True``); ``.result`` holds it.
 #[pyfunction]
-#[pyo3(signature = (problem, threads = None, balance_tol = None, enforcement = None, out = None, check = true))]
+#[pyo3(signature = (problem, threads = None, balance_tol = None, enforcement = None, friction = None, out = None, check = true))]
+#[allow(clippy::too_many_arguments)]
 pub fn space_solve(
     py: Python<'_>,
     problem: &Bound<'_, SpaceProblem>,
     threads: Option<usize>,
     balance_tol: Option<f64>,
     enforcement: Option<String>,
+    friction: Option<&Bound<'_, PyAny>>,
     out: Option<PathBuf>,
     check: bool,
 ) -> PyResult<Py<SpaceResult>> {
@@ -73,6 +82,7 @@ pub fn space_solve(
         threads,
         balance_tol,
         enforcement,
+        friction: friction_arg(friction)?,
         out,
         check,
     };
@@ -85,7 +95,7 @@ pub fn space_solve(
 /// :func:`solve`.
 ///
 /// Args:
-///     problem, threads, balance_tol, enforcement, out, check: as for :func:`solve`.
+///     problem, threads, balance_tol, enforcement, friction, out, check: as for :func:`solve`.
 ///
 /// Returns:
 ///     A :class:`Result`.
@@ -94,13 +104,15 @@ pub fn space_solve(
 ///     ContactddError: a bad argument, or a solve without a result.
 ///     ConvergenceError: the result is not converged (``check=True``); ``.result`` holds it.
 #[pyfunction]
-#[pyo3(signature = (problem, threads = None, balance_tol = None, enforcement = None, out = None, check = true))]
+#[pyo3(signature = (problem, threads = None, balance_tol = None, enforcement = None, friction = None, out = None, check = true))]
+#[allow(clippy::too_many_arguments)]
 pub fn space_monolithic(
     py: Python<'_>,
     problem: &Bound<'_, SpaceProblem>,
     threads: Option<usize>,
     balance_tol: Option<f64>,
     enforcement: Option<String>,
+    friction: Option<&Bound<'_, PyAny>>,
     out: Option<PathBuf>,
     check: bool,
 ) -> PyResult<Py<SpaceResult>> {
@@ -108,6 +120,7 @@ pub fn space_monolithic(
         threads,
         balance_tol,
         enforcement,
+        friction: friction_arg(friction)?,
         out,
         check,
     };
@@ -136,6 +149,10 @@ fn solve_with(
             from_name(name).map_err(|m| input_error(format!("enforcement: {m}")))?;
         let pairs = &mut Arc::make_mut(&mut model).pairs;
         pairs.iter_mut().for_each(|p| p.enforcement = e.into());
+    }
+    if let Some(f) = run.friction {
+        let pairs = &mut Arc::make_mut(&mut model).pairs;
+        pairs.iter_mut().for_each(|p| p.friction = f);
     }
     if run.threads == Some(0) {
         return Err(input_error("threads: must be at least 1, got 0"));

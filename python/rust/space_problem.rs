@@ -28,7 +28,7 @@ use contactdd_io::solid_setup::{resolve_solid, SolidLoadError, SolidModel};
 
 use crate::convert::from_name;
 use crate::error::{input_error, os_error, setup_error};
-use crate::schema::{specs, text};
+use crate::schema::{pair_option, specs, text};
 use crate::space_schema::{absolute_solid_paths, inline_arrays, inline_solid, mesh_error};
 
 /// A contact problem in space: tetrahedral bodies, their supports and loads, the contact pairs
@@ -415,7 +415,10 @@ impl SpaceProblem {
     ///     name: pair name (default ``"<body0>-<body1>"``).
     ///     enforcement: ``"penalty"`` (default: the pressure max(0, s − d)/θ) or
     ///         ``"augmented"`` (the exact Signorini conditions, whatever θ).
-    #[pyo3(signature = (bodies, boundaries, c = None, h = None, theta = None, search = None, name = None, enforcement = None))]
+    ///     friction: the tangential law: ``None`` (frictionless, the default),
+    ///         ``{"law": "coulomb", "mu": float}`` (|τ| ≤ μp), ``{"law": "tresca", "bound":
+    ///         float}`` (|τ| ≤ bound) or ``{"law": "none"}``.
+    #[pyo3(signature = (bodies, boundaries, c = None, h = None, theta = None, search = None, name = None, enforcement = None, friction = None))]
     #[allow(clippy::too_many_arguments)]
     fn add_contact(
         &mut self,
@@ -428,19 +431,22 @@ impl SpaceProblem {
         search: Option<f64>,
         name: Option<String>,
         enforcement: Option<String>,
+        friction: Option<&Bound<'_, PyAny>>,
     ) -> PyResult<()> {
         let enforcement = (enforcement.as_deref())
             .map(|e| from_name(e).map_err(|m| input_error(format!("enforcement: {m}"))))
             .transpose()?;
-        let spec = SolidContactSpec {
+        let mut spec = SolidContactSpec {
             name,
             bodies: vec![bodies.0, bodies.1],
             boundaries: vec![boundaries.0, boundaries.1],
             penalty: PenaltySpec { c, h, theta },
             search,
             enforcement,
+            friction: None,
         };
         let pair = spec.pair_name();
+        spec.friction = pair_option(friction, "friction", &pair)?;
         if self.spec.contact.iter().any(|p| p.pair_name() == pair) {
             return Err(input_error(format!(
                 "two contact pairs are called '{}'",

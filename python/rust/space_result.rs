@@ -12,6 +12,8 @@ use pyo3::types::{PyDict, PyList, PyTuple, PyType};
 use contactdd_core::solid::element::elasticity;
 use contactdd_core::solid::post::{nodal_stresses, von_mises};
 use contactdd_core::solid::TetOrder;
+use contactdd_ddm::contact3d::DiscStatus;
+use contactdd_ddm::solid_contact::SolidContactPoint;
 use contactdd_io::solid_results::{solid_summary, write_solid_results};
 use contactdd_io::solid_run::SolidOutcome;
 use contactdd_io::solid_setup::{SolidBodyModel, SolidModel};
@@ -175,12 +177,17 @@ pub struct SpaceResult {
     /// The contact points with a partner, the rows of ``contact.csv``, as a dict of ``(k,)``
     /// numpy arrays: ``pair`` and ``body`` (the pair's name and its reference body's, strings),
     /// ``node`` (the reference body's node), ``x``, ``y``, ``z`` (its position), ``weight`` (its
-    /// nodal area), ``gap`` (the initial gap) and ``pressure`` (≥ 0).
+    /// nodal area), ``gap`` (the initial gap) and ``pressure`` (≥ 0); with a frictional pair
+    /// also ``traction_x``, ``traction_y``, ``traction_z`` (the tangential traction on the
+    /// reference side), ``slip_x``, ``slip_y``, ``slip_z`` (its slip relative to the partner;
+    /// NaN at a frictionless pair's points) and ``status`` (``"stick"``, ``"slip"``, ``"open"``,
+    /// or ``""`` at a frictionless pair's points).
     #[pyo3(get)]
     contact: Py<PyDict>,
     /// The independent check: ``{"worst": the largest imbalance of a body, "tol": the
     /// balance-tol, "contact_law": the pressures' largest deviation from the contact law of the
-    /// displacements, relative to the largest}``.
+    /// displacements, relative to the largest}``, and with a frictional pair ``"friction_law"``:
+    /// the tractions' largest deviation from the friction law, on the same scale.
     #[pyo3(get)]
     balance: Py<PyDict>,
     /// Wall time per phase in seconds.
@@ -207,6 +214,9 @@ impl SpaceResult {
         balance.set_item("worst", outcome.balance.worst())?;
         balance.set_item("tol", model.balance_tol)?;
         balance.set_item("contact_law", outcome.balance.contact_law)?;
+        if model.pairs.iter().any(|p| p.friction.is_active()) {
+            balance.set_item("friction_law", outcome.balance.friction_law)?;
+        }
         let timing = PyDict::new(py);
         for (phase, s) in &outcome.solution.timings {
             timing.set_item(phase, s)?;
@@ -268,7 +278,39 @@ fn contact_table<'py>(
         "pressure",
         array1(py, points.iter().map(|p| p.pressure).collect()),
     )?;
+    if model.pairs.iter().any(|p| p.friction.is_active()) {
+        friction_columns(py, points, &table)?;
+        let status: Vec<&str> = (points.iter())
+            .map(|p| match p.friction.as_ref().map(|f| f.status) {
+                None => "",
+                Some(None) => "open",
+                Some(Some(DiscStatus::Stick)) => "stick",
+                Some(Some(DiscStatus::Slip)) => "slip",
+            })
+            .collect();
+        table.set_item("status", strings(status)?)?;
+    }
     Ok(table)
+}
+
+/// The traction and slip columns of the contact table (NaN at a frictionless pair's points).
+fn friction_columns(
+    py: Python<'_>,
+    points: &[SolidContactPoint],
+    table: &Bound<'_, PyDict>,
+) -> PyResult<()> {
+    let vector = |p: &SolidContactPoint, slip: bool| match &p.friction {
+        Some(f) if slip => f.slip_vector(),
+        Some(f) => f.traction_vector(),
+        None => [f64::NAN; 3],
+    };
+    for (slip, stem) in [(false, "traction"), (true, "slip")] {
+        for (c, axis) in ["x", "y", "z"].into_iter().enumerate() {
+            let values = points.iter().map(|p| vector(p, slip)[c]).collect();
+            table.set_item(format!("{stem}_{axis}"), array1(py, values))?;
+        }
+    }
+    Ok(())
 }
 
 #[pymethods]

@@ -297,3 +297,46 @@ def test_exact_contact_carries_the_pressure_without_the_overlap(blocks):
                                rtol=1e-10, atol=0)
     with pytest.raises(contactdd.ContactddError, match="enforcement"):
         space.solve(blocks, enforcement="exact")
+
+
+FRICTION_BLOCK = REPO / "examples" / "space" / "friction_block.toml"
+
+
+def test_friction_holds_the_block_within_the_coulomb_disc(tmp_path):
+    """examples/space/friction_block.toml: friction alone holds a sheared block. The contact
+    table carries the tractions; each is within μp, on its edge where the point slips; their
+    resultant is the shear on the block's top (the area is 1); the reference agrees; the folder
+    reads back."""
+    if not FRICTION_BLOCK.is_file():
+        pytest.skip(f"{FRICTION_BLOCK} does not exist")
+    problem = space.Problem.from_toml(FRICTION_BLOCK)
+    result = space.solve(problem, out=tmp_path)
+    c = result.contact
+    traction = np.stack([c["traction_x"], c["traction_y"], c["traction_z"]])
+    size = np.linalg.norm(traction, axis=0)
+    bound = 0.3 * c["pressure"]
+    assert np.all(size <= bound * (1 + 1e-12))
+    slip = c["status"] == "slip"
+    assert slip.any() and (c["status"] == "stick").any()
+    np.testing.assert_allclose(size[slip], bound[slip], rtol=1e-10)
+    resultant = (traction * c["weight"]).sum(axis=1)
+    np.testing.assert_allclose(resultant, [5.942416, 4.065426, 0.0], atol=1e-8 * 40)
+    assert result.balance["friction_law"] < 1e-8
+    pair = result.summary()["contact"][0]
+    assert pair["friction"] == {"law": "coulomb", "mu": 0.3}
+    assert pair["stick"] + pair["slip"] == pair["closed"]
+    reference = space.monolithic(problem)
+    for key in ("pressure", "traction_x", "traction_y"):
+        np.testing.assert_allclose(by_point(reference)[key], by_point(result)[key],
+                                   rtol=0, atol=1e-8 * 40)
+    assert_same(result, contactdd.load_results(tmp_path))
+    # The same law from the keyword, as text and as a dict, and from add_contact.
+    plain = space.Problem.from_toml_str(FRICTION_BLOCK.read_text().replace(
+        'friction = { law = "coulomb", mu = 0.3 }', ""))
+    for friction in ("coulomb:0.3", {"law": "coulomb", "mu": 0.3}):
+        again = space.solve(plain, friction=friction)
+        np.testing.assert_array_equal(again.contact["traction_x"], c["traction_x"])
+    with pytest.raises(contactdd.ContactddError, match="friction"):
+        space.solve(plain, friction="coulomb:-1")
+    with pytest.raises(contactdd.ContactddError, match="slides"):
+        space.solve(plain, friction="coulomb:0.1")

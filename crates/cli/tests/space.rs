@@ -41,7 +41,7 @@ fn planar_options_are_refused_by_name() {
     for option in [
         ["--method", "robin"],
         ["--gamma", "0.5"],
-        ["--friction", "coulomb:0.3"],
+        ["--accelerator", "anderson"],
         ["--gap-tol", "1e-9"],
     ] {
         let mut args = vec!["solve"];
@@ -51,6 +51,39 @@ fn planar_options_are_refused_by_name() {
         assert!(stderr(&o).contains(option[0]), "{}", stderr(&o));
         assert!(stderr(&o).contains("dimension = 3"), "{}", stderr(&o));
     }
+}
+
+/// `--friction` (or a pair's `friction` table): the result folder carries the tractions, the
+/// summary the law, the tangential force and the statuses; a law without its parameter is an
+/// error that names the key.
+#[test]
+fn friction_solves_and_reports_its_tractions() {
+    let dir = temp("friction");
+    let o = run(
+        &dir,
+        "blocks.toml",
+        &blocks(),
+        &["solve", "-q", "--friction", "coulomb:0.3"],
+    );
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let summary = std::fs::read_to_string(dir.join("out/summary.json")).expect("summary");
+    for key in [
+        "\"friction_law\"",
+        "\"tangential_force\"",
+        "\"stick\"",
+        "\"mu\": 0.3",
+    ] {
+        assert!(summary.contains(key), "{key} in {summary}");
+    }
+    let csv = std::fs::read_to_string(dir.join("out/contact.csv")).expect("contact.csv");
+    assert!(csv.starts_with("pair,body,node,x,y,z,weight,gap,pressure,traction_x"));
+    let text = blocks().replace(
+        "penalty = { theta = 1e-7 }",
+        "penalty = { theta = 1e-7 }\nfriction = { law = \"coulomb\" }",
+    );
+    let o = run(&dir, "bad.toml", &text, &["solve", "-q"]);
+    assert_eq!(o.status.code(), Some(1));
+    assert!(stderr(&o).contains("friction.mu"), "{}", stderr(&o));
 }
 
 /// `--enforcement augmented` (or `enforcement = "augmented"` in the file): the decomposition

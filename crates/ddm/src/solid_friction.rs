@@ -20,7 +20,7 @@
 use faer::Mat;
 
 use crate::contact3d::disc::{derivative, project, DiscStatus};
-use crate::newton::linear::lu_solve_in_place;
+use crate::newton::linear::lu_solve_refined;
 use crate::solid_contact::{Lines, Row, SolidContactError, SolidProgress, MAX_STEPS};
 use crate::solid_newton::{closes, full_rank, pressure, start, Motions};
 use crate::Friction;
@@ -58,12 +58,18 @@ pub(crate) struct Increment<'a> {
     pub(crate) carried: &'a [[[f64; 2]; 2]],
 }
 
-/// An iterate: pressures, tractions, amplitudes, and the lines' values they give.
+/// An iterate: pressures, tractions, amplitudes, and the lines' values they give with the
+/// magnitudes of their terms (|v⁰| + Σ|G W z| + Σ|E α|, for their rounding), and the pressures
+/// the contact law reads from those values, which bound the tractions: a point the values close
+/// carries its pressure's bound at once, rather than the step's zero.
+#[derive(Clone)]
 struct Iterate {
     p: Vec<f64>,
+    law: Vec<f64>,
     tau: Vec<[f64; 2]>,
     alpha: Vec<f64>,
     v: Vec<f64>,
+    size: Vec<f64>,
 }
 
 /// The semismooth Newton iteration of one increment.
@@ -79,10 +85,13 @@ pub(crate) fn newton_friction(
         .collect();
     let mut it = Iterate {
         p: vec![0.0; m],
+        law: vec![0.0; m],
         tau: vec![[0.0; 2]; m],
         alpha: vec![0.0; inc.motions.work.len()],
         v: inc.v0.clone(),
+        size: inc.v0.iter().map(|v| v.abs()).collect(),
     };
+    // The merit of the iterate: a whole step is taken where it lowers it.
     let mut merit = f64::INFINITY;
     for step in 1..=MAX_STEPS {
         let (used, held) = hold(inc, &closed, &status, &it).map_err(|body| {
@@ -93,14 +102,25 @@ pub(crate) fn newton_friction(
             step,
             closed: closed.iter().filter(|&&c| c).count(),
         });
-        let next;
-        (it, next, merit) = damped(inc, &it, full, merit);
-        let (law, residual, scale) = law_state(inc, &next, &it);
-        let settled = next == closed && law == used && !held;
-        if settled && residual <= LAW_TOL * scale {
-            return Ok(finish(inc, it, &next, step));
+        // A whole step meets its linear equations (the balance of the free motions among them):
+        // only a whole step whose sets repeat and whose tractions meet the law ends the run.
+        let (whole, next, e) = settle(inc, full.clone());
+        let (law, meets) = law_state(inc, &next, &whole);
+        if meets && next == closed && law == used && !held {
+            return Ok(finish(inc, whole, &next, step));
         }
-        (closed, status) = (next, law);
+        (it, closed, merit) = match e < merit {
+            true => (whole, next, e),
+            false => match halved(inc, &it, full, merit) {
+                Some(h) => h,
+                // No progress: a body that slides is the likeliest reason.
+                None => match slides(inc, &closed, &it) {
+                    Some(error) => return Err(error),
+                    None => (whole, next, e),
+                },
+            },
+        };
+        status = law_state(inc, &closed, &it).0;
     }
     Err(slides(inc, &closed, &it).unwrap_or(SolidContactError::NotSettled { steps: MAX_STEPS }))
 }
@@ -108,68 +128,90 @@ pub(crate) fn newton_friction(
 /// The most halvings of a step that does not lower the merit.
 const HALVINGS: usize = 10;
 
-/// The step from `it` towards the Newton iterate `full`, halved until the merit (the squared
-/// violations of the laws) falls below `merit`, or taken whole when no halving lowers it: the
-/// iterate with its pressures read from the law, its closed set, and its merit. Semismooth
-/// Newton steps for friction converge only near the solution; far from it, a whole step can
-/// land where the slip directions point the iteration back.
-fn damped(
+/// The step from `it` towards the Newton iterate `full` halved until the merit (the squared
+/// violations of the laws, [`settle`]) falls below `merit`, if some halving lowers it: the
+/// iterate, its closed set and its merit. Semismooth Newton steps for
+/// friction converge only near the solution; far from it, a whole step can overshoot the slip
+/// directions.
+fn halved(
     inc: &Increment<'_>,
     it: &Iterate,
     full: Iterate,
     merit: f64,
-) -> (Iterate, Vec<bool>, f64) {
+) -> Option<(Iterate, Vec<bool>, f64)> {
     let mut omega = 1.0;
-    let whole = settle(inc, full);
-    if whole.2 < merit {
-        return whole;
-    }
     for _ in 0..HALVINGS {
         omega /= 2.0;
         let mix = |a: f64, b: f64| a + omega * (b - a);
         let trial = Iterate {
-            p: (it.p.iter().zip(&whole.0.p))
+            p: (it.p.iter().zip(&full.p))
                 .map(|(&a, &b)| mix(a, b))
                 .collect(),
-            tau: (it.tau.iter().zip(&whole.0.tau))
+            law: Vec::new(),
+            tau: (it.tau.iter().zip(&full.tau))
                 .map(|(a, b)| [mix(a[0], b[0]), mix(a[1], b[1])])
                 .collect(),
-            alpha: (it.alpha.iter().zip(&whole.0.alpha))
+            alpha: (it.alpha.iter().zip(&full.alpha))
                 .map(|(&a, &b)| mix(a, b))
                 .collect(),
             v: Vec::new(),
+            size: Vec::new(),
         };
         let next = settle(inc, trial);
         if next.2 < merit {
-            return next;
+            return Some(next);
         }
     }
-    whole
+    None
 }
 
-/// The iterate `it` with its lines' values, its pressures read from the law (the closed set it
-/// gives), and its merit: Σ |τ − P_b(t)|² over the closed frictional points.
+/// The iterate `it` with its lines' values, the closed set they give (as the primal–dual
+/// active set method closes points) and its merit: the squared violations of the contact law,
+/// of the friction law at the closed frictional points and of the free motions' balance (per
+/// unit contact area), so that no iterate looks solved while its pressures, tractions and values
+/// disagree.
 fn settle(inc: &Increment<'_>, mut it: Iterate) -> (Iterate, Vec<bool>, f64) {
-    it.v = values(inc, &it);
     let m = inc.rows.len();
+    (it.v, it.size) = values(inc, &it);
     let closed: Vec<bool> = (0..m)
         .map(|j| closes(&inc.rows[j], it.p[j], it.v[j]))
         .collect();
-    it.p = (0..m)
+    it.law = (0..m)
         .map(|j| match closed[j] {
             true => pressure(&inc.rows[j], it.p[j], it.v[j]),
             false => 0.0,
         })
         .collect();
-    let mut merit = 0.0;
-    for j in (0..m).filter(|&j| closed[j]) {
-        let Some(t) = inc.lines.tangent[j] else {
+    let mut merit = unbalance(inc, &it);
+    for j in 0..m {
+        let row = &inc.rows[j];
+        merit += (it.p[j] - it.law[j]).powi(2);
+        let Some(t) = inc.lines.tangent[j].filter(|_| closed[j]) else {
             continue;
         };
-        let (tau, _) = project(trial(inc, j, &it, t), bound(&inc.rows[j], it.p[j]));
+        let (tau, _) = project(trial(inc, j, &it, t), bound(row, it.law[j]));
         merit += (tau[0] - it.tau[j][0]).powi(2) + (tau[1] - it.tau[j][1]).powi(2);
     }
     (it, closed, merit)
+}
+
+/// The squared violation of the free motions' balance at `it`, per unit contact area.
+fn unbalance(inc: &Increment<'_>, it: &Iterate) -> f64 {
+    let area: f64 = inc.rows.iter().map(|r| r.point.weight).sum();
+    let e = &inc.motions.e;
+    (inc.motions.work.iter().enumerate())
+        .map(|(q, work)| {
+            let mut r = -work;
+            for (j, t) in inc.lines.tangent.iter().enumerate() {
+                let w = inc.rows[j].point.weight;
+                r += w * e[(j, q)] * it.p[j];
+                if let Some(t) = t {
+                    r -= w * (e[(*t, q)] * it.tau[j][0] + e[(t + 1, q)] * it.tau[j][1]);
+                }
+            }
+            (r / area).powi(2)
+        })
+        .sum()
 }
 
 /// The bound of point `j` at pressure `p`: μ p (Coulomb) or the Tresca bound.
@@ -189,26 +231,36 @@ fn trial(inc: &Increment<'_>, j: usize, it: &Iterate, t: usize) -> [f64; 2] {
     [0, 1].map(|c| lambda[c] - (it.v[t + c] - g0[c]) / theta)
 }
 
-/// The statuses of the closed frictional points at the iterate, the largest difference between
-/// their tractions and the law, and the scale it is measured on (the largest bound or traction).
+/// The statuses of the closed frictional points at the iterate, and whether their tractions
+/// meet the law: each within `LAW_TOL` of the largest bound or traction, or within the rounding
+/// of its trial traction where that is larger.
 fn law_state(
     inc: &Increment<'_>,
     closed: &[bool],
     it: &Iterate,
-) -> (Vec<Option<DiscStatus>>, f64, f64) {
-    let (mut residual, mut scale) = (0.0f64, f64::MIN_POSITIVE);
+) -> (Vec<Option<DiscStatus>>, bool) {
+    let (mut scale, mut misses) = (f64::MIN_POSITIVE, Vec::new());
     let status = (0..closed.len())
         .map(|j| {
             let t = inc.lines.tangent[j].filter(|_| closed[j])?;
-            let b = bound(&inc.rows[j], it.p[j]);
+            let b = bound(&inc.rows[j], it.law[j]);
             let (tau, s) = project(trial(inc, j, it, t), b);
-            let d = [tau[0] - it.tau[j][0], tau[1] - it.tau[j][1]];
-            residual = residual.max(d[0].hypot(d[1]));
+            let miss = (tau[0] - it.tau[j][0]).hypot(tau[1] - it.tau[j][1]);
+            misses.push((miss, rounding(inc, it, j, t)));
             scale = scale.max(b).max(it.tau[j][0].hypot(it.tau[j][1]));
             Some(s)
         })
         .collect();
-    (status, residual, scale)
+    let meets = (misses.iter()).all(|&(miss, floor)| miss <= floor.max(LAW_TOL * scale));
+    (status, meets)
+}
+
+/// The rounding of point j's trial traction (tangential lines t, t + 1): the unit roundoff
+/// times the terms of its lines' values v = v⁰ + G W z + E α, times their magnitudes, over θ.
+fn rounding(inc: &Increment<'_>, it: &Iterate, j: usize, t: usize) -> f64 {
+    let terms = (inc.lines.rows.len() + it.alpha.len() + 1) as f64;
+    let size = (it.size[t]).max(it.size[t + 1]);
+    f64::EPSILON / 2.0 * terms * size / inc.rows[j].theta
 }
 
 /// The statuses a step uses: where the step would leave some of a body's free motions
@@ -235,7 +287,7 @@ fn hold(
             .filter(|&(_, t)| sees(t) || sees(t + 1))
             .map(|(j, t)| {
                 let tr = trial(inc, j, it, t);
-                let b = bound(&inc.rows[j], it.p[j]).max(f64::MIN_POSITIVE);
+                let b = bound(&inc.rows[j], it.law[j]).max(f64::MIN_POSITIVE);
                 (j, tr[0].hypot(tr[1]) / b)
             })
             .min_by(|x, y| x.1.total_cmp(&y.1));
@@ -270,7 +322,7 @@ fn unresisted(
             match used[j] {
                 Some(DiscStatus::Stick) => readings.extend([read(t), read(t + 1)]),
                 // Slipping, it resists a slip across its direction (where its bound is not 0).
-                _ if bound(&inc.rows[j], it.p[j]) > 0.0 => {
+                _ if bound(&inc.rows[j], it.law[j]) > 0.0 => {
                     let tr = trial(inc, j, it, t);
                     let (x, y) = (read(t), read(t + 1));
                     readings.push(
@@ -297,12 +349,12 @@ fn finish(inc: &Increment<'_>, it: Iterate, closed: &[bool], steps: usize) -> Fr
         };
         slip[j] = [it.v[t], it.v[t + 1]];
         if closed[j] {
-            let (traction, s) = project(trial(inc, j, &it, t), bound(&inc.rows[j], it.p[j]));
+            let (traction, s) = project(trial(inc, j, &it, t), bound(&inc.rows[j], it.law[j]));
             (tau[j], status[j]) = (traction, Some(s));
         }
     }
     Frictional {
-        p: it.p,
+        p: it.law,
         tau,
         slip,
         status,
@@ -385,11 +437,13 @@ fn step_solve(
     let m = closed.len();
     let next = Iterate {
         p: (0..m).map(|j| pc[j].map_or(0.0, |x| rhs[(x, 0)])).collect(),
+        law: Vec::new(),
         tau: (0..m)
             .map(|j| tc[j].map_or([0.0; 2], |y| [rhs[(y, 0)], rhs[(y + 1, 0)]]))
             .collect(),
         alpha: (0..k).map(|q| rhs[(c + q, 0)]).collect(),
         v: Vec::new(),
+        size: Vec::new(),
     };
     Ok(next)
 }
@@ -421,7 +475,7 @@ fn tangential(
     }
     // Slip: (I − [exact] M) τ + (M/θ) g − μ t̂ p = M (λ + g₀/θ) (+ b t̂ under Tresca).
     let tr = trial(inc, j, it, t);
-    let b = bound(row, it.p[j]);
+    let b = bound(row, it.law[j]);
     let (m, dir) = derivative(tr, b);
     for c in 0..2 {
         for d in 0..2 {
@@ -442,7 +496,7 @@ fn solve(a: Mat<f64>, rhs: &mut Mat<f64>, step: usize) -> Result<(), SolidContac
     if a.nrows() == 0 {
         return Ok(());
     }
-    lu_solve_in_place(a, rhs).ok_or(SolidContactError::Factor {
+    lu_solve_refined(a, rhs, 2).ok_or(SolidContactError::Factor {
         step,
         message: "no memory for the Newton system".into(),
     })?;
@@ -455,8 +509,9 @@ fn solve(a: Mat<f64>, rhs: &mut Mat<f64>, step: usize) -> Result<(), SolidContac
     }
 }
 
-/// The lines' values v = v⁰ + G W z + E α at pressures, tractions and amplitudes `it`.
-fn values(inc: &Increment<'_>, it: &Iterate) -> Vec<f64> {
+/// The lines' values v = v⁰ + G W z + E α at pressures, tractions and amplitudes `it`, and the
+/// magnitudes of their terms.
+fn values(inc: &Increment<'_>, it: &Iterate) -> (Vec<f64>, Vec<f64>) {
     let mut z = vec![0.0; inc.lines.rows.len()];
     for (j, t) in inc.lines.tangent.iter().enumerate() {
         z[j] = -it.p[j];
@@ -466,39 +521,85 @@ fn values(inc: &Increment<'_>, it: &Iterate) -> Vec<f64> {
     }
     (0..z.len())
         .map(|l| {
-            let contact: f64 = (0..z.len()).map(|y| inc.g[(l, y)] * z[y]).sum();
-            let rigid: f64 = (0..it.alpha.len())
-                .map(|q| inc.motions.e[(l, q)] * it.alpha[q])
-                .sum();
-            inc.v0[l] + contact + rigid
+            let (mut v, mut size) = (inc.v0[l], inc.v0[l].abs());
+            for (y, zy) in z.iter().enumerate() {
+                v += inc.g[(l, y)] * zy;
+                size += (inc.g[(l, y)] * zy).abs();
+            }
+            for (q, a) in it.alpha.iter().enumerate() {
+                v += inc.motions.e[(l, q)] * a;
+                size += (inc.motions.e[(l, q)] * a).abs();
+            }
+            (v, size)
         })
-        .collect()
+        .unzip()
 }
 
-/// Whether a floating body slides: the loads do more work along one of its free motions than
-/// friction can oppose there, Σ_j w_j b_j |Δg_j|, at a motion that changes no closed point's
-/// approach (so that only friction resists it).
+/// Whether a floating body slides: along the motion z that its loads drive hardest among those
+/// that change no closed point's approach (so that only friction resists them), the loads do
+/// more work than friction can oppose, Σ_j w_j b_j |Δg_j(z)|.
 fn slides(inc: &Increment<'_>, closed: &[bool], it: &Iterate) -> Option<SolidContactError> {
     let e = &inc.motions.e;
-    (0..inc.motions.work.len()).find_map(|q| {
+    (0..inc.motions.first.len()).find_map(|body| {
+        let cols: Vec<usize> = (0..inc.motions.body.len())
+            .filter(|&q| inc.motions.body[q] == body)
+            .collect();
+        let z = driven(inc, closed, &cols)?;
+        let along = |l: usize| {
+            cols.iter()
+                .zip(&z)
+                .map(|(&q, c)| e[(l, q)] * c)
+                .sum::<f64>()
+        };
+        let work: f64 = cols
+            .iter()
+            .zip(&z)
+            .map(|(&q, c)| inc.motions.work[q] * c)
+            .sum();
         let mut resistance = 0.0;
-        let mut reach = 0.0f64;
         for (j, t) in inc.lines.tangent.iter().enumerate() {
             let Some(t) = t.filter(|_| closed[j]) else {
                 continue;
             };
-            let dg = e[(t, q)].hypot(e[(t + 1, q)]);
-            resistance += inc.rows[j].point.weight * bound(&inc.rows[j], it.p[j]) * dg;
-            reach = reach.max(dg);
+            let dg = along(t).hypot(along(t + 1));
+            resistance += inc.rows[j].point.weight * bound(&inc.rows[j], it.law[j]) * dg;
         }
-        let pressed = (0..closed.len())
-            .filter(|&j| closed[j])
-            .any(|j| e[(j, q)].abs() > 1e-12 * reach);
-        let work = inc.motions.work[q].abs();
-        (!pressed && reach > 0.0 && work > resistance).then_some(SolidContactError::Slides {
-            body: inc.motions.body[q],
+        (work > resistance).then_some(SolidContactError::Slides {
+            body,
             work,
             resistance,
         })
     })
+}
+
+/// A combination z of the motions `cols` that no closed point's approach sees and along which
+/// the loads work: their work vector projected onto the null space of the closed normal lines'
+/// readings (`None` if that is empty or the work has no part there). Any such z certifies a
+/// slide when the loads' work along it exceeds what friction can oppose.
+fn driven(inc: &Increment<'_>, closed: &[bool], cols: &[usize]) -> Option<Vec<f64>> {
+    let n = cols.len();
+    if n == 0 {
+        return None;
+    }
+    let e = &inc.motions.e;
+    let set: Vec<usize> = (0..closed.len()).filter(|&j| closed[j]).collect();
+    let gram = nalgebra::DMatrix::<f64>::from_fn(n, n, |x, y| {
+        set.iter().map(|&j| e[(j, cols[x])] * e[(j, cols[y])]).sum()
+    });
+    let eigen = gram.symmetric_eigen();
+    let largest = eigen
+        .eigenvalues
+        .iter()
+        .fold(0.0f64, |a, &l| a.max(l.abs()));
+    let floor = f64::EPSILON * set.len().max(1) as f64 * largest;
+    let work: Vec<f64> = cols.iter().map(|&q| inc.motions.work[q]).collect();
+    let mut z = vec![0.0; n];
+    for (k, &l) in eigen.eigenvalues.iter().enumerate() {
+        if l <= floor {
+            let v = eigen.eigenvectors.column(k);
+            let c: f64 = (0..n).map(|x| v[x] * work[x]).sum();
+            (0..n).for_each(|x| z[x] += c * v[x]);
+        }
+    }
+    z.iter().any(|&c| c != 0.0).then_some(z)
 }

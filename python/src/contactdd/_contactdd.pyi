@@ -571,9 +571,11 @@ class SpaceProblem:
         search: Optional[float] = None,
         name: Optional[str] = None,
         enforcement: Optional[str] = None,
+        friction: Optional[_FrictionDict] = None,
     ) -> None:
         """Adds a contact pair; penalty by the rod model (c, h) or theta directly;
-        enforcement "penalty" (default) or "augmented" (exact contact)."""
+        enforcement "penalty" (default) or "augmented" (exact contact); friction
+        {"law": "coulomb", "mu": mu} or {"law": "tresca", "bound": b} (default none)."""
     def solver(
         self,
         balance_tol: Optional[float] = None,
@@ -654,6 +656,7 @@ def space_solve(
     threads: Optional[int] = None,
     balance_tol: Optional[float] = None,
     enforcement: Optional[str] = None,
+    friction: Optional[_Friction] = None,
     out: Optional[_StrPath] = None,
     check: bool = True,
 ) -> SpaceResult: ...
@@ -662,6 +665,7 @@ def space_monolithic(
     threads: Optional[int] = None,
     balance_tol: Optional[float] = None,
     enforcement: Optional[str] = None,
+    friction: Optional[_Friction] = None,
     out: Optional[_StrPath] = None,
     check: bool = True,
 ) -> SpaceResult: ...

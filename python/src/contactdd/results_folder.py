@@ -51,6 +51,10 @@ _CELL_NODES = {5: 3, 22: 6, 10: 4, 24: 10}
 _VTK_TET10_TO_GMSH = [0, 1, 2, 3, 4, 5, 6, 7, 9, 8]
 #: The header of contact.csv of a result in space.
 _SPACE_CONTACT = ["pair", "body", "node", "x", "y", "z", "weight", "gap", "pressure"]
+#: The columns it adds when a pair is frictional (the last one text, the others numbers, empty
+#: at a frictionless pair's points).
+_SPACE_FRICTION = ["traction_x", "traction_y", "traction_z", "slip_x", "slip_y", "slip_z",
+                   "status"]
 _DTYPES = {"Float64": np.float64, "Float32": np.float32, "Int64": np.int64, "UInt8": np.uint8}
 #: The largest uncompressed size of a zlib block read, relative to its compressed size (deflate
 #: expands by at most 1032 times), and in bytes: the bounds of crates/io/src/vtu_read.rs.
@@ -395,20 +399,28 @@ def _space_contact(path: Path) -> dict[str, np.ndarray]:
         lines = list(csv.reader(_read_text(path).splitlines()))
     except csv.Error as e:
         raise ContactddError(f"{path}: not a CSV file of contactdd: {e}") from e
-    if not lines or lines[0] != _SPACE_CONTACT:
-        raise ContactddError(f"{path}: expected the header {','.join(_SPACE_CONTACT)}")
+    header = lines[0] if lines else []
+    if header not in (_SPACE_CONTACT, _SPACE_CONTACT + _SPACE_FRICTION):
+        raise ContactddError(f"{path}: expected the header {','.join(_SPACE_CONTACT)} "
+                             f"(and with friction {','.join(_SPACE_FRICTION)})")
     rows = lines[1:]
-    if any(len(r) != len(_SPACE_CONTACT) for r in rows):
-        raise ContactddError(f"{path}: expected {len(_SPACE_CONTACT)} columns")
-    columns = list(zip(*rows)) if rows else [()] * len(_SPACE_CONTACT)
+    if any(len(r) != len(header) for r in rows):
+        raise ContactddError(f"{path}: expected {len(header)} columns")
+    columns = list(zip(*rows)) if rows else [()] * len(header)
     table: dict[str, np.ndarray] = {
         "pair": np.array(columns[0], dtype=str),
         "body": np.array(columns[1], dtype=str),
     }
     try:
         table["node"] = np.array([int(v) for v in columns[2]], dtype=np.int64)
-        for name, values in zip(_SPACE_CONTACT[3:], columns[3:]):
-            table[name] = np.array([float(v) for v in values], dtype=np.float64)
+        for name, values in zip(header[3:], columns[3:]):
+            if name == "status":
+                table[name] = np.array(values, dtype=str)
+                continue
+            # A frictionless pair's points leave the friction columns empty.
+            empty = np.nan if name in _SPACE_FRICTION else None
+            table[name] = np.array([float(v) if v or empty is None else empty for v in values],
+                                   dtype=np.float64)
     except (ValueError, OverflowError) as e:
         raise ContactddError(f"{path}: not a CSV file of contactdd: {e}") from e
     return table
@@ -423,6 +435,9 @@ def _space(summary: dict[str, Any], files: list[str],
         raise ContactddError(f"{folder}: summary.json lists no contact.csv")
     bodies = [_body(piece, info) for piece, info in zip(pieces, infos)]
     balance = _key(summary, "balance", folder)
+    # A frictional result also checks the friction law.
+    checks = ("worst", "tol", "contact_law") + (("friction_law",) if "friction_law" in balance
+                                                else ())
     return SpaceResult._from_state({
         "converged": bool(_key(summary, "converged", folder)),
         "reason": _key(summary, "reason", folder),
@@ -430,7 +445,7 @@ def _space(summary: dict[str, Any], files: list[str],
         "newton_steps": _key(summary, "newton_steps", folder),
         "bodies": bodies,
         "contact": _space_contact(folder / "contact.csv"),
-        "balance": {k: _number(balance[k]) for k in ("worst", "tol", "contact_law")},
+        "balance": {k: _number(balance[k]) for k in checks},
         "timing": {k: _number(v) for k, v in _key(summary, "timings", folder).items()},
         "summary": summary,
     })

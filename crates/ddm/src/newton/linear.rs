@@ -165,6 +165,29 @@ pub(crate) fn lu_solve_in_place(a: Mat<f64>, rhs: &mut Mat<f64>) -> Option<()> {
     DenseLu::new(a)?.solve(rhs)
 }
 
+/// Solves `a x = rhs` as [`lu_solve_in_place`], then refines x by `sweeps` steps of iterative
+/// refinement against `a` (the residual in working precision), which leaves each equation's
+/// residual small against its own terms however unevenly the rows are scaled (Skeel).
+pub(crate) fn lu_solve_refined(a: Mat<f64>, rhs: &mut Mat<f64>, sweeps: usize) -> Option<()> {
+    let lu = DenseLu::new(a.clone())?;
+    let b = rhs.clone();
+    lu.solve(rhs)?;
+    for _ in 0..sweeps {
+        let mut r = b.clone();
+        faer::linalg::matmul::matmul(
+            r.as_mut(),
+            faer::Accum::Add,
+            a.as_ref(),
+            rhs.as_ref(),
+            -1.0,
+            Par::Seq,
+        );
+        lu.solve(&mut r)?;
+        *rhs += &r;
+    }
+    Some(())
+}
+
 /// A dense LU factorisation with partial pivoting, computed and applied sequentially.
 pub(super) struct DenseLu {
     lu: Mat<f64>,
