@@ -14,8 +14,10 @@
 //! and where it slips τ = M t + μ p t̂ (Coulomb; + b t̂ for Tresca), with t the trial traction,
 //! t̂ its direction and M = (b/|t|)(I − t̂ t̂ᵀ), so that the step is a linear system over the
 //! closed points' pressures and tractions and the motions' amplitudes; the balance of each free
-//! motion now counts the work of the tractions too. It stops when the closed set and the
-//! stick/slip statuses repeat and the tractions meet the law to `LAW_TOL`.
+//! motion now counts the work of the tractions too. A step is halved where it does not lower
+//! the merit (`settle`), and a floating body that friction cannot hold is named (`slides`).
+//! It stops at a whole step after which the closed set and the stick/slip statuses repeat and
+//! the tractions meet the law to `LAW_TOL`.
 
 use faer::Mat;
 
@@ -129,7 +131,7 @@ pub(crate) fn newton_friction(
 const HALVINGS: usize = 10;
 
 /// The step from `it` towards the Newton iterate `full` halved until the merit (the squared
-/// violations of the laws, [`settle`]) falls below `merit`, if some halving lowers it: the
+/// violations of the laws, `settle`) falls below `merit`, if some halving lowers it: the
 /// iterate, its closed set and its merit. Semismooth Newton steps for
 /// friction converge only near the solution; far from it, a whole step can overshoot the slip
 /// directions.
